@@ -1,0 +1,31 @@
+#pragma once
+/// @file field.hpp
+/// Phase functions: N scalar functions phi_0..phi_{N-1}; a point belongs to the
+/// phase whose phi is largest (paper sect. 3, eq. 1-2).
+
+#include "voronoimesh/types.hpp"
+
+#include <span>
+#include <string>
+
+namespace vm {
+
+/// N phase functions that can be evaluated anywhere, with gradients.
+/// Implementations must be safe to call from several threads at once.
+class PhaseField {
+public:
+  virtual ~PhaseField() = default;
+
+  /// Number of phases N (>= 2).
+  virtual int num_phases() const = 0;
+  /// Display name of phase `i` (the scene's "name", or "phase<i>").
+  virtual std::string phase_name(int i) const = 0;
+  /// phi_i(x) for every phase; `out.size() == num_phases()`.
+  virtual void values(const Vec3& x, std::span<double> out) const = 0;
+  /// phi_i(x) of one phase.
+  virtual double value(int i, const Vec3& x) const = 0;
+  /// grad phi_i(x) of one phase.
+  virtual Vec3 gradient(int i, const Vec3& x) const = 0;
+};
+
+} // namespace vm

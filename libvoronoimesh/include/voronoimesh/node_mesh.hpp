@@ -1,0 +1,33 @@
+#pragma once
+/// @file node_mesh.hpp
+/// The node-level form of an interface mesh: one vertex per geometric point,
+/// triangles as node triples, one phase pair per triangle. This is what files
+/// hold and what create produces; InterfaceMesh (mesh.hpp) is built from it.
+
+#include "voronoimesh/types.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// Triangles of every interface, sharing vertices at junctions.
+struct NodeMesh {
+  std::vector<Vec3> points;
+  /// Node ids of each triangle, oriented so that the right-hand normal points
+  /// from pairs[t][0] into pairs[t][1].
+  std::vector<std::array<int32_t, 3>> triangles;
+  /// Phase pair of each triangle, pairs[t][0] < pairs[t][1].
+  std::vector<PhasePair> pairs;
+  /// Phase names by id, when known (may be empty).
+  std::vector<std::string> phase_names;
+  /// The domain box; edges lying on it may bound a single triangle.
+  Box domain;
+
+  size_t num_nodes() const { return points.size(); }
+  size_t num_triangles() const { return triangles.size(); }
+};
+
+} // namespace vm

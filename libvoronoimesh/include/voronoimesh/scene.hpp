@@ -1,0 +1,32 @@
+#pragma once
+/// @file scene.hpp
+/// Closed-form scenes read from JSON (format documented in README.md, "Scene files").
+
+#include "voronoimesh/field.hpp"
+#include "voronoimesh/types.hpp"
+
+#include <memory>
+#include <string>
+
+namespace vm {
+
+/// A closed-form scene: the domain and background grid, and the phase functions.
+struct Scene {
+  GridSpec grid;
+  std::shared_ptr<const PhaseField> field;
+};
+
+/// Parses a scene from JSON text. `source` names the text in error messages
+/// (usually the file name). Throws InvalidInput with a one-line message naming
+/// `source` and the problem (malformed JSON, unknown phase kind, grid out of
+/// range [1, 4096], fewer than two phases, a bad expression...).
+Scene parse_scene(const std::string& json_text, const std::string& source);
+
+/// Reads and parses a scene file. Throws IoError if it cannot be read.
+Scene load_scene(const std::string& path);
+
+/// The built-in demo: the paper's four overlapping spheres (5 phases, 10
+/// surfaces, 10 triple curves, 5 quadruple points) at grid 64.
+Scene demo_scene();
+
+} // namespace vm

@@ -1,0 +1,40 @@
+#pragma once
+/// @file validate.hpp
+/// Topological consistency checks of an interface mesh (DESIGN.md "Pitfalls",
+/// openmesh-probe.md "Invariants").
+
+#include "voronoimesh/node_mesh.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vm {
+
+class InterfaceMesh;
+
+/// What validate() found. `ok()` is true when `problems` is empty.
+struct ValidationReport {
+  std::vector<std::string> problems; ///< one line each, at most 20 kept
+  size_t problem_count = 0;          ///< all problems found, kept or not
+  bool ok() const { return problem_count == 0; }
+  /// Problems joined into one multi-line text, for test output.
+  std::string summary() const;
+};
+
+/// Checks a node-level interface mesh:
+///  - node ids in range; no triangle with a repeated node; no zero-area triangle
+///    (area <= 1e-12 x longest edge squared); no two triangles on the same three nodes;
+///  - every pair (p, q) has p < q, both in [0, num_phases);
+///  - for every phase, its boundary (its triangles, oriented outward) is closed
+///    and 2-manifold: each edge is used once in each direction, except edges on
+///    the domain box, and the triangles around each node form one fan;
+///  - every junction edge (3 or more triangles) is carried by one cycle of
+///    distinct pairs (each incident phase on exactly two of its triangles).
+ValidationReport validate(const NodeMesh& m);
+
+/// validate() on the node-level mesh, plus the patch-split invariants: every
+/// OpenMesh vertex manifold; an OpenMesh edge is boundary exactly when its
+/// node-edge is a junction or domain-boundary edge; point() mirrors the node position.
+ValidationReport validate(const InterfaceMesh& m);
+
+} // namespace vm

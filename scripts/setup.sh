@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs everything voronoimesh needs to build and test, from Debian 12 packages.
+# Safe to run again: apt-get skips what is already there. Needs root (or sudo).
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
+  libmuparser-dev nlohmann-json3-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
