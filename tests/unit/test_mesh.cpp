@@ -1,1 +1,196 @@
+#include "fixtures.hpp"
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <OpenMesh/Tools/Utils/MeshCheckerT.hh>
 #include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+using namespace vm;
+
+namespace {
+
+void expect_same(const NodeMesh& a, const NodeMesh& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]) << "node " << i;
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.pairs, b.pairs);
+  EXPECT_EQ(a.phase_names, b.phase_names);
+  EXPECT_EQ(a.domain.min, b.domain.min);
+  EXPECT_EQ(a.domain.max, b.domain.max);
+}
+
+size_t boundary_edges(const OMesh& om) {
+  size_t n = 0;
+  for (auto e : om.edges()) n += om.is_boundary(e);
+  return n;
+}
+
+bool mesh_checker_ok(const OMesh& om) {
+  std::ostringstream log;
+  return OpenMesh::Utils::MeshCheckerT<OMesh>(om).check(OpenMesh::Utils::MeshCheckerT<OMesh>::CHECK_ALL, log);
+}
+
+std::string topology_error(const NodeMesh& m) {
+  try {
+    InterfaceMesh::from_node_mesh(m);
+  } catch (const TopologyError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST(InterfaceMesh, closed_surface_has_one_copy_per_node_and_no_boundary) {
+  const auto im = InterfaceMesh::from_node_mesh(test::tetrahedron());
+  EXPECT_EQ(im.num_nodes(), 4u);
+  EXPECT_EQ(im.num_triangles(), 4u);
+  EXPECT_EQ(im.omesh().n_vertices(), 4u);
+  EXPECT_EQ(im.omesh().n_edges(), 6u);
+  EXPECT_EQ(boundary_edges(im.omesh()), 0u);
+  for (int32_t n = 0; n < 4; ++n) {
+    ASSERT_EQ(im.copies(n).size(), 1u);
+    EXPECT_EQ(im.node(OMesh::VertexHandle(im.copies(n)[0])), n);
+    EXPECT_EQ(phase_count(im.phases()[size_t(n)]), 2);
+    EXPECT_EQ(im.phases()[size_t(n)], (PhaseSet{0, 1, -1, -1, -1, -1, -1, -1}));
+  }
+  EXPECT_TRUE(mesh_checker_ok(im.omesh()));
+  EXPECT_TRUE(validate(im).ok()) << validate(im).summary();
+}
+
+TEST(InterfaceMesh, junction_nodes_get_one_copy_per_patch) {
+  const NodeMesh m = test::two_cubes(1);
+  const auto im = InterfaceMesh::from_node_mesh(m);
+  // 4 nodes on the shared square carry the patches (0,1), (0,2), (1,2).
+  size_t triple = 0;
+  for (size_t n = 0; n < m.points.size(); ++n) {
+    const bool shared = m.points[n].x() == 1.0;
+    EXPECT_EQ(im.copies(int32_t(n)).size(), shared ? 3u : 1u) << "node " << n;
+    EXPECT_EQ(phase_count(im.phases()[n]), shared ? 3 : 2);
+    triple += shared;
+  }
+  EXPECT_EQ(triple, 4u);
+  EXPECT_EQ(im.omesh().n_vertices(), 8u + 3u * 4u);
+  // Each of the 4 junction node-edges is a boundary edge in each of its 3 patches.
+  EXPECT_EQ(boundary_edges(im.omesh()), 12u);
+  for (auto v : im.omesh().vertices()) EXPECT_TRUE(im.omesh().is_manifold(v));
+  EXPECT_TRUE(mesh_checker_ok(im.omesh()));
+  EXPECT_TRUE(validate(im).ok()) << validate(im).summary();
+}
+
+TEST(InterfaceMesh, quadruple_point_gets_a_copy_per_incident_pair) {
+  const NodeMesh m = test::four_phase_point();
+  const auto im = InterfaceMesh::from_node_mesh(m);
+  for (size_t n = 0; n < m.points.size(); ++n) {
+    EXPECT_EQ(phase_count(im.phases()[n]), 4) << "node " << n;
+    EXPECT_EQ(im.copies(int32_t(n)).size(), 6u) << "node " << n; // every triangle is its own patch
+  }
+  EXPECT_TRUE(validate(im).ok()) << validate(im).summary();
+}
+
+TEST(InterfaceMesh, round_trip_keeps_node_and_triangle_order) {
+  NodeMesh m = test::four_phase_point();
+  m.phase_names = {"out", "a", "b", "c", "d"};
+  // Rotate some triangles' corners and scramble triangle order: both must survive.
+  std::mt19937 rng(3);
+  for (auto& t : m.triangles) std::rotate(t.begin(), t.begin() + rng() % 3, t.end());
+  for (size_t i = m.triangles.size() - 1; i > 0; --i) {
+    const size_t j = rng() % (i + 1);
+    std::swap(m.triangles[i], m.triangles[j]);
+    std::swap(m.pairs[i], m.pairs[j]);
+  }
+  expect_same(InterfaceMesh::from_node_mesh(m).to_node_mesh(), m);
+  for (const NodeMesh& f : {test::two_cubes(2), test::box_t_junction(4), test::block_grains(2, 2)})
+    expect_same(InterfaceMesh::from_node_mesh(f).to_node_mesh(), f);
+}
+
+TEST(InterfaceMesh, points_mirror_node_positions) {
+  const auto im = InterfaceMesh::from_node_mesh(test::box_t_junction(2));
+  for (auto v : im.omesh().vertices()) {
+    const auto& p = im.omesh().point(v);
+    EXPECT_EQ(Vec3(p[0], p[1], p[2]), im.positions()[size_t(im.node(v))]);
+  }
+  // Face pair property matches the input.
+  const NodeMesh m = test::box_t_junction(2);
+  for (auto f : im.omesh().faces()) EXPECT_EQ(im.pair(f), m.pairs[size_t(f.idx())]);
+}
+
+TEST(InterfaceMesh, eight_phases_at_a_node_are_accepted) {
+  const auto im = InterfaceMesh::from_node_mesh(test::block_grains(2, 1));
+  int most = 0;
+  for (const auto& s : im.phases()) most = std::max(most, phase_count(s));
+  EXPECT_EQ(most, 8);
+  EXPECT_TRUE(validate(im).ok()) << validate(im).summary();
+}
+
+TEST(InterfaceMesh, more_than_eight_phases_at_a_node_is_a_topology_error) {
+  test::Builder b;
+  // Nine triangles fanned around the origin, each with its own pair.
+  for (int i = 0; i < 9; ++i) {
+    const double a = 2 * 3.141592653589793 * i / 9, c = 2 * 3.141592653589793 * (i + 1) / 9;
+    b.tri(Vec3::Zero(), Vec3(std::cos(a), std::sin(a), 0), Vec3(std::cos(c), std::sin(c), 0), 2 * i, 2 * i + 1);
+  }
+  EXPECT_NE(topology_error(b.mesh).find("node 0: 18 phases meet"), std::string::npos) << topology_error(b.mesh);
+}
+
+TEST(InterfaceMesh, malformed_triangles_are_refused_before_openmesh_sees_them) {
+  NodeMesh m = test::tetrahedron();
+  m.triangles[2] = {1, 1, 3}; // would abort inside libOpenMeshCore
+  EXPECT_NE(topology_error(m).find("interface mesh: triangle 2 (1, 1, 3): repeated node"), std::string::npos)
+      << topology_error(m);
+  m = test::tetrahedron();
+  m.triangles[3][1] = 4;
+  EXPECT_NE(topology_error(m).find("triangle 3"), std::string::npos);
+  EXPECT_NE(topology_error(m).find("out of range"), std::string::npos);
+  m = test::tetrahedron();
+  m.pairs[0] = {1, 0};
+  EXPECT_NE(topology_error(m).find("triangle 0"), std::string::npos);
+  EXPECT_NE(topology_error(m).find("bad phase pair (1, 0)"), std::string::npos);
+  m = test::tetrahedron();
+  m.pairs.pop_back();
+  EXPECT_NE(topology_error(m).find("4 triangles but 3 phase pairs"), std::string::npos);
+}
+
+TEST(InterfaceMesh, pinched_surface_builds_and_fails_validation) {
+  test::Builder b;
+  test::add_tetrahedron(b, test::corner_tet(Vec3::Zero(), 1), 1, 0);
+  test::add_tetrahedron(b, {Vec3(0, 0, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)}, 1, 0);
+  const auto im = InterfaceMesh::from_node_mesh(b.mesh);
+  const auto report = validate(im);
+  EXPECT_FALSE(report.ok());
+  EXPECT_NE(report.summary().find("non-manifold edge"), std::string::npos) << report.summary();
+}
+
+TEST(InterfaceMesh, random_soups_never_crash_openmesh) {
+  // Any input either builds or is refused with a TopologyError: OpenMesh's own
+  // assertions (which abort the process) must never be reached.
+  std::mt19937 rng(12345);
+  size_t built = 0, refused = 0;
+  for (int iter = 0; iter < 3000; ++iter) {
+    NodeMesh m;
+    const int nodes = 4 + int(rng() % 4);
+    for (int i = 0; i < nodes; ++i) m.points.emplace_back(double(rng() % 7), double(rng() % 7), double(rng() % 7));
+    const int tris = 1 + int(rng() % 14);
+    for (int t = 0; t < tris; ++t) {
+      std::array<int32_t, 3> tri{};
+      for (auto& v : tri) v = int32_t(rng() % uint32_t(nodes));
+      const int32_t p = int32_t(rng() % 3);
+      m.triangles.push_back(tri);
+      m.pairs.push_back({p, p + 1 + int32_t(rng() % 2)});
+    }
+    try {
+      const auto im = InterfaceMesh::from_node_mesh(m);
+      (void)validate(im);
+      ++built;
+    } catch (const TopologyError&) {
+      ++refused;
+    }
+  }
+  EXPECT_GT(built, 100u);
+  EXPECT_GT(refused, 100u);
+}

@@ -1,1 +1,121 @@
+#include "fixtures.hpp"
+
+#include "voronoimesh/stats.hpp"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+using namespace vm;
+
+TEST(TriangleQuality, equilateral_is_one_and_degenerate_is_zero) {
+  EXPECT_NEAR(triangle_quality(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(3.0) / 2, 0)), 1.0, 1e-15);
+  EXPECT_NEAR(triangle_quality(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0)), std::sqrt(3.0) / 2, 1e-15);
+  EXPECT_EQ(triangle_quality(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)), 0.0);
+  EXPECT_EQ(triangle_quality(Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)), 0.0);
+  EXPECT_EQ(triangle_quality(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(NAN, 0, 0)), 0.0);
+}
+
+TEST(Stats, closed_surface) {
+  const MeshStats s = compute_stats(test::tetrahedron());
+  EXPECT_EQ(s.vertices, 4u);
+  EXPECT_EQ(s.triangles, 4u);
+  EXPECT_EQ(s.phases, 2u);
+  EXPECT_EQ(s.surfaces, 1u);
+  EXPECT_EQ(s.triple_curves, 0u);
+  EXPECT_EQ(s.quadruple_points, 0u);
+}
+
+TEST(Stats, two_cubes_have_three_surfaces_and_one_closed_triple_curve) {
+  for (int n : {1, 3}) {
+    const MeshStats s = compute_stats(test::two_cubes(n));
+    EXPECT_EQ(s.phases, 3u);
+    EXPECT_EQ(s.surfaces, 3u) << "n = " << n;
+    EXPECT_EQ(s.triple_curves, 1u) << "n = " << n;
+    EXPECT_EQ(s.quadruple_points, 0u);
+    EXPECT_EQ(s.higher_order_points, 0u);
+  }
+}
+
+TEST(Stats, a_pair_in_two_patches_counts_twice) {
+  test::Builder b;
+  test::add_tetrahedron(b, test::corner_tet(Vec3::Zero(), 1), 1, 0);
+  test::add_tetrahedron(b, test::corner_tet(Vec3(3, 0, 0), 1), 1, 0);
+  EXPECT_EQ(compute_stats(b.mesh).surfaces, 2u);
+}
+
+TEST(Stats, four_phase_point_splits_triple_curves_at_quadruple_points) {
+  const MeshStats s = compute_stats(test::four_phase_point());
+  EXPECT_EQ(s.phases, 5u);
+  EXPECT_EQ(s.surfaces, 10u);
+  EXPECT_EQ(s.quadruple_points, 5u); // the centroid and the 4 corners
+  EXPECT_EQ(s.higher_order_points, 0u);
+  EXPECT_EQ(s.triple_curves, 10u); // 4 spokes and 6 tetrahedron edges
+}
+
+TEST(Stats, triple_curve_ending_on_the_box_counts_once) {
+  for (int n : {2, 6}) {
+    const MeshStats s = compute_stats(test::box_t_junction(n));
+    EXPECT_EQ(s.surfaces, 3u);
+    EXPECT_EQ(s.triple_curves, 1u) << "n = " << n;
+    EXPECT_EQ(s.quadruple_points, 0u);
+  }
+}
+
+TEST(Stats, eight_blocks_meet_at_a_higher_order_point) {
+  const MeshStats s = compute_stats(test::block_grains(2, 1));
+  EXPECT_EQ(s.phases, 8u);
+  EXPECT_EQ(s.surfaces, 12u);
+  EXPECT_EQ(s.quadruple_points, 7u); // the centre (8 phases) and 6 block-edge ends on the box (4 each)
+  EXPECT_EQ(s.higher_order_points, 1u);
+  EXPECT_EQ(s.triple_curves, 6u); // each 4-phase edge runs between such points
+}
+
+TEST(Stats, quality_angles_and_edges_of_right_isosceles_triangles) {
+  const MeshStats s = compute_stats(test::two_cubes(1));
+  EXPECT_NEAR(s.min_quality, std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_NEAR(s.mean_quality, std::sqrt(3.0) / 2, 1e-12);
+  EXPECT_EQ(s.below_half, 0u);
+  EXPECT_EQ(s.slivers, 0u);
+  EXPECT_NEAR(s.min_angle_deg, 45, 1e-9);
+  EXPECT_NEAR(s.max_angle_deg, 90, 1e-9);
+  EXPECT_DOUBLE_EQ(s.min_edge, 1);
+  EXPECT_DOUBLE_EQ(s.max_edge, std::sqrt(2.0));
+  // 20 cube edges of length 1 and 11 face diagonals of length sqrt 2.
+  EXPECT_NEAR(s.rms_edge, std::sqrt((20 * 1.0 + 11 * 2.0) / 31), 1e-12);
+}
+
+TEST(Stats, slivers_are_counted) {
+  test::Builder b;
+  b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.01, 0), 0, 1);
+  b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.4, 0), 0, 1);
+  const MeshStats s = compute_stats(b.mesh);
+  EXPECT_EQ(s.slivers, 1u);
+  EXPECT_EQ(s.below_half, 1u);
+  EXPECT_NEAR(s.max_angle_deg, 180 - 2 * std::atan(0.02) * 180 / M_PI, 1e-9);
+}
+
+TEST(Stats, empty_mesh_gives_zeros) {
+  const MeshStats s = compute_stats(NodeMesh{});
+  EXPECT_EQ(s.triangles, 0u);
+  EXPECT_EQ(s.min_quality, 0.0);
+  EXPECT_EQ(s.rms_edge, 0.0);
+}
+
+TEST(Stats, text_and_json_carry_every_field) {
+  const MeshStats s = compute_stats(test::four_phase_point());
+  const std::string text = to_text(s);
+  EXPECT_NE(text.find("surfaces               10\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("quadruple points       5\n"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(to_json(s));
+  EXPECT_EQ(j.size(), 16u);
+  EXPECT_EQ(j.at("vertices").get<size_t>(), s.vertices);
+  EXPECT_EQ(j.at("surfaces").get<size_t>(), 10u);
+  EXPECT_EQ(j.at("triple_curves").get<size_t>(), 10u);
+  EXPECT_EQ(j.at("quadruple_points").get<size_t>(), 5u);
+  EXPECT_EQ(j.at("higher_order_points").get<size_t>(), 0u);
+  EXPECT_EQ(j.at("min_quality").get<double>(), s.min_quality);
+  EXPECT_EQ(j.at("rms_edge").get<double>(), s.rms_edge);
+  EXPECT_EQ(j.at("max_angle_deg").get<double>(), s.max_angle_deg);
+}

@@ -25,19 +25,31 @@ struct CreateParams {
 
 /// What create did, for benchmarks and logs.
 struct CreateStats {
-  uint64_t tets_visited = 0;   ///< tetrahedra of the lattice
-  uint64_t tets_cut = 0;       ///< tetrahedra with more than one phase after the drop rule
-  uint64_t polygons = 0;       ///< non-empty chopped polygons
-  uint64_t merged_vertices = 0; ///< vertices that coincided with another in the limit
-  uint64_t dropped_triangles = 0; ///< zero-size triangles removed
-  uint64_t cancelled_triangles = 0; ///< coincident triangles merged or removed
-  uint64_t snapped_nodes = 0;  ///< lattice nodes whose values snapping changed
-  double seconds = 0;          ///< wall time of create (sampling excluded)
+  uint64_t tets_visited = 0;       ///< tetrahedra of the lattice
+  uint64_t tets_cut = 0;           ///< tetrahedra where more than one phase can win
+  uint64_t polygons = 0;           ///< non-empty chopped polygons emitted
+  uint64_t collapsed_polygons = 0; ///< polygons that shrink to a point or segment in the limit
+  uint64_t dropped_triangles = 0;  ///< triangles with two corners at one point
+  uint64_t coincident_pairs = 0;   ///< couples of triangles on the same three points, resolved
+  uint64_t degenerate_cuts = 0;    ///< ties the perturbation could not order (should stay 0)
+  uint64_t snapped_nodes = 0;      ///< lattice nodes whose values snapping changed
+  uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
+  int repair_rounds = 0;           ///< extra extractions that undoing snapping needed
+  double seconds = 0;              ///< wall time of create (sampling excluded)
 };
 
+/// Most extra extractions create makes to undo snapping where it pinches a phase.
+constexpr int kMaxRepairRounds = 8;
+
+/// The grid create needs for `lattice`: bcc uses every second grid node, so each
+/// cell count is rounded up to an even number (the domain stays the same).
+GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice);
+
 /// Extracts the Voronoi interface of the piecewise-linear interpolant of `field`
-/// on the chosen lattice, after snapping. The result is consistent by construction:
-/// each vertex is made once per lattice point it lies on (exact, no tolerance).
+/// on the chosen lattice, after snapping, into `out`. The result is consistent by
+/// construction: each vertex is made once per point it lies on, identified exactly
+/// (no tolerance). The grid of `field` must come from grid_for_lattice(). Throws
+/// InvalidInput for a snap outside [0, 0.5] or an odd grid with bcc.
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params,
                                 NodeMesh& out);
 

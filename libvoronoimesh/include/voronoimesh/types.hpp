@@ -3,6 +3,7 @@
 /// Small value types shared by every part of voronoimesh.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry> // cross products on Vec3
 
 #include <array>
 #include <cstdint>

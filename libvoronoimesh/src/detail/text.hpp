@@ -1,0 +1,33 @@
+#pragma once
+/// @file detail/text.hpp
+/// Building one-line messages.
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace vm::detail {
+
+/// Concatenates strings and numbers (floating point as %.6g) into one line.
+/// (Appending also avoids GCC 12's false -Wrestrict warnings on
+/// "literal" + std::string chains.)
+template <class... Parts>
+std::string cat(const Parts&... parts) {
+  std::string s;
+  auto add = [&s](const auto& p) {
+    using T = std::decay_t<decltype(p)>;
+    if constexpr (std::is_floating_point_v<T>) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", double(p));
+      s += buf;
+    } else if constexpr (std::is_arithmetic_v<T>)
+      s += std::to_string(p);
+    else
+      s += std::string_view(p);
+  };
+  (add(parts), ...);
+  return s;
+}
+
+} // namespace vm::detail
