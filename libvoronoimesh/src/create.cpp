@@ -1,1 +1,201 @@
-// placeholder
+#include "voronoimesh/create.hpp"
+
+#include "detail/lattice.hpp"
+#include "detail/node_values.hpp"
+#include "detail/tet_cutter.hpp"
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <unordered_map>
+
+namespace vm {
+namespace {
+
+using detail::CutTriangle;
+using detail::LimitKey;
+using detail::LimitKeyHash;
+
+/// What one slab of the lattice produced.
+struct SlabResult {
+  std::vector<CutTriangle> triangles;
+  detail::CutCounters counters;
+  uint64_t tets = 0;
+};
+
+/// The mesh of one extraction, and the exact point behind every vertex.
+struct Extraction {
+  std::vector<Vec3> points;
+  std::vector<LimitKey> keys;
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<PhasePair> pairs;
+};
+
+/// Cuts every tetrahedron (in parallel, slab by slab) and numbers the limit points
+/// in order of first appearance. Slabs are a property of the lattice, not of the
+/// thread count, and are merged in order: the result is the same for any number of
+/// threads. Triangles with two corners on one point are dropped here.
+Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
+                   CreateStats& stats) {
+  std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
+  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) {
+    detail::TetCutter cutter(values, grid);
+    SlabResult& r = slabs[size_t(s)];
+    lattice.for_each_tet(s, [&](const std::array<int64_t, 4>& nodes) {
+      ++r.tets;
+      cutter.cut(nodes, r.triangles, r.counters);
+    });
+  });
+
+  Extraction e;
+  detail::TetCutter positions(values, grid);
+  std::unordered_map<LimitKey, int32_t, LimitKeyHash> ids;
+  size_t total = 0;
+  for (auto& s : slabs) total += s.triangles.size();
+  ids.reserve(total);
+  e.triangles.reserve(total);
+  e.pairs.reserve(total);
+  for (auto& s : slabs) {
+    stats.tets_visited += s.tets;
+    stats.tets_cut += s.counters.tets_cut;
+    stats.polygons += s.counters.polygons;
+    stats.degenerate_cuts += s.counters.degenerate;
+    stats.collapsed_polygons += s.counters.collapsed;
+    for (const CutTriangle& t : s.triangles) {
+      std::array<int32_t, 3> tri;
+      for (int c = 0; c < 3; ++c) {
+        auto [it, inserted] = ids.try_emplace(t.corners[c], int32_t(e.points.size()));
+        if (inserted) {
+          e.points.push_back(positions.position(t.corners[c]));
+          e.keys.push_back(t.corners[c]);
+        }
+        tri[c] = it->second;
+      }
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+        ++stats.dropped_triangles;
+        continue;
+      }
+      e.triangles.push_back(tri);
+      e.pairs.push_back(t.pair);
+    }
+    s.triangles = {};
+  }
+  return e;
+}
+
+/// Two triangles on the same three points are a phase squeezed to zero thickness
+/// between them (it won only on a face, by an exact tie). Seen from the first
+/// triangle's vertex order, each has a back and a front phase; the squeezed phase
+/// is the one they share, and what remains is the interface between the outer two
+/// (nothing, if those are the same phase). Couples that do not stack that way, and
+/// stacks of three or more, are left for the validator to report.
+void resolve_coincident_triangles(Extraction& e, CreateStats& stats) {
+  auto& tris = e.triangles;
+  auto& pairs = e.pairs;
+  std::vector<std::array<int32_t, 3>> sorted(tris);
+  for (auto& c : sorted) std::sort(c.begin(), c.end());
+  std::vector<uint32_t> order(tris.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b;
+  });
+  std::vector<char> removed(tris.size(), 0);
+  for (size_t g = 0; g < order.size();) {
+    size_t end = g + 1;
+    while (end < order.size() && sorted[order[end]] == sorted[order[g]]) ++end;
+    if (end - g == 2) {
+      const uint32_t a = order[g], b = order[g + 1];
+      bool same_orientation = false;
+      for (int r = 0; r < 3; ++r)
+        if (tris[b][r] == tris[a][0] && tris[b][(r + 1) % 3] == tris[a][1]) same_orientation = true;
+      const int32_t a_back = pairs[a][0], a_front = pairs[a][1];
+      const int32_t b_back = same_orientation ? pairs[b][0] : pairs[b][1];
+      const int32_t b_front = same_orientation ? pairs[b][1] : pairs[b][0];
+      int32_t back = -1, front = -1;
+      if (a_front == b_back) back = a_back, front = b_front; // a below b
+      else if (a_back == b_front) back = b_back, front = a_front; // b below a
+      if (back >= 0) {
+        ++stats.coincident_pairs;
+        removed[b] = 1;
+        removed[a] = back == front;
+        if (back > front) std::swap(tris[a][1], tris[a][2]);
+        pairs[a] = {std::min(back, front), std::max(back, front)};
+      }
+    }
+    g = end;
+  }
+  size_t w = 0;
+  for (size_t t = 0; t < tris.size(); ++t)
+    if (!removed[t]) {
+      tris[w] = tris[t];
+      pairs[w] = pairs[t];
+      ++w;
+    }
+  tris.resize(w);
+  pairs.resize(w);
+}
+
+} // namespace
+
+GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice) {
+  GridSpec g = grid;
+  if (lattice == Lattice::bcc)
+    for (int& c : g.cells) c += c % 2;
+  return g;
+}
+
+CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(params.snap >= 0 && params.snap <= 0.5))
+    throw InvalidInput("--snap: must be between 0 and 0.5 (a fraction of the grid spacing), got " +
+                       std::to_string(params.snap));
+  const GridSpec& grid = field.grid();
+  detail::TetLattice lattice(grid, params.lattice);
+
+  // Snapping can tie three phases at both ends of a lattice edge, or tie phases at
+  // a node so that one phase touches it from two sides: a pinched, non-manifold
+  // phase boundary (DESIGN.md, "Snapping can pinch a phase"). Where the result
+  // shows one, snapping is undone at the lattice nodes of the offending vertices
+  // and the mesh is made again. Un-snapping only removes ties, and a pinch needs a
+  // tie, so this ends; in practice after one or two rounds.
+  std::vector<char> unsnapped;
+  CreateStats stats;
+  Extraction e;
+  for (int round = 0;; ++round) {
+    detail::NodeValues values(field, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
+    CreateStats round_stats;
+    e = extract(lattice, values, grid, round_stats);
+    resolve_coincident_triangles(e, round_stats);
+    round_stats.snapped_nodes = values.snapped_nodes();
+    round_stats.unsnapped_nodes = stats.unsnapped_nodes;
+    round_stats.repair_rounds = round;
+    stats = round_stats;
+
+    out = NodeMesh{};
+    out.domain = grid.domain;
+    out.points = std::move(e.points);
+    out.triangles = std::move(e.triangles);
+    out.pairs = std::move(e.pairs);
+    if (params.snap == 0 || round == kMaxRepairRounds) break;
+    ValidationReport report = validate(out);
+    if (report.ok()) break;
+    if (unsnapped.empty()) unsnapped.assign(size_t(grid.node_count()), 0);
+    uint64_t added = 0;
+    for (int32_t v : report.nodes)
+      for (int c = 0; c < e.keys[size_t(v)].count; ++c) {
+        char& flag = unsnapped[size_t(e.keys[size_t(v)].nodes[c])];
+        added += !flag;
+        flag = 1;
+      }
+    if (added == 0) break; // not a snapping problem: leave it to the caller's validation
+    stats.unsnapped_nodes += added;
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+} // namespace vm

@@ -1,1 +1,47 @@
-int main(){}
+#include "commands.hpp"
+
+#include "voronoimesh/errors.hpp"
+
+#include <iostream>
+
+namespace vmcli {
+
+int run_guarded(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const vm::InvalidInput& e) {
+    std::cerr << "voronoimesh: " << e.what() << "\n";
+    return kInvalidInput;
+  } catch (const vm::IoError& e) {
+    std::cerr << "voronoimesh: " << e.what() << "\n";
+    return kIoError;
+  } catch (const vm::TopologyError& e) {
+    std::cerr << "voronoimesh: " << e.what() << "\n";
+    return kTopology;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "voronoimesh: out of memory (try a smaller --grid)\n";
+    return kInternal;
+  } catch (const std::exception& e) {
+    std::cerr << "voronoimesh: internal error: " << e.what() << "\n";
+    return kInternal;
+  }
+}
+
+} // namespace vmcli
+
+int main(int argc, char** argv) {
+  CLI::App app{"voronoimesh: meshes of interconnected surfaces via the Voronoi interface.\n"
+               "Every interface between N phases becomes one triangle mesh whose surfaces meet\n"
+               "along triple curves and at quadruple points by sharing edges (Saye, 2014)."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "voronoimesh 0.1.0");
+  int exit_code = 0;
+  vmcli::add_create_command(app, exit_code);
+  vmcli::add_stats_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  return exit_code;
+}

@@ -1,6 +1,6 @@
 #pragma once
 /// @file scene.hpp
-/// Closed-form scenes read from JSON (format documented in README.md, "Scene files").
+/// Closed-form scenes read from JSON (format: docs/scenes.md).
 
 #include "voronoimesh/field.hpp"
 #include "voronoimesh/types.hpp"

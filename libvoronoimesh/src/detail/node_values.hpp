@@ -1,0 +1,60 @@
+#pragma once
+/// @file node_values.hpp
+/// The values create works on: the sampled field quantized to integers and
+/// snapped (Algorithm 2, line 1), with the winning phase of every node.
+///
+/// Ties are broken by a symbolic perturbation phi'_i = phi_i - eps_i, where the
+/// eps_i are infinitesimals of different orders, 0 < eps_0 << eps_1 << ...: the
+/// lower phase id wins an exact tie, and no combination of phases can stay tied
+/// (tet_cutter.cpp, sign_at). The perturbation is the same at every point, so the
+/// perturbed field is still one consistent piecewise-linear field; exact ties
+/// (snapping makes many, symmetric scenes have them by construction) never need a
+/// tolerance.
+
+#include "voronoimesh/sampled_field.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+/// Quantized values span [0, 2^kValueBits]: see exact.hpp for why this bound.
+constexpr int kValueBits = 29;
+
+/// True when phase `a` with value `va` beats phase `b` with value `vb` in the
+/// perturbed order.
+inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb || (va == vb && a < b); }
+
+class NodeValues {
+public:
+  /// Quantizes and snaps `field`. `snap_eps` is in the field's value units. Nodes
+  /// flagged in `unsnapped` (if given, one entry per node) keep their values.
+  NodeValues(const SampledField& field, double snap_eps, const std::vector<char>* unsnapped = nullptr);
+
+  /// Stored phase ids of node n (the sampled field's order).
+  std::span<const int32_t> ids(int64_t n) const { return field_.ids(n); }
+  /// Quantized, snapped values matching ids(n).
+  std::span<const int32_t> values(int64_t n) const { return {values_.data() + n * k_, size_t(k_)}; }
+  /// Quantized value of phase p at node n (its stored value or the node's floor).
+  int32_t value(int64_t n, int32_t p) const {
+    auto id = ids(n);
+    for (int s = 0; s < k_; ++s)
+      if (id[s] == p) return values_[n * k_ + s];
+    return floor_[n];
+  }
+  /// The winning phase at node n in the perturbed order.
+  int32_t label(int64_t n) const { return label_[n]; }
+  /// Nodes whose values snapping changed.
+  uint64_t snapped_nodes() const { return snapped_nodes_; }
+
+private:
+  const SampledField& field_;
+  int k_;
+  std::vector<int32_t> values_;
+  std::vector<int32_t> floor_;
+  std::vector<int32_t> label_;
+  uint64_t snapped_nodes_ = 0;
+};
+
+} // namespace vm::detail
