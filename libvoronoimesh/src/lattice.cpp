@@ -33,11 +33,60 @@ TetLattice::TetLattice(const GridSpec& grid, Lattice kind) : grid_(grid), kind_(
     blocks_[a] = grid.cells[a] / block_;
   }
   num_slabs_ = blocks_[2];
+  if (kind == Lattice::bcc) {
+    for (int a = 0; a < 3; ++a) {
+      even_[a] = blocks_[a] + 1;
+      odd_[a] = blocks_[a];
+    }
+    even_count_ = even_[0] * even_[1] * even_[2];
+    num_nodes_ = even_count_ + odd_[0] * odd_[1] * odd_[2];
+  } else {
+    num_nodes_ = grid.node_count();
+  }
   for (int cls = 0; cls < 64; ++cls) {
     std::array<bool, 6> on;
     for (int b = 0; b < 6; ++b) on[b] = (cls >> b) & 1;
-    by_class_[cls] = templates_for(on);
+    BlockTemplate& bt = by_class_[cls];
+    bt.tets = templates_for(on);
+    for (const Template& t : bt.tets) {
+      std::array<uint8_t, 4> corners;
+      for (int c = 0; c < 4; ++c) {
+        auto it = std::find(bt.nodes.begin(), bt.nodes.end(), t.offsets[c]);
+        corners[c] = uint8_t(it - bt.nodes.begin());
+        if (it == bt.nodes.end()) bt.nodes.push_back(t.offsets[c]);
+      }
+      bt.corners.push_back(corners);
+    }
   }
+}
+
+GridPoint TetLattice::grid_point(int64_t id) const {
+  if (kind_ == Lattice::cube6) {
+    auto n = grid_.nodes();
+    return {int32_t(id % n[0]), int32_t(id / n[0] % n[1]), int32_t(id / (n[0] * n[1]))};
+  }
+  const bool odd = id >= even_count_;
+  const auto& n = odd ? odd_ : even_;
+  if (odd) id -= even_count_;
+  const int32_t o = odd ? 1 : 0;
+  return {int32_t(2 * (id % n[0])) + o, int32_t(2 * (id / n[0] % n[1])) + o, int32_t(2 * (id / (n[0] * n[1]))) + o};
+}
+
+int64_t TetLattice::num_node_rows() const {
+  if (kind_ == Lattice::cube6) return grid_.nodes()[1] * grid_.nodes()[2];
+  return even_[1] * even_[2] + odd_[1] * odd_[2];
+}
+
+TetLattice::NodeRow TetLattice::node_row(int64_t r) const {
+  if (kind_ == Lattice::cube6) {
+    auto n = grid_.nodes();
+    return {r * n[0], 0, int32_t(r % n[1]), int32_t(r / n[1]), 1, int32_t(n[0])};
+  }
+  if (r < even_[1] * even_[2])
+    return {r * even_[0], 0, int32_t(2 * (r % even_[1])), int32_t(2 * (r / even_[1])), 2, int32_t(even_[0])};
+  r -= even_[1] * even_[2];
+  return {even_count_ + r * odd_[0], 1, int32_t(2 * (r % odd_[1]) + 1), int32_t(2 * (r / odd_[1]) + 1), 2,
+          int32_t(odd_[0])};
 }
 
 uint64_t TetLattice::num_tets() const {
@@ -55,7 +104,7 @@ uint64_t TetLattice::num_tets() const {
       else c = uint64_t(nb - 2);
       count *= c;
     }
-    n += count * by_class_[cls].size();
+    n += count * by_class_[cls].tets.size();
   }
   return n;
 }
@@ -114,10 +163,8 @@ void TetLattice::locate(const Vec3& p, std::array<int64_t, 4>& nodes, std::array
   for (int below = -1; below < 3; ++below) {
     int b[3] = {home[0], home[1], home[2]};
     if (below >= 0 && --b[below] < 0) continue;
-    int cls = (b[0] == 0) | (b[0] == blocks_[0] - 1) << 1 | (b[1] == 0) << 2 | (b[1] == blocks_[1] - 1) << 3 |
-              (b[2] == 0) << 4 | (b[2] == blocks_[2] - 1) << 5;
     const Vec3 origin(b[0] * block_, b[1] * block_, b[2] * block_);
-    for (const Template& t : by_class_[cls]) {
+    for (const Template& t : by_class_[block_class(b)].tets) {
       Vec3 v[4];
       for (int c = 0; c < 4; ++c) v[c] = origin + Vec3(t.offsets[c][0], t.offsets[c][1], t.offsets[c][2]);
       Eigen::Matrix3d m;
@@ -129,7 +176,7 @@ void TetLattice::locate(const Vec3& p, std::array<int64_t, 4>& nodes, std::array
         best = worst;
         bary = w;
         for (int c = 0; c < 4; ++c)
-          nodes[c] = grid_.node_index(int64_t(v[c].x()), int64_t(v[c].y()), int64_t(v[c].z()));
+          nodes[c] = node_id(int64_t(v[c].x()), int64_t(v[c].y()), int64_t(v[c].z()));
       }
     }
   }

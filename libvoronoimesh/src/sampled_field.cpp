@@ -70,8 +70,8 @@ double keep_top_k(std::span<const double> v, std::span<int32_t> order, std::span
 } // namespace
 
 SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k) {
-  if (k < 1)
-    throw InvalidInput(located("sample", "k (phases kept per node) must be at least 1, got " + std::to_string(k)));
+  if (k < 1 || k > 16)
+    throw InvalidInput(located("sample", "k (phases kept per node) must be between 1 and 16, got " + std::to_string(k)));
   check_grid(grid);
   const int n_phases = field.num_phases();
   if (n_phases < 1) throw InvalidInput(located("sample", "the field has no phases"));

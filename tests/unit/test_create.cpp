@@ -102,8 +102,8 @@ TEST(Create, vertices_lie_on_the_piecewise_linear_voronoi_interface) {
     SampledField field = SampledField::sample(*scene.field, grid);
     NodeMesh mesh;
     create_initial_mesh(field, params, mesh);
-    detail::NodeValues values(field, params.snap * grid.h());
     detail::TetLattice tets(grid, lattice);
+    detail::NodeValues values(field, tets, params.snap * grid.h());
     auto phases = node_phases(mesh);
     const double tolerance = 1e-6 * std::ldexp(1.0, detail::kValueBits); // in quantized units
     double worst = 0;

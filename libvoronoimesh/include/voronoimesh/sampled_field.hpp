@@ -17,7 +17,8 @@ class SampledField {
 public:
   /// Samples `field` at every node of `grid` in parallel, keeping the `k` largest
   /// phases per node (ties: lower phase id first). Throws InvalidInput if a value
-  /// is NaN or infinite (naming the phase and the point), or if k < 1.
+  /// is NaN or infinite (naming the phase and the point), or if k is not in
+  /// [1, 16] (more is never needed: few phases compete at any one point).
   static SampledField sample(const PhaseField& field, const GridSpec& grid, int k = 4);
 
   const GridSpec& grid() const { return grid_; }

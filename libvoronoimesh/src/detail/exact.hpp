@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 
 namespace vm::detail {
 
@@ -45,6 +46,20 @@ inline i128 det(const std::array<std::array<i128, 4>, 4>& m, int n) {
 inline unsigned __int128 abs_u(i128 v) { return v < 0 ? (unsigned __int128)(-v) : (unsigned __int128)v; }
 
 /// Greatest common divisor (binary), gcd(0, b) = b.
+inline uint64_t gcd(uint64_t a, uint64_t b) {
+  if (a == 0) return b;
+  if (b == 0) return a;
+  int shift = __builtin_ctzll(a | b);
+  a >>= __builtin_ctzll(a);
+  while (b != 0) {
+    b >>= __builtin_ctzll(b);
+    if (a > b) std::swap(a, b);
+    b -= a;
+  }
+  return a << shift;
+}
+
+/// Greatest common divisor of 128-bit magnitudes.
 inline unsigned __int128 gcd(unsigned __int128 a, unsigned __int128 b) {
   if (a == 0) return b;
   if (b == 0) return a;

@@ -5,6 +5,10 @@
 /// left). Tetrahedra are enumerated slab by slab (one slab per layer along z) so
 /// the work can be split across threads in a way that does not depend on how
 /// many threads there are. Every tetrahedron is positively oriented.
+///
+/// Lattice nodes have their own compact ids: bcc uses only the grid nodes whose
+/// indices are all even (cube corners) or all odd (cube centres), a quarter of
+/// the grid, so per-node data is indexed by lattice id, not grid index.
 
 #include "voronoimesh/create.hpp"
 #include "voronoimesh/types.hpp"
@@ -24,6 +28,26 @@ public:
   TetLattice(const GridSpec& grid, Lattice kind);
 
   int num_slabs() const { return num_slabs_; }
+
+  /// Number of lattice nodes (ids are 0 .. num_nodes()-1).
+  int64_t num_nodes() const { return num_nodes_; }
+  /// Id of the lattice node at grid point (i, j, k), which must be one.
+  int64_t node_id(int64_t i, int64_t j, int64_t k) const {
+    if (kind_ == Lattice::cube6) return grid_.node_index(i, j, k);
+    if (i & 1) return even_count_ + (i >> 1) + odd_[0] * ((j >> 1) + odd_[1] * (k >> 1));
+    return (i >> 1) + even_[0] * ((j >> 1) + even_[1] * (k >> 1));
+  }
+  /// Grid point of a lattice node.
+  GridPoint grid_point(int64_t id) const;
+
+  /// Lattice nodes come in rows along x with consecutive ids: row r holds
+  /// `count` nodes, ids first_id.., at grid points (x0 + step * n, y, z).
+  struct NodeRow {
+    int64_t first_id;
+    int32_t x0, y, z, step, count;
+  };
+  int64_t num_node_rows() const;
+  NodeRow node_row(int64_t r) const;
   /// Number of tetrahedra in all slabs.
   uint64_t num_tets() const;
 
@@ -32,39 +56,59 @@ public:
   /// clamped onto it. Used to evaluate the piecewise-linear field (tests).
   void locate(const Vec3& p, std::array<int64_t, 4>& nodes, std::array<double, 4>& bary) const;
 
-  /// Calls f(std::array<int64_t,4> node_indices) for every tetrahedron of a slab.
-  template <class F> void for_each_tet(int slab, F&& f) const;
+  /// Visits the tetrahedra of a slab block by block. For each block (a 2x2x2 cube
+  /// of cells for bcc, one cell for cube6), skip(nodes, count) is first asked
+  /// with the distinct nodes of its tetrahedra; if it returns false,
+  /// f(std::array<int64_t,4> node_indices) is called for every tetrahedron.
+  /// Returns the number of tetrahedra of the slab, skipped or not.
+  template <class Skip, class F> uint64_t for_each_tet(int slab, Skip&& skip, F&& f) const;
 
 private:
   struct Template {
     std::array<GridPoint, 4> offsets; // relative to the block origin
   };
-  // Templates per block position class: index = (on_min_x, on_max_x, ...) bits.
+  /// The tetrahedra of one kind of block (which domain faces it touches), and
+  /// their corners as indices into the block's distinct nodes.
+  struct BlockTemplate {
+    std::vector<Template> tets;
+    std::vector<GridPoint> nodes;
+    std::vector<std::array<uint8_t, 4>> corners;
+  };
   std::vector<Template> templates_for(const std::array<bool, 6>& on_boundary) const;
+  int block_class(const int b[3]) const {
+    return (b[0] == 0) | (b[0] == blocks_[0] - 1) << 1 | (b[1] == 0) << 2 | (b[1] == blocks_[1] - 1) << 3 |
+           (b[2] == 0) << 4 | (b[2] == blocks_[2] - 1) << 5;
+  }
 
   GridSpec grid_;
   Lattice kind_;
-  int block_ = 1;                 // grid cells per block edge: 2 (bcc) or 1 (cube6)
-  std::array<int, 3> blocks_{};   // blocks per axis
+  int block_ = 1;               // grid cells per block edge: 2 (bcc) or 1 (cube6)
+  std::array<int, 3> blocks_{}; // blocks per axis
   int num_slabs_ = 0;
-  // Templates for each of the 64 boundary classes (computed once).
-  std::array<std::vector<Template>, 64> by_class_;
+  int64_t num_nodes_ = 0, even_count_ = 0;
+  std::array<int64_t, 3> even_{}, odd_{}; // bcc corner and centre nodes per axis
+  std::array<BlockTemplate, 64> by_class_; // by block_class(), computed once
 };
 
-template <class F> void TetLattice::for_each_tet(int slab, F&& f) const {
-  const int bz = slab;
-  std::array<int64_t, 4> nodes;
+template <class Skip, class F> uint64_t TetLattice::for_each_tet(int slab, Skip&& skip, F&& f) const {
+  uint64_t visited = 0;
+  int64_t node[16];
+  std::array<int64_t, 4> tet;
   for (int by = 0; by < blocks_[1]; ++by)
     for (int bx = 0; bx < blocks_[0]; ++bx) {
-      int cls = (bx == 0) | (bx == blocks_[0] - 1) << 1 | (by == 0) << 2 |
-                (by == blocks_[1] - 1) << 3 | (bz == 0) << 4 | (bz == blocks_[2] - 1) << 5;
-      const int ox = bx * block_, oy = by * block_, oz = bz * block_;
-      for (const Template& t : by_class_[cls]) {
-        for (int c = 0; c < 4; ++c)
-          nodes[c] = grid_.node_index(ox + t.offsets[c][0], oy + t.offsets[c][1], oz + t.offsets[c][2]);
-        f(nodes);
+      const int b[3] = {bx, by, slab};
+      const BlockTemplate& t = by_class_[block_class(b)];
+      const int ox = bx * block_, oy = by * block_, oz = slab * block_;
+      for (size_t c = 0; c < t.nodes.size(); ++c)
+        node[c] = node_id(ox + t.nodes[c][0], oy + t.nodes[c][1], oz + t.nodes[c][2]);
+      visited += t.tets.size();
+      if (skip(node, int(t.nodes.size()))) continue;
+      for (const auto& corners : t.corners) {
+        for (int c = 0; c < 4; ++c) tet[c] = node[corners[c]];
+        f(tet);
       }
     }
+  return visited;
 }
 
 } // namespace vm::detail

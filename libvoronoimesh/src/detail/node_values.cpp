@@ -3,18 +3,20 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <functional>
 
 namespace vm::detail {
 
-NodeValues::NodeValues(const SampledField& field, double snap_eps, const std::vector<char>* unsnapped)
-    : field_(field), k_(field.k()) {
-  const int64_t n_nodes = field.grid().node_count();
-  values_.resize(size_t(n_nodes) * k_);
-  floor_.resize(size_t(n_nodes));
-  label_.resize(size_t(n_nodes));
+NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps,
+                       const std::vector<char>* unsnapped)
+    : k_(field.k()) {
+  const GridSpec& grid = field.grid();
+  const int64_t n_nodes = lattice.num_nodes();
+  ids_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
+  values_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
+  floor_.reset(new int32_t[size_t(n_nodes)]);
+  label_.reset(new int32_t[size_t(n_nodes)]);
 
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
@@ -22,39 +24,48 @@ NodeValues::NodeValues(const SampledField& field, double snap_eps, const std::ve
   const double range = field.max_value() - lo;
   const double scale = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
   const int64_t eps = std::llround(snap_eps * scale);
-  auto quantize = [&](double v) { return int32_t(std::llround((v - lo) * scale)); };
+  auto quantize = [&](double v) { return int32_t((v - lo) * scale + 0.5); }; // v >= lo: rounds to nearest
 
   snapped_nodes_ = tbb::parallel_reduce(
-      tbb::blocked_range<int64_t>(0, n_nodes, 4096), uint64_t(0),
-      [&](const tbb::blocked_range<int64_t>& r, uint64_t snapped) {
-        std::vector<int> order(k_);
-        for (int64_t n = r.begin(); n < r.end(); ++n) {
-          auto ids = field.ids(n);
-          auto vals = field.values(n);
-          int32_t* q = values_.data() + n * k_;
-          for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
-          floor_[n] = quantize(field.floor_value(n));
-          // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
-          // phase takes the earlier phase's value, so earlier snaps are not undone.
-          if (eps > 0 && !(unsnapped && (*unsnapped)[size_t(n)])) {
-            std::iota(order.begin(), order.end(), 0);
-            std::sort(order.begin(), order.end(), [&](int a, int b) { return ids[a] < ids[b]; });
-            bool changed = false;
-            for (int a = 0; a < k_; ++a)
-              for (int b = a + 1; b < k_; ++b) {
-                int32_t& vi = q[order[a]];
-                int32_t& vj = q[order[b]];
-                if (vi != vj && std::llabs(int64_t(vi) - vj) < eps) {
-                  vj = vi;
-                  changed = true;
-                }
+      tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
+      [&](const tbb::blocked_range<int64_t>& rows, uint64_t snapped) {
+        int32_t by_id[16];
+        for (int64_t r = rows.begin(); r < rows.end(); ++r) {
+          const TetLattice::NodeRow row = lattice.node_row(r);
+          for (int32_t x = 0; x < row.count; ++x) {
+            const int64_t n = row.first_id + x;
+            const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
+            auto ids = field.ids(g);
+            auto vals = field.values(g);
+            std::copy(ids.begin(), ids.end(), ids_.get() + n * k_);
+            int32_t* q = values_.get() + n * k_;
+            for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
+            floor_[n] = quantize(field.floor_value(g));
+            // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
+            // phase takes the earlier phase's value, so earlier snaps are not undone.
+            if (eps > 0 && !(unsnapped && (*unsnapped)[size_t(n)])) {
+              for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
+                int e = s;
+                for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
+                by_id[e] = s;
               }
-            snapped += changed;
+              bool changed = false;
+              for (int a = 0; a < k_; ++a)
+                for (int b = a + 1; b < k_; ++b) {
+                  const int32_t vi = q[by_id[a]];
+                  int32_t& vj = q[by_id[b]];
+                  if (vi != vj && std::llabs(int64_t(vi) - vj) < eps) {
+                    vj = vi;
+                    changed = true;
+                  }
+                }
+              snapped += changed;
+            }
+            int best = 0;
+            for (int s = 1; s < k_; ++s)
+              if (beats(q[s], ids[s], q[best], ids[best])) best = s;
+            label_[n] = ids[best];
           }
-          int best = 0;
-          for (int s = 1; s < k_; ++s)
-            if (beats(q[s], ids[s], q[best], ids[best])) best = s;
-          label_[n] = ids[best];
         }
         return snapped;
       },

@@ -11,9 +11,11 @@
 /// (snapping makes many, symmetric scenes have them by construction) never need a
 /// tolerance.
 
+#include "detail/lattice.hpp"
 #include "voronoimesh/sampled_field.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -28,17 +30,19 @@ inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb
 
 class NodeValues {
 public:
-  /// Quantizes and snaps `field`. `snap_eps` is in the field's value units. Nodes
-  /// flagged in `unsnapped` (if given, one entry per node) keep their values.
-  NodeValues(const SampledField& field, double snap_eps, const std::vector<char>* unsnapped = nullptr);
+  /// Quantizes and snaps `field` at the nodes of `lattice`, indexed by lattice
+  /// node id. `snap_eps` is in the field's value units. Nodes flagged in
+  /// `unsnapped` (if given, one entry per lattice node) keep their values.
+  NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps,
+             const std::vector<char>* unsnapped = nullptr);
 
-  /// Stored phase ids of node n (the sampled field's order).
-  std::span<const int32_t> ids(int64_t n) const { return field_.ids(n); }
+  /// Stored phase ids of lattice node n (the sampled field's order).
+  std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + n * k_, size_t(k_)}; }
   /// Quantized, snapped values matching ids(n).
-  std::span<const int32_t> values(int64_t n) const { return {values_.data() + n * k_, size_t(k_)}; }
+  std::span<const int32_t> values(int64_t n) const { return {values_.get() + n * k_, size_t(k_)}; }
   /// Quantized value of phase p at node n (its stored value or the node's floor).
   int32_t value(int64_t n, int32_t p) const {
-    auto id = ids(n);
+    const int32_t* id = ids_.get() + n * k_;
     for (int s = 0; s < k_; ++s)
       if (id[s] == p) return values_[n * k_ + s];
     return floor_[n];
@@ -49,11 +53,12 @@ public:
   uint64_t snapped_nodes() const { return snapped_nodes_; }
 
 private:
-  const SampledField& field_;
   int k_;
-  std::vector<int32_t> values_;
-  std::vector<int32_t> floor_;
-  std::vector<int32_t> label_;
+  // Every entry is written once by the parallel fill, so none is zeroed first.
+  std::unique_ptr<int32_t[]> ids_;
+  std::unique_ptr<int32_t[]> values_;
+  std::unique_ptr<int32_t[]> floor_;
+  std::unique_ptr<int32_t[]> label_;
   uint64_t snapped_nodes_ = 0;
 };
 

@@ -65,13 +65,26 @@ void TetCutter::collect_phases(const std::array<int64_t, 4>& nodes) {
   // A phase can be dropped only when one single other phase beats it at all four
   // corners: then it loses everywhere in the tet. Losing to different phases at
   // different corners is not enough (DESIGN.md, "Which phases a tet needs").
-  std::vector<char> keep(ids_.size(), 1);
+  // The corners' winners are the likeliest to beat a phase everywhere, so they
+  // are tried first.
+  candidates_.clear();
+  for (int c = 0; c < 4; ++c) {
+    const size_t q = size_t(std::find(ids_.begin(), ids_.end(), values_.label(nodes[c])) - ids_.begin());
+    if (std::find(candidates_.begin(), candidates_.end(), q) == candidates_.end()) candidates_.push_back(q);
+  }
+  for (size_t q = 0; q < ids_.size(); ++q)
+    if (std::find(candidates_.begin(), candidates_.end(), q) == candidates_.end()) candidates_.push_back(q);
+  std::vector<char>& keep = keep_;
+  keep.assign(ids_.size(), 1);
   for (size_t p = 0; p < ids_.size(); ++p)
-    for (size_t q = 0; q < ids_.size() && keep[p]; ++q) {
+    for (size_t q : candidates_) {
       if (q == p) continue;
       bool all = true;
       for (int c = 0; c < 4 && all; ++c) all = beats(vals_[q][c], ids_[q], vals_[p][c], ids_[p]);
-      if (all) keep[p] = 0;
+      if (all) {
+        keep[p] = 0;
+        break;
+      }
     }
   size_t w = 0;
   for (size_t p = 0; p < ids_.size(); ++p)
@@ -156,6 +169,7 @@ LimitKey TetCutter::limit_key(const PolyVertex& v) const {
   int cols[4], n = 0;
   for (int c = 0; c < 4; ++c)
     if (v.mask >> c & 1) cols[n++] = c;
+  if (n == 2) return edge_limit_key(v, cols[0], cols[1]);
   const int d = n - 1;
   Matrix m{};
   for (int r = 0; r < d; ++r)
@@ -185,11 +199,34 @@ LimitKey TetCutter::limit_key(const PolyVertex& v) const {
   return key;
 }
 
+LimitKey TetCutter::edge_limit_key(const PolyVertex& v, int ca, int cb) const {
+  // The common case, in 64 bits: on edge (a, b) the tie psi = 0 of psi(a) > 0 >
+  // psi(b) (or the reverse) has weights -psi(b) at a and psi(a) at b.
+  const int64_t pa = vals_[v.phases[0]][ca] - vals_[v.phases[1]][ca];
+  const int64_t pb = vals_[v.phases[0]][cb] - vals_[v.phases[1]][cb];
+  int64_t wa = -pb, wb = pa;
+  if (wa < 0 || wb < 0) wa = -wa, wb = -wb; // same sign by construction (or one is 0)
+  LimitKey key;
+  if (wa == 0 || wb == 0) { // the limit point is a lattice node
+    key.count = 1;
+    key.nodes[0] = nodes_[wa == 0 ? cb : ca];
+    key.weights[0] = 1;
+    return key;
+  }
+  const int64_t g = int64_t(gcd(uint64_t(wa), uint64_t(wb)));
+  key.count = 2;
+  const bool a_first = nodes_[ca] < nodes_[cb];
+  key.nodes[0] = nodes_[a_first ? ca : cb];
+  key.nodes[1] = nodes_[a_first ? cb : ca];
+  key.weights[0] = (a_first ? wa : wb) / g;
+  key.weights[1] = (a_first ? wb : wa) / g;
+  return key;
+}
+
 Vec3 TetCutter::position(const LimitKey& key) const {
   auto node_pos = [&](int64_t node) {
-    auto n = grid_.nodes();
-    int64_t i = node % n[0], j = (node / n[0]) % n[1], k = node / (n[0] * n[1]);
-    return grid_.node_position(i, j, k);
+    const GridPoint g = lattice_.grid_point(node);
+    return grid_.node_position(g[0], g[1], g[2]);
   };
   // Base the sum on the first node so points on a box face stay on it exactly.
   Vec3 base = node_pos(key.nodes[0]);

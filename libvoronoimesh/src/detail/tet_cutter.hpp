@@ -5,6 +5,7 @@
 /// every other phase k, triangulated. All decisions are exact (exact.hpp) in the
 /// perturbed order of node_values.hpp.
 
+#include "detail/lattice.hpp"
 #include "detail/limit_key.hpp"
 #include "detail/node_values.hpp"
 #include "voronoimesh/types.hpp"
@@ -32,11 +33,10 @@ struct CutCounters {
 
 class TetCutter {
 public:
-  /// `position(node)` gives a node's coordinates; used only to choose a well-shaped
-  /// triangulation of each polygon.
-  TetCutter(const NodeValues& values, const GridSpec& grid) : values_(values), grid_(grid) {}
+  TetCutter(const NodeValues& values, const TetLattice& lattice, const GridSpec& grid)
+      : values_(values), lattice_(lattice), grid_(grid) {}
 
-  /// Cuts the tetrahedron (positively oriented, node indices) and appends its
+  /// Cuts the tetrahedron (positively oriented, lattice node ids) and appends its
   /// triangles to `out`. Returns false without work when one phase wins at all four
   /// nodes.
   bool cut(const std::array<int64_t, 4>& nodes, std::vector<CutTriangle>& out, CutCounters& counters);
@@ -57,11 +57,13 @@ private:
   /// Sign of phi'_a - phi'_b at vertex v (+1, -1, or 0 if tied even after perturbation).
   int sign_at(const PolyVertex& v, int a, int b, CutCounters& counters) const;
   LimitKey limit_key(const PolyVertex& v) const;
+  LimitKey edge_limit_key(const PolyVertex& v, int ca, int cb) const;
   void initial_polygon(int a, int b, Polygon& poly) const;
   bool chop(Polygon& poly, int a, int b, int k, CutCounters& counters);
   void emit(const Polygon& poly, int a, int b, std::vector<CutTriangle>& out, CutCounters& counters);
 
   const NodeValues& values_;
+  const TetLattice& lattice_;
   const GridSpec& grid_;
   std::array<int64_t, 4> nodes_{};
   // Phases that can win in the current tet, in increasing id order, and their
@@ -71,6 +73,8 @@ private:
   // Scratch buffers reused from tet to tet.
   Polygon poly_, scratch_;
   std::vector<int> signs_;
+  std::vector<size_t> candidates_;
+  std::vector<char> keep_;
   std::vector<LimitKey> keys_;
   std::vector<Vec3> pos_;
 };
