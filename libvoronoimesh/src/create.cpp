@@ -3,6 +3,7 @@
 #include "detail/lattice.hpp"
 #include "detail/node_values.hpp"
 #include "detail/tet_cutter.hpp"
+#include "detail/text.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/validate.hpp"
 
@@ -20,11 +21,16 @@ using detail::CutTriangle;
 using detail::LimitKey;
 using detail::LimitKeyHash;
 
-/// What one slab of the lattice produced.
+/// What one slab of the lattice produced: its distinct limit points (with
+/// positions) and triangles indexing them.
 struct SlabResult {
-  std::vector<CutTriangle> triangles;
+  std::vector<LimitKey> keys;
+  std::vector<Vec3> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<PhasePair> pairs;
   detail::CutCounters counters;
   uint64_t tets = 0;
+  uint64_t dropped = 0;
 };
 
 /// The mesh of one extraction, and the exact point behind every vertex.
@@ -35,54 +41,83 @@ struct Extraction {
   std::vector<PhasePair> pairs;
 };
 
-/// Cuts every tetrahedron (in parallel, slab by slab) and numbers the limit points
-/// in order of first appearance. Slabs are a property of the lattice, not of the
-/// thread count, and are merged in order: the result is the same for any number of
-/// threads. Triangles with two corners on one point are dropped here.
+/// Cuts the tetrahedra of one slab. Points are numbered within the slab; a
+/// triangle with two corners on one point is dropped.
+void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid, int slab,
+              SlabResult& r) {
+  detail::TetCutter cutter(values, lattice, grid);
+  std::unordered_map<LimitKey, int32_t, LimitKeyHash> local;
+  std::vector<CutTriangle> cut;
+  // A block whose nodes all have the same winner holds no interface: that phase
+  // beats every other at every corner of every tet in it.
+  auto one_winner = [&](const int64_t* nodes, int count) {
+    const int32_t label = values.label(nodes[0]);
+    for (int c = 1; c < count; ++c)
+      if (values.label(nodes[c]) != label) return false;
+    return true;
+  };
+  r.tets = lattice.for_each_tet(slab, one_winner, [&](const std::array<int64_t, 4>& nodes) {
+    cut.clear();
+    cutter.cut(nodes, cut, r.counters);
+    for (const CutTriangle& t : cut) {
+      std::array<int32_t, 3> tri;
+      for (int c = 0; c < 3; ++c) {
+        auto [it, inserted] = local.try_emplace(t.corners[c], int32_t(r.keys.size()));
+        if (inserted) {
+          r.keys.push_back(t.corners[c]);
+          r.points.push_back(cutter.position(t.corners[c]));
+        }
+        tri[c] = it->second;
+      }
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+        ++r.dropped;
+        continue;
+      }
+      r.triangles.push_back(tri);
+      r.pairs.push_back(t.pair);
+    }
+  });
+}
+
+/// Cuts every tetrahedron (in parallel, slab by slab) and numbers the limit
+/// points in order of first appearance. Slabs are a property of the lattice, not
+/// of the thread count, and are merged in order: the result is the same for any
+/// number of threads.
 Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
                    CreateStats& stats) {
   std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
-  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) {
-    detail::TetCutter cutter(values, grid);
-    SlabResult& r = slabs[size_t(s)];
-    lattice.for_each_tet(s, [&](const std::array<int64_t, 4>& nodes) {
-      ++r.tets;
-      cutter.cut(nodes, r.triangles, r.counters);
-    });
-  });
+  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) { cut_slab(lattice, values, grid, s, slabs[size_t(s)]); });
 
   Extraction e;
-  detail::TetCutter positions(values, grid);
   std::unordered_map<LimitKey, int32_t, LimitKeyHash> ids;
-  size_t total = 0;
-  for (auto& s : slabs) total += s.triangles.size();
-  ids.reserve(total);
-  e.triangles.reserve(total);
-  e.pairs.reserve(total);
+  size_t keys = 0, triangles = 0;
+  for (auto& s : slabs) keys += s.keys.size(), triangles += s.triangles.size();
+  ids.reserve(keys);
+  e.triangles.reserve(triangles);
+  e.pairs.reserve(triangles);
+  std::vector<int32_t> global;
   for (auto& s : slabs) {
     stats.tets_visited += s.tets;
     stats.tets_cut += s.counters.tets_cut;
     stats.polygons += s.counters.polygons;
     stats.degenerate_cuts += s.counters.degenerate;
     stats.collapsed_polygons += s.counters.collapsed;
-    for (const CutTriangle& t : s.triangles) {
-      std::array<int32_t, 3> tri;
-      for (int c = 0; c < 3; ++c) {
-        auto [it, inserted] = ids.try_emplace(t.corners[c], int32_t(e.points.size()));
-        if (inserted) {
-          e.points.push_back(positions.position(t.corners[c]));
-          e.keys.push_back(t.corners[c]);
-        }
-        tri[c] = it->second;
+    stats.dropped_triangles += s.dropped;
+    global.resize(s.keys.size());
+    for (size_t k = 0; k < s.keys.size(); ++k) {
+      auto [it, inserted] = ids.try_emplace(s.keys[k], int32_t(e.points.size()));
+      if (inserted) {
+        e.points.push_back(s.points[k]);
+        e.keys.push_back(s.keys[k]);
       }
-      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-        ++stats.dropped_triangles;
-        continue;
-      }
-      e.triangles.push_back(tri);
-      e.pairs.push_back(t.pair);
+      global[k] = it->second;
     }
-    s.triangles = {};
+    for (size_t t = 0; t < s.triangles.size(); ++t) {
+      const auto& tri = s.triangles[t];
+      e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
+      e.pairs.push_back(s.pairs[t]);
+    }
+    s = SlabResult{};
   }
   return e;
 }
@@ -96,10 +131,27 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
 void resolve_coincident_triangles(Extraction& e, CreateStats& stats) {
   auto& tris = e.triangles;
   auto& pairs = e.pairs;
-  std::vector<std::array<int32_t, 3>> sorted(tris);
-  for (auto& c : sorted) std::sort(c.begin(), c.end());
-  std::vector<uint32_t> order(tris.size());
-  std::iota(order.begin(), order.end(), 0u);
+  // Two polygons from different tets can only coincide on the face between them,
+  // so only triangles whose corners all lie in one lattice face (three lattice
+  // nodes between them) are candidates: a small fraction.
+  auto in_one_face = [&](const std::array<int32_t, 3>& tri) {
+    std::array<int64_t, 12> nodes;
+    int n = 0;
+    for (int32_t v : tri) {
+      const LimitKey& k = e.keys[size_t(v)];
+      for (int c = 0; c < k.count; ++c)
+        if (std::find(nodes.begin(), nodes.begin() + n, k.nodes[c]) == nodes.begin() + n) nodes[n++] = k.nodes[c];
+    }
+    return n <= 3;
+  };
+  std::vector<std::array<int32_t, 3>> sorted(tris.size());
+  std::vector<uint32_t> order;
+  for (size_t t = 0; t < tris.size(); ++t)
+    if (in_one_face(tris[t])) {
+      sorted[t] = tris[t];
+      std::sort(sorted[t].begin(), sorted[t].end());
+      order.push_back(uint32_t(t));
+    }
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b;
   });
@@ -148,11 +200,20 @@ GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice) {
   return g;
 }
 
+uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
+  const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
+  const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
+  // SampledField: id (4 B) + value (8 B) per slot, floor 8 B; NodeValues: id and
+  // quantized value per slot (8 B), floor and label 8 B.
+  const double bytes = nodes * (12.0 * k + 8) + lattice_nodes * (8.0 * k + 8);
+  return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes);
+}
+
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
   const auto start = std::chrono::steady_clock::now();
   if (!(params.snap >= 0 && params.snap <= 0.5))
-    throw InvalidInput("--snap: must be between 0 and 0.5 (a fraction of the grid spacing), got " +
-                       std::to_string(params.snap));
+    throw InvalidInput("snap: must be between 0 and 0.5 (a fraction of the grid spacing h), got " +
+                       detail::cat(params.snap));
   const GridSpec& grid = field.grid();
   detail::TetLattice lattice(grid, params.lattice);
 
@@ -166,7 +227,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   CreateStats stats;
   Extraction e;
   for (int round = 0;; ++round) {
-    detail::NodeValues values(field, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
+    detail::NodeValues values(field, lattice, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
     CreateStats round_stats;
     e = extract(lattice, values, grid, round_stats);
     resolve_coincident_triangles(e, round_stats);
@@ -183,7 +244,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     if (params.snap == 0 || round == kMaxRepairRounds) break;
     ValidationReport report = validate(out);
     if (report.ok()) break;
-    if (unsnapped.empty()) unsnapped.assign(size_t(grid.node_count()), 0);
+    if (unsnapped.empty()) unsnapped.assign(size_t(lattice.num_nodes()), 0);
     uint64_t added = 0;
     for (int32_t v : report.nodes)
       for (int c = 0; c < e.keys[size_t(v)].count; ++c) {

@@ -9,6 +9,7 @@
 #include "voronoimesh/validate.hpp"
 
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -31,6 +32,19 @@ struct CreateOptions {
   bool skip_validation = false;
   bool quiet = false;
 };
+
+/// Refuses, before allocating anything, a grid whose sampled field alone would
+/// not fit in this machine's memory.
+void refuse_if_too_big(uint64_t bytes, const vm::GridSpec& grid) {
+  const uint64_t physical = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  if (bytes > physical / 10 * 8) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg, "--grid: a %dx%dx%d grid needs about %.1f GiB, this machine has %.1f GiB",
+                  grid.cells[0], grid.cells[1], grid.cells[2], double(bytes) / (1u << 30),
+                  double(physical) / (1u << 30));
+    throw vm::InvalidInput(msg);
+  }
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -55,6 +69,7 @@ int run_create(const CreateOptions& o) {
   params.snap = o.snap;
   params.lattice = o.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
   const vm::GridSpec grid = vm::grid_for_lattice(scene.grid, params.lattice);
+  refuse_if_too_big(vm::estimate_create_memory(grid, o.top_k, params.lattice), grid);
 
   auto t0 = std::chrono::steady_clock::now();
   vm::SampledField field = vm::SampledField::sample(*scene.field, grid, o.top_k);
@@ -90,8 +105,7 @@ void add_create_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "create", "Create the initial mesh of the Voronoi interface (paper Algorithm 2) and write it as PLY.");
   cmd->add_option("input", o->input,
-                  "Scene file (JSON, see docs/scenes.md). Without it, the built-in demo: four overlapping spheres.")
-      ->check(CLI::ExistingFile);
+                  "Scene file (JSON, see docs/scenes.md). Without it, the built-in demo: four overlapping spheres.");
   cmd->add_option("-o,--output", o->output, "Output mesh (.ply)")->required();
   cmd->add_option("--grid", o->grid, "Grid cells per axis, N or NX,NY,NZ (overrides the scene's \"grid\")")
       ->delimiter(',');

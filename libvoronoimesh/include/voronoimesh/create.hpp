@@ -45,6 +45,11 @@ constexpr int kMaxRepairRounds = 8;
 /// cell count is rounded up to an even number (the domain stays the same).
 GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice);
 
+/// Bytes that sampling `grid` with `k` phases per node and creating the mesh
+/// will need at least (field samples, lattice node values; the mesh itself is
+/// usually far smaller). Used to refuse impossible sizes before starting.
+uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice);
+
 /// Extracts the Voronoi interface of the piecewise-linear interpolant of `field`
 /// on the chosen lattice, after snapping, into `out`. The result is consistent by
 /// construction: each vertex is made once per point it lies on, identified exactly

@@ -1,1 +1,0 @@
-message(STATUS "no cli tests yet")

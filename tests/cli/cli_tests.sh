@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Command-line tests: the built tool on the shipped scenes and on bad input.
+# Usage: cli_tests.sh VORONOIMESH EXAMPLES_DIR WORK_DIR
+set -uo pipefail
+vm=$1 examples=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+passed=0 failed=0
+
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+
+# expect_error NAME EXIT_CODE PATTERN -- command...: the command fails with that
+# exit code, prints exactly one line on stderr matching PATTERN, and leaves no out.ply.
+expect_error() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  rm -f out.ply
+  "$@" >stdout.txt 2>stderr.txt
+  local got=$?
+  local lines
+  lines=$(wc -l <stderr.txt)
+  if [ "$got" -ne "$code" ]; then fail "$name: exit $got, expected $code ($(cat stderr.txt))"
+  elif [ "$lines" -ne 1 ]; then fail "$name: $lines lines on stderr, expected 1: $(cat stderr.txt)"
+  elif ! grep -qE -e "$pattern" stderr.txt; then fail "$name: message '$(cat stderr.txt)' does not match '$pattern'"
+  elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "$name: left an output file behind"
+  else pass; fi
+}
+
+# The main job on the built-in demo, read back by stats.
+if "$vm" create -q -o demo.ply && "$vm" stats demo.ply >stats.txt; then pass; else fail "create/stats on the demo"; fi
+for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology: +valid"; do
+  if grep -qE "^$want" stats.txt; then pass; else fail "demo stats lack '$want': $(cat stats.txt)"; fi
+done
+if "$vm" stats --json demo.ply | grep -q '"surfaces": *10'; then pass; else fail "stats --json"; fi
+
+# Every shipped scene, both lattices, ascii and binary.
+for scene in "$examples"/*.json; do
+  for lattice in bcc cube6; do
+    if "$vm" create -q "$scene" --grid 24 --lattice "$lattice" -o s.ply && "$vm" stats s.ply >/dev/null; then pass
+    else fail "$(basename "$scene") --lattice $lattice"; fi
+  done
+done
+if "$vm" create -q --grid 16 --ascii -o a.ply && head -2 a.ply | grep -q "format ascii"; then pass; else fail "--ascii"; fi
+
+# Identical files for any thread count.
+"$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 1 -o t1.ply
+"$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 2 -o t2.ply
+if cmp -s t1.ply t2.ply; then pass; else fail "--threads 1 and 2 give different files"; fi
+
+# Bad input: one line naming the problem, a non-zero exit, no output file.
+echo '{"phases": [' >malformed.json
+echo '{"phases": [{"kind": "spere", "center": [0,0,0], "radius": 1}, {"kind": "constant", "value": 0}]}' >kind.json
+echo '{"phases": [{"kind": "constant", "value": 0}]}' >one.json
+echo '{"grid": 0, "phases": [{"kind": "constant", "value": 0}, {"kind": "constant", "value": 1}]}' >grid0.json
+echo '{"grid": 1000000, "phases": [{"kind": "constant", "value": 0}, {"kind": "constant", "value": 1}]}' >gridbig.json
+: >empty.json
+expect_error "missing file" 3 "missing\.json: cannot open" -- "$vm" create missing.json -o out.ply
+expect_error "malformed JSON" 2 "malformed\.json: malformed JSON" -- "$vm" create malformed.json -o out.ply
+expect_error "empty file" 2 "empty\.json: " -- "$vm" create empty.json -o out.ply
+expect_error "unknown kind" 2 "kind\.json: .*unknown kind 'spere'" -- "$vm" create kind.json -o out.ply
+expect_error "one phase" 2 "one\.json: .*two phases" -- "$vm" create one.json -o out.ply
+expect_error "grid 0" 2 "grid0\.json: .*grid" -- "$vm" create grid0.json -o out.ply
+expect_error "grid 10^6" 2 "gridbig\.json: .*grid" -- "$vm" create gridbig.json -o out.ply
+expect_error "--grid 0" 2 "--grid: must be between 1 and 4096" -- "$vm" create --grid 0 -o out.ply
+expect_error "--grid too big" 2 "--grid: .* needs about .* GiB" -- "$vm" create --grid 4096 -o out.ply
+expect_error "--snap 2" 2 "snap: must be between 0 and 0.5" -- "$vm" create --snap 2 -o out.ply
+expect_error "unwritable output" 3 "/nonexistent/out\.ply" -- "$vm" create --grid 8 -o /nonexistent/out.ply
+expect_error "stats of a non-PLY" 3 "kind\.json: not a PLY" -- "$vm" stats kind.json
+expect_error "stats of a missing file" 3 "nothere\.ply" -- "$vm" stats nothere.ply
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
