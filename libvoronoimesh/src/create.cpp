@@ -225,6 +225,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   // tie, so this ends; in practice after one or two rounds.
   std::vector<char> unsnapped;
   CreateStats stats;
+  double check_seconds = 0;
   Extraction e;
   for (int round = 0;; ++round) {
     detail::NodeValues values(field, lattice, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
@@ -242,7 +243,9 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     out.triangles = std::move(e.triangles);
     out.pairs = std::move(e.pairs);
     if (params.snap == 0 || round == kMaxRepairRounds) break;
+    const auto check_start = std::chrono::steady_clock::now();
     ValidationReport report = validate(out);
+    check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
     if (report.ok()) break;
     if (unsnapped.empty()) unsnapped.assign(size_t(lattice.num_nodes()), 0);
     uint64_t added = 0;
@@ -256,6 +259,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     stats.unsnapped_nodes += added;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.check_seconds = check_seconds;
   return stats;
 }
 

@@ -200,6 +200,32 @@ TEST(Create, eight_cells_meeting_at_a_point_are_meshed) {
     }
 }
 
+// 27 seeds on a 3x3x3 lattice: eight points where eight cells meet. With grid 18
+// the cell walls fall on grid planes, and the distances tie only up to round-off
+// (1/6, 1/2, 5/6 are not binary fractions): near-ties everywhere. Round-off may
+// open tiny facets between diagonal neighbours at the corners (that is what the
+// sampled field says), but every wall between face neighbours must be there.
+TEST(Create, lattice_of_27_seeds_with_near_ties_is_valid) {
+  std::string phases;
+  for (int i = 0; i < 27; ++i) {
+    Vec3 c((1 + 2 * (i % 3)) / 6.0, (1 + 2 * (i / 3 % 3)) / 6.0, (1 + 2 * (i / 9)) / 6.0);
+    phases += std::string(i ? "," : "") + R"({"kind": "seeds", "points": [)" + point(c) + "]}";
+  }
+  Scene s = parse_scene(R"({"grid": 18, "phases": [)" + phases + "]}", "inline");
+  for (Lattice lattice : {Lattice::bcc, Lattice::cube6})
+    for (double snap : {0.0, 0.2}) {
+      SCOPED_TRACE(std::string(lattice == Lattice::bcc ? "bcc" : "cube6") + " snap " + num(snap));
+      Created c = create_from(s, params_of(lattice, snap));
+      ValidationReport report = validate(c.mesh);
+      EXPECT_TRUE(report.ok()) << report.summary();
+      std::set<PhasePair> pairs(c.mesh.pairs.begin(), c.mesh.pairs.end());
+      for (int i = 0; i < 27; ++i)
+        for (int step : {1, 3, 9}) // +x, +y, +z neighbour
+          if ((i / step) % 3 < 2) EXPECT_TRUE(pairs.count({i, i + step})) << i << " and " << i + step;
+      EXPECT_GE(compute_stats(c.mesh).higher_order_points, 1u);
+    }
+}
+
 // Identical phases (tied everywhere) and phases tied up to round-off.
 TEST(Create, exactly_and_nearly_tied_phases_are_valid) {
   for (const char* second : {"0.3", "0.30000000000001"}) {

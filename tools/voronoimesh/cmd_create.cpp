@@ -46,6 +46,20 @@ void refuse_if_too_big(uint64_t bytes, const vm::GridSpec& grid) {
   }
 }
 
+/// One status line on a terminal, overwritten stage by stage; silent otherwise.
+class Progress {
+public:
+  explicit Progress(bool enabled) : enabled_(enabled) {}
+  void stage(const std::string& what) {
+    if (!enabled_) return;
+    std::fprintf(stderr, "\r\033[K%s%s", what.c_str(), what.empty() ? "" : "...");
+    std::fflush(stderr);
+  }
+
+private:
+  bool enabled_;
+};
+
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -71,12 +85,16 @@ int run_create(const CreateOptions& o) {
   const vm::GridSpec grid = vm::grid_for_lattice(scene.grid, params.lattice);
   refuse_if_too_big(vm::estimate_create_memory(grid, o.top_k, params.lattice), grid);
 
+  Progress progress(!o.quiet && isatty(STDERR_FILENO));
   auto t0 = std::chrono::steady_clock::now();
+  progress.stage("sampling " + std::to_string(grid.node_count()) + " grid nodes");
   vm::SampledField field = vm::SampledField::sample(*scene.field, grid, o.top_k);
   const double t_sample = seconds_since(t0);
 
+  progress.stage("creating the mesh");
   vm::NodeMesh mesh;
   vm::CreateStats cs = vm::create_initial_mesh(field, params, mesh);
+  progress.stage("");
   for (int p = 0; p < scene.field->num_phases(); ++p) mesh.phase_names.push_back(scene.field->phase_name(p));
 
   if (!o.skip_validation) {
@@ -89,11 +107,12 @@ int run_create(const CreateOptions& o) {
   if (!o.quiet) {
     std::fprintf(stderr,
                  "voronoimesh create: grid %dx%dx%d (%s), %zu vertices, %zu triangles -> %s\n"
-                 "  sampling %.3f s, create %.3f s (%llu tets visited, %llu cut), snapped nodes %llu\n",
+                 "  sampling %.3f s, create %.3f s (%llu tets visited, %llu cut; check %.3f s), snapped nodes %llu,"
+                 " snapping undone at %llu\n",
                  grid.cells[0], grid.cells[1], grid.cells[2], o.lattice.c_str(), mesh.num_nodes(),
                  mesh.num_triangles(), o.output.c_str(), t_sample, cs.seconds,
-                 (unsigned long long)cs.tets_visited, (unsigned long long)cs.tets_cut,
-                 (unsigned long long)cs.snapped_nodes);
+                 (unsigned long long)cs.tets_visited, (unsigned long long)cs.tets_cut, cs.check_seconds,
+                 (unsigned long long)cs.snapped_nodes, (unsigned long long)cs.unsnapped_nodes);
   }
   return kOk;
 }

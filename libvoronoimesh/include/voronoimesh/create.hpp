@@ -36,6 +36,7 @@ struct CreateStats {
   uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
   int repair_rounds = 0;           ///< extra extractions that undoing snapping needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
+  double check_seconds = 0;        ///< of which validating the result and undoing pinches
 };
 
 /// Most extra extractions create makes to undo snapping where it pinches a phase.
