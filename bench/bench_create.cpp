@@ -4,7 +4,8 @@
 //   bench_create SCENE.json GRID THREADS [REPEATS]
 //
 // Prints one Markdown table row: scene, grid, threads, tets visited, tets cut,
-// triangles, best create time, ns per tet visited, sampling time, peak RSS.
+// triangles, best create time, of which the validation that guards against
+// snapping pinches, ns per tet visited, sampling time, peak RSS.
 
 #include "voronoimesh/create.hpp"
 #include "voronoimesh/scene.hpp"
@@ -38,18 +39,18 @@ int main(int argc, char** argv) {
   vm::SampledField field = vm::SampledField::sample(*scene.field, g);
   const double sampling = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  double best = 1e300;
+  double best = 1e300, check = 0;
   vm::CreateStats stats;
   vm::NodeMesh mesh;
   for (int r = 0; r < repeats; ++r) {
     stats = vm::create_initial_mesh(field, params, mesh);
-    best = std::min(best, stats.seconds);
+    if (stats.seconds < best) best = stats.seconds, check = stats.check_seconds;
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("| %s | %d^3 | %d | %llu | %llu | %zu | %.1f | %.1f | %.2f | %.0f |\n",
+  std::printf("| %s | %d^3 | %d | %llu | %llu | %zu | %.1f | %.1f | %.1f | %.2f | %.0f |\n",
               std::filesystem::path(path).stem().c_str(), grid, threads,
               (unsigned long long)stats.tets_visited, (unsigned long long)stats.tets_cut, mesh.num_triangles(),
-              best * 1e3, best * 1e9 / double(stats.tets_visited), sampling, usage.ru_maxrss / 1024.0);
+              best * 1e3, check * 1e3, best * 1e9 / double(stats.tets_visited), sampling, usage.ru_maxrss / 1024.0);
   return 0;
 }

@@ -7,8 +7,8 @@ cd "$(dirname "$0")/.."
 bench=build/bench/bench_create
 mkdir -p out
 [ -f out/voronoi300.json ] || python3 scripts/make_voronoi_scene.py 300 300 64 out/voronoi300.json
-echo "| scene | grid | threads | tets visited | tets cut | triangles | create ms | ns/tet | sampling s | peak RSS MiB |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| scene | grid | threads | tets visited | tets cut | triangles | create ms | of which check ms | ns/tet | sampling s | peak RSS MiB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for scene in examples/four_spheres.json examples/voronoi30.json; do
   for grid in 64 128 256; do
     for threads in 1 2; do

@@ -6,12 +6,14 @@
 
 #include "voronoimesh/mesh.hpp"
 
+#include "detail/parallel.hpp"
 #include "detail/text.hpp"
 #include "detail/topology.hpp"
 #include "detail/union_find.hpp"
 #include "voronoimesh/errors.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -150,7 +152,61 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
     const auto& p = m.pairs[t];
     mesh.property(im.pair_, fh) = OpenMesh::Vec2s(int16_t(p[0]), int16_t(p[1]));
   }
+  im.build_adjacency();
+  im.find_box_faces();
   return im;
+}
+
+void InterfaceMesh::build_adjacency() {
+  // Two passes without per-node allocations: gather every copy's ring into a
+  // slot range sized by the copies' valences, then sort, deduplicate and pack.
+  const size_t n = pos_.size();
+  std::vector<int32_t> slot_off(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) {
+    int32_t valence = 0;
+    for (int32_t c : copies(int32_t(v))) valence += int32_t(mesh_.valence(OMesh::VertexHandle(c)));
+    slot_off[v + 1] = slot_off[v] + valence;
+  }
+  std::vector<int32_t> slots(static_cast<size_t>(slot_off[n]));
+  std::vector<int32_t> count(n);
+  detail::parallel_for_each_index(n, [&](size_t v) {
+    int32_t* out = slots.data() + slot_off[v];
+    int32_t* end = out;
+    for (int32_t c : copies(int32_t(v)))
+      for (auto w : mesh_.vv_range(OMesh::VertexHandle(c))) *end++ = node(w);
+    std::sort(out, end);
+    count[v] = int32_t(std::unique(out, end) - out);
+  });
+  adj_off_.assign(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + count[v];
+  adj_.resize(size_t(adj_off_[n]));
+  detail::parallel_for_each_index(
+      n, [&](size_t v) { std::copy_n(slots.begin() + slot_off[v], count[v], adj_.begin() + adj_off_[v]); });
+}
+
+bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {
+  // From the OpenMesh rings, so it is exact between flips too.
+  for (int32_t c : copies(a))
+    for (auto w : mesh_.vv_range(OMesh::VertexHandle(c)))
+      if (node(w) == b) return true;
+  return false;
+}
+
+void InterfaceMesh::find_box_faces() {
+  const double tol = 1e-9 * (domain_.max - domain_.min).norm();
+  box_.assign(pos_.size(), 0);
+  for (size_t n = 0; n < pos_.size(); ++n)
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(pos_[n][a] - domain_.min[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a));
+      if (std::abs(pos_[n][a] - domain_.max[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a + 1));
+    }
+}
+
+void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
+  detail::parallel_for_each_index(pos_.size(), [&](size_t n) {
+    pos_[n] += delta[n];
+    for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+  });
 }
 
 NodeMesh InterfaceMesh::to_node_mesh() const {

@@ -1,12 +1,21 @@
 #pragma once
 /// @file commands.hpp
-/// The subcommands of the voronoimesh tool. Each registers itself on the app
-/// and runs through run_guarded(), which turns library exceptions into a one-line
-/// message and the exit codes below.
+/// The subcommands of the voronoimesh tool and the stages they share. Each
+/// subcommand runs through run_guarded(), which turns library exceptions into a
+/// one-line message and the exit codes below.
+
+#include "voronoimesh/create.hpp"
+#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/scene.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <optional>
+#include <string>
+#include <tbb/global_control.h>
+#include <vector>
 
 namespace vmcli {
 
@@ -22,7 +31,61 @@ enum ExitCode : int {
 /// returning the matching exit code.
 int run_guarded(const std::function<int()>& body);
 
+/// Options every command that computes has.
+struct CommonOptions {
+  int threads = 0;
+  bool quiet = false;
+  bool ascii = false;
+};
+void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh);
+/// Fails early (IoError) if `path` cannot be written, before any long work.
+void check_writable(const std::string& path);
+/// Limits TBB to --threads while alive.
+std::optional<tbb::global_control> thread_limit(const CommonOptions& o);
+
+/// One status line on a terminal, overwritten stage by stage; silent otherwise.
+class Progress {
+public:
+  explicit Progress(bool enabled);
+  void stage(const std::string& what);
+  void done();
+
+private:
+  bool enabled_;
+};
+
+/// Options of the create stage (create, mesh).
+struct CreateOptions {
+  std::vector<int> grid;
+  double snap = vm::CreateParams{}.snap;
+  std::string lattice = "bcc";
+  int top_k = 4;
+  bool skip_validation = false;
+};
+void add_create_options(CLI::App* cmd, CreateOptions& o);
+/// Samples `scene` and creates its initial mesh; prints a summary unless quiet.
+vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonOptions& common, Progress& progress);
+
+/// Options of the improvement stage (mesh, smooth).
+struct ImproveOptions {
+  int iterations = 20;
+  std::string pipeline = vm::kDefaultPipeline;
+  bool stop_when_converged = false;
+  std::string history; ///< where to write per-iteration histograms (.csv, .json, .svg)
+};
+void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations);
+/// Runs the pipeline on `mesh` (validated before and after); prints a progress
+/// line per iteration on a terminal and a summary unless quiet.
+void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
+                   const CommonOptions& common, Progress& progress);
+
+/// Throws TopologyError if `mesh` fails validation; `what` says which mesh.
+void require_valid(const vm::NodeMesh& mesh, const std::string& what);
+
 void add_create_command(CLI::App& app, int& exit_code);
+void add_mesh_command(CLI::App& app, int& exit_code);
+void add_smooth_commands(CLI::App& app, int& exit_code);
+void add_passes_command(CLI::App& app, int& exit_code);
 void add_stats_command(CLI::App& app, int& exit_code);
 
 } // namespace vmcli

@@ -36,7 +36,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "voronoimesh 0.1.0");
   int exit_code = 0;
+  vmcli::add_mesh_command(app, exit_code);
   vmcli::add_create_command(app, exit_code);
+  vmcli::add_smooth_commands(app, exit_code);
+  vmcli::add_passes_command(app, exit_code);
   vmcli::add_stats_command(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -52,19 +52,61 @@ public:
   }
 
   const std::vector<Vec3>& positions() const { return pos_; }
+
+  // --- For the improvement passes ---------------------------------------------
+
+  /// Moves every node by `delta` (one entry per node) and mirrors the new
+  /// positions into the OpenMesh points, in parallel. The only way positions
+  /// change, so point() can never go stale (openmesh-probe.md, pitfall 4).
+  void move_nodes(const std::vector<Vec3>& delta);
+  /// The OpenMesh mesh, for topology changes (flips). Call topology_changed()
+  /// afterwards.
+  OMesh& omesh_for_topology() { return mesh_; }
+  /// Rebuilds the node adjacency after flips.
+  void topology_changed() { build_adjacency(); }
+
+  /// Neighbouring nodes of node n across all its copies, sorted (as of the last
+  /// topology_changed()).
+  std::span<const int32_t> neighbours(int32_t n) const {
+    return {adj_.data() + adj_off_[n], size_t(adj_off_[n + 1] - adj_off_[n])};
+  }
+  /// True when nodes a and b share an edge in any patch (always current).
+  bool adjacent(int32_t a, int32_t b) const;
+  /// Faces of the domain box each node lies on: bit 2a for the min side of axis
+  /// a, bit 2a+1 for the max side (within 1e-9 of the box diagonal).
+  const std::vector<uint8_t>& box_faces() const { return box_; }
+  /// Calls f(a, b) for every triangle at node n, with (n, a, b) in the
+  /// triangle's orientation order.
+  template <class F> void for_each_triangle_at(int32_t n, F&& f) const;
   const std::vector<PhaseSet>& phases() const { return phases_; }
   const Box& domain() const { return domain_; }
   const std::vector<std::string>& phase_names() const { return names_; }
 
 private:
+  void build_adjacency();
+  void find_box_faces();
+
   OMesh mesh_;
   OpenMesh::VPropHandleT<int32_t> node_;
   OpenMesh::FPropHandleT<OpenMesh::Vec2s> pair_;
   std::vector<Vec3> pos_;
   std::vector<PhaseSet> phases_;
   std::vector<int32_t> copy_off_, copy_v_;
+  std::vector<int32_t> adj_off_, adj_;
+  std::vector<uint8_t> box_;
   Box domain_;
   std::vector<std::string> names_;
 };
+
+template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {
+  for (int32_t c : copies(n)) {
+    const auto v = OMesh::VertexHandle(c);
+    for (auto h : mesh_.voh_range(v)) {
+      if (mesh_.is_boundary(h)) continue;
+      const auto next = mesh_.next_halfedge_handle(h);
+      f(node(mesh_.to_vertex_handle(h)), node(mesh_.to_vertex_handle(next)));
+    }
+  }
+}
 
 } // namespace vm

@@ -1,0 +1,29 @@
+#pragma once
+/// @file flip.hpp
+/// Edge flipping (paper sect. 4.3, Algorithm 5).
+
+#include "voronoimesh/mesh.hpp"
+
+namespace vm {
+
+struct FlipParams {
+  /// Pairs of triangles already this good are left alone (Algorithm 5, line 7).
+  double skip_quality = 0.9;
+  /// Rounds of flips per call; each round flips a set of edges sharing no node.
+  int max_rounds = 8;
+};
+
+struct FlipStats {
+  size_t flips = 0;
+  int rounds = 0;
+};
+
+/// Flips every edge shared by two triangles of the same surface when that raises
+/// the smaller of their qualities and does not fold them (Algorithm 5). Junction
+/// and domain-boundary edges never flip (they are boundaries of their patches),
+/// and a flip never creates an edge that exists in another patch. In rounds: all
+/// edges are judged in parallel, then the best (by quality gain, ties by edge)
+/// that share no node are flipped; so the result is the same for any thread count.
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params = {});
+
+} // namespace vm

@@ -1,0 +1,30 @@
+#pragma once
+/// @file project.hpp
+/// Projection of nodes onto their surfaces, triple curves and quadruple points
+/// (paper sect. 4.2.2, eq. 4), using the original (unsnapped) phase functions.
+
+#include "voronoimesh/field.hpp"
+#include "voronoimesh/mesh.hpp"
+
+#include <span>
+#include <vector>
+
+namespace vm {
+
+struct ProjectParams {
+  /// Pairs whose gradients differ by less than this (|grad phi_i - grad phi_j|)
+  /// are skipped: the step would divide by almost zero (the paper's "special
+  /// treatment" for poorly defined phase functions).
+  double min_gradient_gap = 1e-6;
+};
+
+/// p(x, chi) of eq. 4: the mean of the Newton steps onto phi_i = phi_j over the
+/// pairs of `phases`, scaled by 1/(|chi| - 1). Zero for fewer than two phases.
+Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
+                     const ProjectParams& params = {});
+
+/// Adds p(x, chi) of every node to `delta`, kept on the node's box faces.
+void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const ProjectParams& params,
+                    std::vector<Vec3>& delta);
+
+} // namespace vm

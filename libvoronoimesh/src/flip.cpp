@@ -1,0 +1,135 @@
+#include "voronoimesh/flip.hpp"
+
+#include "voronoimesh/stats.hpp"
+
+#include "detail/parallel.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace vm {
+namespace {
+
+struct Candidate {
+  double gain;
+  int32_t edge;
+  std::array<int32_t, 4> nodes; // i, j (the edge), k, l (opposite)
+};
+
+/// Quality of every face, kept current across flips.
+class FaceQuality {
+public:
+  explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.omesh().n_faces()) {
+    detail::parallel_for_each_index(q_.size(), [&](size_t f) { update(OMesh::FaceHandle(int(f))); });
+  }
+  double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
+  void update(OMesh::FaceHandle f) {
+    const OMesh& om = mesh_.omesh();
+    auto h = om.halfedge_handle(f);
+    const auto& pos = mesh_.positions();
+    std::array<const Vec3*, 3> p;
+    for (auto& corner : p) {
+      corner = &pos[size_t(mesh_.node(om.to_vertex_handle(h)))];
+      h = om.next_halfedge_handle(h);
+    }
+    q_[size_t(f.idx())] = triangle_quality(*p[0], *p[1], *p[2]);
+  }
+
+private:
+  const InterfaceMesh& mesh_;
+  std::vector<double> q_;
+};
+
+/// True when the face of halfedge h has boundary edges on both sides of h's
+/// opposite corner: an "ear" whose three corners lie on one junction curve (or
+/// the box). Projection pulls such corners onto the curve, so an ear can only
+/// degenerate; flipping h away is the only cure.
+bool is_ear_across(const OMesh& om, OMesh::HalfedgeHandle h) {
+  const auto n = om.next_halfedge_handle(h);
+  return om.is_boundary(om.edge_handle(n)) && om.is_boundary(om.edge_handle(om.next_halfedge_handle(n)));
+}
+
+/// Algorithm 5 for one edge, read-only. Returns the quality gain of flipping it,
+/// or a negative number if it must not flip. Beyond the paper: an ear on either
+/// side flips whenever the flip is legal (gain 1 + its quality gain, so ears go first).
+double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::EdgeHandle eh, const FlipParams& p,
+                 std::array<int32_t, 4>& nodes) {
+  const OMesh& om = mesh.omesh();
+  if (om.is_boundary(eh)) return -1; // junction or domain edge: never flips
+  const auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
+  const bool ear = is_ear_across(om, h0) || is_ear_across(om, h1);
+  if (before >= p.skip_quality && !ear) return -1;
+  // Triangles (i, j, k) and (i, l, j) as in the paper's Fig. 5.
+  nodes = {mesh.node(om.from_vertex_handle(h0)), mesh.node(om.to_vertex_handle(h0)),
+           mesh.node(om.to_vertex_handle(om.next_halfedge_handle(h0))),
+           mesh.node(om.to_vertex_handle(om.next_halfedge_handle(h1)))};
+  const auto& pos = mesh.positions();
+  const Vec3 &vi = pos[size_t(nodes[0])], &vj = pos[size_t(nodes[1])], &vk = pos[size_t(nodes[2])],
+             &vl = pos[size_t(nodes[3])];
+  const double after = std::min(triangle_quality(vi, vl, vk), triangle_quality(vl, vj, vk));
+  if (after <= before && !ear) return -1;
+  const Vec3 n3 = (vl - vi).cross(vk - vi), n4 = (vk - vj).cross(vl - vj);
+  if (n3.dot(n4) <= 0) return -1; // the new pair would fold
+  // Nor may it turn the pair over: both new normals agree with the old ones.
+  const Vec3 old = (vj - vi).cross(vk - vi) + (vl - vi).cross(vj - vi);
+  if (n3.dot(old) <= 0 || n4.dot(old) <= 0) return -1;
+  // OpenMesh only sees this patch; the new edge must not exist in another one
+  // (openmesh-probe.md, pitfall 2).
+  if (nodes[2] == nodes[3] || mesh.adjacent(nodes[2], nodes[3])) return -1;
+  if (!om.is_flip_ok(eh)) return -1;
+  return ear ? 1 + (after - before) : after - before;
+}
+
+} // namespace
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+  FlipStats stats;
+  FaceQuality quality(mesh);
+  std::vector<char> taken(mesh.num_nodes(), 0);
+  // Round 1 judges every edge; later rounds only the edges of faces a flip changed
+  // and the candidates that lost to a neighbouring flip.
+  std::vector<int32_t> edges(mesh.omesh().n_edges());
+  std::iota(edges.begin(), edges.end(), 0);
+  std::vector<Candidate> judged, found;
+  for (int round = 0; round < params.max_rounds && !edges.empty(); ++round) {
+    judged.assign(edges.size(), Candidate{-1, -1, {}});
+    detail::parallel_for_each_index(edges.size(), [&](size_t i) {
+      judged[i].edge = edges[i];
+      judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
+    });
+    found.clear();
+    for (const Candidate& c : judged)
+      if (c.gain > 0) found.push_back(c);
+    if (found.empty()) break;
+    // Best gain first (ties by edge id, as `edges` is sorted); flips in one round
+    // share no node, so every judgement above stays true until its own flip.
+    std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.gain > b.gain; });
+    OMesh& om = mesh.omesh_for_topology();
+    edges.clear();
+    for (const Candidate& c : found) {
+      if (std::any_of(c.nodes.begin(), c.nodes.end(), [&](int32_t n) { return taken[size_t(n)]; })) {
+        edges.push_back(c.edge); // lost to a better flip nearby: judge it again next round
+        continue;
+      }
+      for (int32_t n : c.nodes) taken[size_t(n)] = 1;
+      const OMesh::EdgeHandle eh(c.edge);
+      om.flip(eh);
+      ++stats.flips;
+      for (int side = 0; side < 2; ++side) {
+        const auto f = om.face_handle(om.halfedge_handle(eh, side));
+        quality.update(f);
+        for (auto e : om.fe_range(f)) edges.push_back(e.idx());
+      }
+    }
+    for (const Candidate& c : found)
+      for (int32_t n : c.nodes) taken[size_t(n)] = 0;
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    stats.rounds = round + 1;
+  }
+  if (stats.flips) mesh.topology_changed();
+  return stats;
+}
+
+} // namespace vm

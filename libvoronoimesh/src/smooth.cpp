@@ -1,0 +1,105 @@
+#include "voronoimesh/smooth.hpp"
+
+#include "detail/parallel.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace vm {
+namespace {
+
+/// Phases of node n as a span of ids.
+std::span<const int16_t> phases_of(const InterfaceMesh& m, int32_t n) {
+  const PhaseSet& s = m.phases()[size_t(n)];
+  return {s.data(), size_t(phase_count(s))};
+}
+
+/// True when node a's phases and box faces are all among node b's: b is on the
+/// same surface, curve or box edge as a, or on a junction of it.
+bool same_or_higher_type(const InterfaceMesh& m, int32_t a, int32_t b) {
+  if (m.box_faces()[size_t(a)] & ~m.box_faces()[size_t(b)]) return false;
+  auto pa = phases_of(m, a), pb = phases_of(m, b);
+  return std::includes(pb.begin(), pb.end(), pa.begin(), pa.end());
+}
+
+} // namespace
+
+int junction_order(const InterfaceMesh& mesh, int32_t n) {
+  return phase_count(mesh.phases()[size_t(n)]) + std::popcount(unsigned(mesh.box_faces()[size_t(n)]));
+}
+
+void constrain_to_box(Vec3& d, uint8_t box_faces) {
+  for (int a = 0; a < 3; ++a)
+    if (box_faces >> (2 * a) & 3u) d[a] = 0;
+}
+
+double rms_edge_length(const InterfaceMesh& mesh) {
+  // Partial sums over fixed chunks of nodes, added in order: deterministic.
+  const size_t n = mesh.num_nodes(), chunk = 4096, chunks = (n + chunk - 1) / chunk;
+  std::vector<double> sum(chunks, 0.0);
+  std::vector<size_t> count(chunks, 0);
+  const auto& pos = mesh.positions();
+  detail::parallel_for_each_index(chunks, [&](size_t c) {
+    for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v)
+      for (int32_t w : mesh.neighbours(int32_t(v)))
+        if (size_t(w) > v) {
+          sum[c] += (pos[v] - pos[size_t(w)]).squaredNorm();
+          ++count[c];
+        }
+  });
+  double total = 0;
+  size_t edges = 0;
+  for (size_t c = 0; c < chunks; ++c) total += sum[c], edges += count[c];
+  return edges ? std::sqrt(total / double(edges)) : 0.0;
+}
+
+void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
+                          std::vector<Vec3>& delta) {
+  const double l0 = params.rest_factor * rms_edge_length(mesh);
+  const auto& pos = mesh.positions();
+  detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t vi) {
+    const int32_t v = int32_t(vi);
+    const int order = junction_order(mesh, v);
+    if (order > 3) return;
+    auto ring = mesh.neighbours(v);
+    if (ring.empty()) return;
+    bool near_junction = order == 3;
+    for (int32_t w : ring) near_junction = near_junction || junction_order(mesh, w) >= 3;
+
+    Vec3 force = Vec3::Zero();
+    const Vec3& x = pos[vi];
+    if (near_junction) {
+      // Laplacian smoothing works on and next to junctions, where flips cannot
+      // help and repulsion pushes nodes off their curves (sect. 4.2.1).
+      int same = 0;
+      for (int32_t w : ring)
+        if (same_or_higher_type(mesh, v, w)) {
+          force += 0.5 * (pos[size_t(w)] - x);
+          ++same;
+        }
+      if (same) force /= double(same);
+    } else {
+      for (int32_t w : ring) {
+        const Vec3 d = x - pos[size_t(w)];
+        const double len = d.norm();
+        if (len > 0 && len < l0) force += d * ((l0 - len) / len);
+      }
+      force /= double(ring.size());
+    }
+    if (order == 2) {
+      // Tangential only: a normal component would fight the projection (sect. 4.2.4).
+      auto ph = phases_of(mesh, v);
+      Vec3 n = field.gradient(ph[0], x) - field.gradient(ph[1], x);
+      const double len = n.norm();
+      if (len > 0) {
+        n /= len;
+        force -= force.dot(n) * n;
+      }
+    }
+    constrain_to_box(force, mesh.box_faces()[vi]);
+    delta[vi] += force;
+  });
+}
+
+} // namespace vm

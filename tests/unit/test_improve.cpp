@@ -1,0 +1,335 @@
+// Tests of mesh improvement (paper sect. 4.2-4.3): after every iteration the mesh
+// stays valid, uninverted and free of self-intersections; nodes end on their
+// surfaces, curves and points; results do not depend on the thread count.
+
+#include "voronoimesh/clamp.hpp"
+#include "voronoimesh/create.hpp"
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/flip.hpp"
+#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/project.hpp"
+#include "voronoimesh/scene.hpp"
+#include "voronoimesh/stats.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <map>
+#include <algorithm>
+#include <random>
+#include <set>
+
+namespace {
+
+using namespace vm;
+
+Scene example(const std::string& name, int grid) {
+  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
+  s.grid.cells = {grid, grid, grid};
+  return s;
+}
+
+InterfaceMesh initial_mesh(const Scene& scene) {
+  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  NodeMesh m;
+  create_initial_mesh(field, {}, m);
+  return InterfaceMesh::from_node_mesh(m);
+}
+
+/// Triangles whose normal does not point from their first phase into their second
+/// (grad (phi_q - phi_p) at the centroid), among those where that direction is clear.
+size_t inverted_triangles(const NodeMesh& m, const PhaseField& f) {
+  size_t bad = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const auto& tri = m.triangles[t];
+    const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
+    const Vec3 centroid = (a + b + c) / 3;
+    const Vec3 dir = f.gradient(m.pairs[t][1], centroid) - f.gradient(m.pairs[t][0], centroid);
+    const Vec3 n = (b - a).cross(c - a);
+    if (dir.norm() > 0.1 && n.normalized().dot(dir.normalized()) <= 0) ++bad;
+  }
+  return bad;
+}
+
+RunOptions iterations(int n) {
+  RunOptions o;
+  o.iterations = n;
+  return o;
+}
+
+/// Normals of every face of the mesh, by face index (OpenMesh keeps face
+/// indices across flips, so a face can be followed from one iteration to the next).
+std::vector<Vec3> face_normals(const InterfaceMesh& m) {
+  const NodeMesh n = m.to_node_mesh();
+  std::vector<Vec3> out;
+  for (const auto& t : n.triangles)
+    out.push_back((n.points[size_t(t[1])] - n.points[size_t(t[0])]).cross(n.points[size_t(t[2])] - n.points[size_t(t[0])]));
+  return out;
+}
+
+/// Faces whose normal turned over since `before` (flipped faces, which are new
+/// triangles, are compared with the pair they replaced: skipped here, as the flip
+/// pass checks them itself against both old normals).
+size_t turned_over(const std::vector<Vec3>& before, const std::vector<Vec3>& after, const InterfaceMesh& m,
+                   const std::vector<std::array<int32_t, 3>>& corners_before) {
+  const NodeMesh n = m.to_node_mesh();
+  size_t bad = 0;
+  for (size_t f = 0; f < after.size(); ++f)
+    if (n.triangles[f] == corners_before[f] && after[f].dot(before[f]) <= 0) ++bad;
+  return bad;
+}
+
+// Checked after every single iteration on the shipped scenes at their own grid:
+// valid topology and no triangle turned over by an iteration (the clamping
+// guarantee), on every scene; every normal pointing from its first phase into its
+// second in the closed-form field, and no self-intersection, on the four spheres.
+// Known gaps, pinned here so they can only shrink (issue 3 notes): on the 30-seed
+// scene (quadruple points closer than a grid cell) triangles whose three corners
+// all lie on junctions can stand across their surface for a few iterations (at
+// most 0.02% of triangles; none after the last iteration), and up to six pairs of
+// them around one quadruple point intersect in iterations 1-3.
+TEST(Improve, every_iteration_keeps_the_mesh_valid_uninverted_and_unintersected) {
+  const PassRegistry registry = builtin_registry();
+  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, registry);
+  for (const char* name : {"four_spheres.json", "voronoi30.json", "split_sphere.json"}) {
+    SCOPED_TRACE(name);
+    Scene scene = example(name, 64);
+    InterfaceMesh mesh = initial_mesh(scene);
+    const bool close_junctions = std::string(name) == "voronoi30.json";
+    std::vector<Vec3> normals = face_normals(mesh);
+    std::vector<std::array<int32_t, 3>> corners = mesh.to_node_mesh().triangles;
+    size_t last_inverted = 0;
+    RunOptions run = iterations(20);
+    run.observer = [&](const IterationReport& r, const InterfaceMesh& current) {
+      if (r.iteration == 0) return;
+      const NodeMesh m = current.to_node_mesh();
+      ValidationReport report = validate(m);
+      ASSERT_TRUE(report.ok()) << "iteration " << r.iteration << "\n" << report.summary();
+      const std::vector<Vec3> now = face_normals(current);
+      EXPECT_EQ(turned_over(normals, now, current, corners), 0u) << "iteration " << r.iteration;
+      normals = now;
+      corners = m.triangles;
+      last_inverted = inverted_triangles(m, *scene.field);
+      EXPECT_LE(double(last_inverted), 2e-4 * double(m.num_triangles())) << "iteration " << r.iteration;
+      const size_t crossings = find_self_intersections(m).count;
+      if (close_junctions && r.iteration <= 3) EXPECT_LE(crossings, 6u) << "iteration " << r.iteration;
+      else EXPECT_EQ(crossings, 0u) << "iteration " << r.iteration;
+    };
+    pipeline.run(mesh, scene.field.get(), run);
+    EXPECT_EQ(last_inverted, 0u) << "after the last iteration";
+  }
+}
+
+/// Distances of all nodes from their closed-form interface, in units of h, sorted.
+std::vector<double> distances_in_h(const InterfaceMesh& m, const PhaseField& f, double h) {
+  std::vector<double> d;
+  for (size_t v = 0; v < m.num_nodes(); ++v) {
+    const PhaseSet& s = m.phases()[v];
+    const Vec3& x = m.positions()[v];
+    double worst = 0;
+    for (int i = 0; i < phase_count(s); ++i)
+      for (int j = i + 1; j < phase_count(s); ++j) {
+        const Vec3 g = f.gradient(s[size_t(i)], x) - f.gradient(s[size_t(j)], x);
+        if (g.norm() > 0.1) worst = std::max(worst, std::abs(f.value(s[size_t(i)], x) - f.value(s[size_t(j)], x)) / g.norm());
+      }
+    d.push_back(worst / h);
+  }
+  std::sort(d.begin(), d.end());
+  return d;
+}
+
+// After 20 iterations nodes lie on their surfaces, curves and points: every node
+// within 0.05 h on the four spheres; 99% of them on the 30-seed scene and the
+// split sphere, whose worst nodes (near quadruple points closer than a cell, and
+// on the sphere's sharp rim) are still up to 0.14 h off (issue 3 notes).
+TEST(Improve, nodes_end_on_their_surfaces_curves_and_points) {
+  const PassRegistry registry = builtin_registry();
+  for (const char* name : {"four_spheres.json", "voronoi30.json", "split_sphere.json"}) {
+    SCOPED_TRACE(name);
+    Scene scene = example(name, 64);
+    InterfaceMesh mesh = initial_mesh(scene);
+    Pipeline::parse(kDefaultPipeline, registry).run(mesh, scene.field.get(), iterations(20));
+    const std::vector<double> d = distances_in_h(mesh, *scene.field, scene.grid.h());
+    EXPECT_LT(d[d.size() * 99 / 100], 0.05);
+    if (std::string(name) == "four_spheres.json") EXPECT_LT(d.back(), 0.05);
+    else EXPECT_LT(d.back(), 0.2);
+  }
+}
+
+// Quadruple points are not moved by forces, only projected onto the exact point
+// where their four phases tie: they converge there and stay.
+TEST(Improve, quadruple_points_stay_put) {
+  Scene scene = example("four_spheres.json", 64);
+  InterfaceMesh mesh = initial_mesh(scene);
+  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());
+  auto quadruple_positions = [&] {
+    std::vector<Vec3> out;
+    for (size_t v = 0; v < mesh.num_nodes(); ++v)
+      if (phase_count(mesh.phases()[v]) >= 4) out.push_back(mesh.positions()[v]);
+    return out;
+  };
+  pipeline.run(mesh, scene.field.get(), iterations(10));
+  const std::vector<Vec3> after10 = quadruple_positions();
+  ASSERT_EQ(after10.size(), 5u);
+  pipeline.run(mesh, scene.field.get(), iterations(10));
+  const std::vector<Vec3> after20 = quadruple_positions();
+  const double h = scene.grid.h();
+  for (size_t q = 0; q < after10.size(); ++q) EXPECT_LT((after20[q] - after10[q]).norm(), 1e-2 * h);
+}
+
+TEST(Improve, paper_pipeline_reaches_the_quality_aim_on_the_four_spheres) {
+  Scene scene = example("four_spheres.json", 64);
+  InterfaceMesh mesh = initial_mesh(scene);
+  Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(20));
+  const MeshStats s = compute_stats(mesh.to_node_mesh());
+  EXPECT_GE(s.min_quality, 0.3);
+  EXPECT_GT(s.mean_quality, 0.9);
+  EXPECT_LT(double(s.below_half), 0.005 * double(s.triangles));
+  EXPECT_EQ(s.surfaces, 10u);
+  EXPECT_EQ(s.triple_curves, 10u);
+  EXPECT_EQ(s.quadruple_points, 5u);
+}
+
+TEST(Improve, output_is_identical_for_any_thread_count) {
+  Scene scene = example("voronoi30.json", 32);
+  NodeMesh reference;
+  for (int threads : {1, 2, 8}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    InterfaceMesh mesh = initial_mesh(scene);
+    Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(8));
+    NodeMesh m = mesh.to_node_mesh();
+    if (threads == 1) {
+      reference = m;
+      continue;
+    }
+    EXPECT_EQ(m.points, reference.points) << threads << " threads";
+    EXPECT_EQ(m.triangles, reference.triangles) << threads << " threads";
+    EXPECT_EQ(m.pairs, reference.pairs) << threads << " threads";
+  }
+}
+
+// Algorithm 3 and eq. 5: whatever the three corners do, each within half its own
+// clamp, the triangle does not invert.
+TEST(Clamp, no_triangle_inverts_whatever_its_corners_do) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0, 1);
+  auto rand_vec = [&] { return Vec3(g(rng), g(rng), g(rng)); };
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::array<Vec3, 3> v = {rand_vec(), rand_vec(), rand_vec()};
+    const Vec3 normal = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (normal.norm() < 1e-3) continue;
+    std::array<Vec3, 3> moved;
+    for (int c = 0; c < 3; ++c) {
+      Vec3 d = 3 * rand_vec();
+      const double s = clamp_step(d, v[size_t(c)], v[size_t((c + 1) % 3)], v[size_t((c + 2) % 3)]);
+      moved[size_t(c)] = v[size_t(c)] + std::min(1.0, 0.5 * s) * d;
+    }
+    const Vec3 after = (moved[1] - moved[0]).cross(moved[2] - moved[0]);
+    ASSERT_GT(after.dot(normal), 0) << "trial " << trial;
+  }
+}
+
+TEST(Clamp, allows_the_full_step_when_it_is_safe) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_EQ(clamp_step(Vec3(-1, -1, 0), a, b, c), INFINITY); // moving away from the opposite edge
+  EXPECT_NEAR(clamp_step(Vec3(1, 1, 0), a, b, c), 0.25, 1e-12); // reaches the midline x + y = 1/2
+}
+
+TEST(Project, step_lands_on_a_plane_and_a_sphere_interface) {
+  Scene s = parse_scene(R"({"phases": [{"kind": "constant", "value": 0},
+      {"kind": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]},
+      {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.25}]})",
+                        "inline");
+  std::array<int32_t, 2> pair01{0, 1}, pair02{0, 2};
+  Vec3 x(0.3, 0.6, 0.55);
+  x += projection_step(*s.field, x, pair01);
+  EXPECT_NEAR(x.z(), 0.5, 1e-12); // linear: exact in one step
+  Vec3 y(0.5, 0.5, 0.9);
+  for (int i = 0; i < 5; ++i) y += projection_step(*s.field, y, pair02);
+  EXPECT_NEAR((y - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-12);
+  std::array<int32_t, 3> triple{0, 1, 2};
+  Vec3 z(0.6, 0.5, 0.6);
+  for (int i = 0; i < 30; ++i) z += projection_step(*s.field, z, triple);
+  EXPECT_NEAR(z.z(), 0.5, 1e-9); // on the circle where the plane cuts the sphere
+  EXPECT_NEAR((z - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-9);
+}
+
+TEST(Flip, improves_quality_and_never_touches_junctions) {
+  Scene scene = example("four_spheres.json", 32);
+  InterfaceMesh mesh = initial_mesh(scene);
+  const NodeMesh before = mesh.to_node_mesh();
+  const MeshStats s0 = compute_stats(before);
+  FlipStats fs = flip_edges(mesh);
+  const NodeMesh after = mesh.to_node_mesh();
+  EXPECT_GT(fs.flips, 0u);
+  EXPECT_TRUE(validate(after).ok()) << validate(after).summary();
+  const MeshStats s1 = compute_stats(after);
+  EXPECT_GE(s1.min_quality, s0.min_quality);
+  EXPECT_GT(s1.mean_quality, s0.mean_quality);
+  EXPECT_EQ(s1.triple_curves, s0.triple_curves);
+  EXPECT_EQ(s1.triangles, s0.triangles);
+  // Junction edges (three or more triangles) are the same set before and after.
+  auto junction_edges = [](const NodeMesh& m) {
+    std::map<std::pair<int32_t, int32_t>, int> count;
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k) count[std::minmax(t[size_t(k)], t[size_t((k + 1) % 3)])]++;
+    std::set<std::pair<int32_t, int32_t>> out;
+    for (const auto& [e, n] : count)
+      if (n >= 3) out.insert(e);
+    return out;
+  };
+  EXPECT_EQ(junction_edges(after), junction_edges(before));
+}
+
+TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {
+  const PassRegistry registry = builtin_registry();
+  Pipeline p = Pipeline::parse("smooth:rest_factor=1.3, project,clamp,flip:skip_quality=0.95:max_rounds=2", registry);
+  ASSERT_EQ(p.steps().size(), 4u);
+  EXPECT_EQ(p.steps()[0].params.at("rest_factor"), 1.3);
+  EXPECT_EQ(p.steps()[2].params.at("factor"), 0.5); // default filled in
+  EXPECT_EQ(p.steps()[3].params.at("max_rounds"), 2);
+  EXPECT_TRUE(p.needs_field());
+  EXPECT_FALSE(Pipeline::parse("flip", registry).needs_field());
+  for (const char* bad : {"smoth", "smooth:rest=1", "smooth:rest_factor=abc", "smooth:rest_factor=9",
+                          "flip:max_rounds=1.5", "smooth,,flip", "", "flip:skip_quality"}) {
+    try {
+      Pipeline::parse(bad, registry);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("pipeline"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {
+  Scene scene = example("four_spheres.json", 16);
+  InterfaceMesh mesh = initial_mesh(scene);
+  EXPECT_THROW(Pipeline::parse("smooth", builtin_registry()).run(mesh, nullptr, iterations(1)), InvalidInput);
+}
+
+TEST(Pipeline, stops_when_quality_stops_improving) {
+  Scene scene = example("four_spheres.json", 24);
+  InterfaceMesh mesh = initial_mesh(scene);
+  RunOptions run = iterations(200);
+  run.stop_when_converged = true;
+  const int done = Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), run);
+  EXPECT_LT(done, 200);
+  EXPECT_GT(done, 3);
+}
+
+TEST(Registry, lists_the_builtin_passes_with_schemas) {
+  const PassRegistry registry = builtin_registry();
+  std::vector<std::string> names;
+  for (const PassInfo* p : registry.all()) names.push_back(p->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "project", "smooth", "stats"}));
+  EXPECT_EQ(registry.get("smooth").params.at(0).default_value, 1.2);
+  PassRegistry r2 = builtin_registry();
+  PassInfo dup;
+  dup.name = "smooth";
+  EXPECT_THROW(r2.add(dup), InvalidInput);
+}
+
+} // namespace

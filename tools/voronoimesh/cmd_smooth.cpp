@@ -1,0 +1,83 @@
+#include "commands.hpp"
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/io/ply.hpp"
+
+#include <algorithm>
+#include <memory>
+
+namespace vmcli {
+namespace {
+
+/// Refuses a field that cannot be the one the mesh was made from: phase ids the
+/// field does not have, or nodes outside its domain.
+void check_field_matches(const vm::NodeMesh& mesh, const std::string& mesh_path, const vm::Scene& scene,
+                         const std::string& field_path) {
+  int top = -1;
+  for (const auto& p : mesh.pairs) top = std::max(top, p[1]);
+  if (top >= scene.field->num_phases())
+    throw vm::InvalidInput(vm::located(field_path, "has " + std::to_string(scene.field->num_phases()) +
+                                                       " phases, but " + mesh_path + " uses phase " + std::to_string(top)));
+  const vm::Box& box = scene.grid.domain;
+  const double tol = 1e-6 * (box.max - box.min).norm();
+  for (const vm::Vec3& p : mesh.points)
+    if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
+      throw vm::InvalidInput(vm::located(field_path, "its domain does not contain the nodes of " + mesh_path));
+}
+
+} // namespace
+
+void add_smooth_commands(CLI::App& app, int& exit_code) {
+  struct Options {
+    std::string mesh, field, output;
+    ImproveOptions improve;
+    CommonOptions common;
+  };
+  auto s = std::make_shared<Options>();
+  CLI::App* smooth = app.add_subcommand(
+      "smooth", "Improve a mesh with a pipeline of passes (default: smooth, project, clamp, flip) and write it.");
+  smooth->add_option("mesh", s->mesh, "Mesh file (.ply written by voronoimesh)")->required();
+  smooth->add_option("--field", s->field, "Scene file (JSON) whose phase functions the mesh was made from");
+  smooth->add_option("-o,--output", s->output, "Output mesh (.ply)")->required();
+  add_improve_options(smooth, s->improve, 20);
+  add_common_options(smooth, s->common, true);
+  smooth->callback([s, &exit_code] {
+    exit_code = run_guarded([&] {
+      check_writable(s->output);
+      auto limit = thread_limit(s->common);
+      Progress progress(!s->common.quiet);
+      vm::NodeMesh mesh = vm::io::read_ply(s->mesh);
+      require_valid(mesh, s->mesh);
+      std::optional<vm::Scene> scene;
+      if (!s->field.empty()) {
+        scene = vm::load_scene(s->field);
+        check_field_matches(mesh, s->mesh, *scene, s->field);
+      }
+      improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, s->common, progress);
+      vm::io::write_ply(mesh, s->output, s->common.ascii);
+      return kOk;
+    });
+  });
+
+  auto f = std::make_shared<Options>();
+  CLI::App* flip = app.add_subcommand("flip", "Flip edges to improve triangle quality (paper Algorithm 5) and write the mesh.");
+  flip->add_option("mesh", f->mesh, "Mesh file (.ply written by voronoimesh)")->required();
+  flip->add_option("-o,--output", f->output, "Output mesh (.ply)")->required();
+  add_common_options(flip, f->common, true);
+  flip->callback([f, &exit_code] {
+    exit_code = run_guarded([&] {
+      check_writable(f->output);
+      auto limit = thread_limit(f->common);
+      Progress progress(!f->common.quiet);
+      vm::NodeMesh mesh = vm::io::read_ply(f->mesh);
+      require_valid(mesh, f->mesh);
+      f->improve.iterations = 1;
+      f->improve.pipeline = "flip:max_rounds=1000";
+      improve_stage(mesh, nullptr, f->improve, f->common, progress);
+      vm::io::write_ply(mesh, f->output, f->common.ascii);
+      return kOk;
+    });
+  });
+}
+
+} // namespace vmcli

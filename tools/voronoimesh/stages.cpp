@@ -1,0 +1,180 @@
+/// @file stages.cpp
+/// The stages the subcommands share: options, progress, create and improve.
+
+#include "commands.hpp"
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/history.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/sampled_field.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <cstdio>
+
+namespace vmcli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Refuses, before allocating anything, a grid whose sampled field alone would
+/// not fit in this machine's memory.
+void refuse_if_too_big(uint64_t bytes, const vm::GridSpec& grid) {
+  const uint64_t physical = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  if (bytes > physical / 10 * 8) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg, "--grid: a %dx%dx%d grid needs about %.1f GiB, this machine has %.1f GiB",
+                  grid.cells[0], grid.cells[1], grid.cells[2], double(bytes) / (1u << 30),
+                  double(physical) / (1u << 30));
+    throw vm::InvalidInput(msg);
+  }
+}
+
+} // namespace
+
+void check_writable(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw vm::IoError(vm::located(path, "cannot write: directory " + dir.string() + " does not exist"));
+  if (access(dir.c_str(), W_OK) != 0)
+    throw vm::IoError(vm::located(path, "cannot write: directory " + dir.string() + " is not writable"));
+  if (fs::is_directory(path, ec)) throw vm::IoError(vm::located(path, "cannot write: it is a directory"));
+}
+
+void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh) {
+  cmd->add_option("--threads", o.threads, "Worker threads (default: all cores); results do not depend on it");
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  if (writes_mesh) cmd->add_flag("--ascii", o.ascii, "Write ASCII PLY instead of binary");
+}
+
+std::optional<tbb::global_control> thread_limit(const CommonOptions& o) {
+  if (o.threads < 0) throw vm::InvalidInput("--threads: must be positive");
+  std::optional<tbb::global_control> limit;
+  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+  return limit;
+}
+
+Progress::Progress(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+
+void Progress::stage(const std::string& what) {
+  if (!enabled_) return;
+  std::fprintf(stderr, "\r\033[K%s", what.c_str());
+  std::fflush(stderr);
+}
+
+void Progress::done() { stage(""); }
+
+void add_create_options(CLI::App* cmd, CreateOptions& o) {
+  cmd->add_option("--grid", o.grid, "Grid cells per axis, N or NX,NY,NZ (overrides the scene's \"grid\")")
+      ->delimiter(',');
+  cmd->add_option("--snap", o.snap, "Snapping threshold in units of the grid spacing h; 0 turns it off")
+      ->capture_default_str();
+  cmd->add_option("--lattice", o.lattice, "Background tetrahedra: bcc (every second grid point) or cube6")
+      ->check(CLI::IsMember({"bcc", "cube6"}))
+      ->capture_default_str();
+  cmd->add_option("--top-k", o.top_k, "Phases kept per grid point (memory does not grow with the phase count)")
+      ->capture_default_str();
+  cmd->add_flag("--no-validate", o.skip_validation, "Skip the topological check of the result");
+}
+
+vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonOptions& common, Progress& progress) {
+  if (!o.grid.empty()) {
+    if (o.grid.size() != 1 && o.grid.size() != 3)
+      throw vm::InvalidInput("--grid: give one number or three (nx,ny,nz)");
+    for (int a = 0; a < 3; ++a) {
+      int n = o.grid[o.grid.size() == 1 ? 0 : size_t(a)];
+      if (n < 1 || n > 4096) throw vm::InvalidInput("--grid: must be between 1 and 4096, got " + std::to_string(n));
+      scene.grid.cells[size_t(a)] = n;
+    }
+  }
+  if (o.top_k < 1 || o.top_k > 16) throw vm::InvalidInput("--top-k: must be between 1 and 16");
+  vm::CreateParams params;
+  params.snap = o.snap;
+  params.lattice = o.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
+  const vm::GridSpec grid = vm::grid_for_lattice(scene.grid, params.lattice);
+  refuse_if_too_big(vm::estimate_create_memory(grid, o.top_k, params.lattice), grid);
+
+  auto t0 = std::chrono::steady_clock::now();
+  progress.stage("sampling " + std::to_string(grid.node_count()) + " grid nodes...");
+  vm::SampledField field = vm::SampledField::sample(*scene.field, grid, o.top_k);
+  const double t_sample = seconds_since(t0);
+
+  progress.stage("creating the mesh...");
+  vm::NodeMesh mesh;
+  vm::CreateStats cs = vm::create_initial_mesh(field, params, mesh);
+  for (int p = 0; p < scene.field->num_phases(); ++p) mesh.phase_names.push_back(scene.field->phase_name(p));
+  progress.done();
+  if (!o.skip_validation) require_valid(mesh, "the created mesh");
+  if (!common.quiet)
+    std::fprintf(stderr,
+                 "create: grid %dx%dx%d (%s), %zu vertices, %zu triangles; sampling %.3f s, create %.3f s "
+                 "(%llu tets, %llu cut; check %.3f s); snapping undone at %llu nodes\n",
+                 grid.cells[0], grid.cells[1], grid.cells[2], o.lattice.c_str(), mesh.num_nodes(),
+                 mesh.num_triangles(), t_sample, cs.seconds, (unsigned long long)cs.tets_visited,
+                 (unsigned long long)cs.tets_cut, cs.check_seconds, (unsigned long long)cs.unsnapped_nodes);
+  return mesh;
+}
+
+void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {
+  o.iterations = default_iterations;
+  cmd->add_option("--iterations", o.iterations, "Iterations of the pipeline")->capture_default_str();
+  cmd->add_option("--pipeline", o.pipeline,
+                  "Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh passes')")
+      ->capture_default_str();
+  cmd->add_flag("--stop-when-converged", o.stop_when_converged,
+                "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
+  cmd->add_option("--history", o.history,
+                  "Write per-iteration histograms of inradius, circumradius, edge length, quality, angles and vertex "
+                  "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
+}
+
+void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
+                   const CommonOptions& common, Progress& progress) {
+  if (o.iterations < 0) throw vm::InvalidInput("--iterations: must be 0 or more");
+  const vm::PassRegistry registry = vm::builtin_registry();
+  const vm::Pipeline pipeline = vm::Pipeline::parse(o.pipeline, registry);
+  if (pipeline.needs_field() && !field)
+    throw vm::InvalidInput("--pipeline: '" + o.pipeline + "' needs the phase functions: give --field SCENE.json");
+  vm::InterfaceMesh im = vm::InterfaceMesh::from_node_mesh(mesh);
+  vm::RunOptions run;
+  run.iterations = o.iterations;
+  run.stop_when_converged = o.stop_when_converged;
+  double first_min = 0, first_mean = 0, total = 0;
+  vm::QualityHistory history;
+  if (!o.history.empty()) check_writable(o.history);
+  run.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh& current) {
+    if (r.iteration == 0) first_min = r.min_quality, first_mean = r.mean_quality;
+    if (!o.history.empty()) history.record(r.iteration, current.to_node_mesh());
+    total += r.seconds;
+    char line[160];
+    std::snprintf(line, sizeof line, "iteration %d/%d: min q %.3f, mean q %.3f, %zu flips, %.1f ms", r.iteration,
+                  o.iterations, r.min_quality, r.mean_quality, r.flips, r.seconds * 1e3);
+    progress.stage(line);
+  };
+  const int done = pipeline.run(im, field, run);
+  progress.done();
+  mesh = im.to_node_mesh();
+  require_valid(mesh, "the improved mesh");
+  if (!o.history.empty()) history.write(o.history);
+  if (!common.quiet) {
+    const auto [min_q, mean_q] = vm::quality_summary(im);
+    std::fprintf(stderr, "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f\n", done,
+                 o.pipeline.c_str(), total, first_min, min_q, first_mean, mean_q);
+  }
+}
+
+void require_valid(const vm::NodeMesh& mesh, const std::string& what) {
+  vm::ValidationReport report = vm::validate(mesh);
+  if (!report.ok())
+    throw vm::TopologyError(what + " failed validation (" + std::to_string(report.problem_count) +
+                            " problems; please report this with the input), first: " + report.problems.front());
+}
+
+} // namespace vmcli
