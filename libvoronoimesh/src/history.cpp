@@ -422,6 +422,12 @@ void QualityHistory::write_svg(const std::string& path) const {
   write_atomically(path, svg());
 }
 
+void QualityHistory::check_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".csv" && ext != ".json" && ext != ".svg")
+    throw InvalidInput(located(path, "unknown history format (the extension must be .csv, .json or .svg)"));
+}
+
 void QualityHistory::write(const std::string& path) const {
   const std::string ext = lower_extension(path);
   if (ext == ".csv")
@@ -431,7 +437,7 @@ void QualityHistory::write(const std::string& path) const {
   else if (ext == ".svg")
     write_svg(path);
   else
-    throw InvalidInput(located(path, "unknown history format (the extension must be .csv, .json or .svg)"));
+    check_format(path); // throws
 }
 
 } // namespace vm

@@ -119,17 +119,26 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     context.iteration = it;
     context.flips = 0;
     context.stats.reset();
+    std::vector<double> pass_seconds(passes.size(), 0.0);
+    size_t last_moving = 0;
+    auto timed = [&](size_t slot, auto&& work) {
+      const auto t0 = std::chrono::steady_clock::now();
+      work();
+      pass_seconds[slot] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
     for (size_t i = 0; i < passes.size(); ++i) {
       // Moves are committed at one point, before anything that looks at positions.
-      if (!steps_[i].info.moves_nodes) context.commit();
-      passes[i]->run(context);
+      if (!steps_[i].info.moves_nodes) timed(last_moving, [&] { context.commit(); });
+      else last_moving = i;
+      timed(i, [&] { passes[i]->run(context); });
     }
-    context.commit();
+    timed(last_moving, [&] { context.commit(); });
     done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips,
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats},
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
+                        pass_seconds},
                        mesh);
     const bool improved = min_q > best_min + options.tolerance || mean_q > best_mean + options.tolerance;
     best_min = std::max(best_min, min_q);

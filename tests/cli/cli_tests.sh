@@ -68,5 +68,31 @@ expect_error "unwritable output" 3 "/nonexistent/out\.ply" -- "$vm" create --gri
 expect_error "stats of a non-PLY" 3 "kind\.json: not a PLY" -- "$vm" stats kind.json
 expect_error "stats of a missing file" 3 "nothere\.ply" -- "$vm" stats nothere.ply
 
+# Improvement: the main job, its options, and the commands around it.
+if "$vm" mesh -q --grid 32 --history hist.svg -o m.ply && "$vm" stats m.ply >mstats.txt; then pass; else fail "mesh with --history"; fi
+if grep -qE "^topology: +valid" mstats.txt && grep -q "</svg>" hist.svg; then pass; else fail "mesh result or history picture"; fi
+"$vm" mesh -q "$examples/voronoi30.json" --grid 32 --iterations 5 --threads 1 -o mt1.ply
+"$vm" mesh -q "$examples/voronoi30.json" --grid 32 --iterations 5 --threads 2 -o mt2.ply
+if cmp -s mt1.ply mt2.ply; then pass; else fail "mesh --threads 1 and 2 give different files"; fi
+if "$vm" smooth -q demo.ply --field "$examples/four_spheres.json" --iterations 3 -o sm.ply && "$vm" stats sm.ply >/dev/null; then pass
+else fail "smooth"; fi
+if "$vm" flip -q demo.ply -o fl.ply && "$vm" stats fl.ply >/dev/null; then pass; else fail "flip"; fi
+if "$vm" passes | grep -q "rest_factor" && "$vm" passes | grep -q "^flip"; then pass; else fail "passes listing"; fi
+if "$vm" mesh -q --grid 24 --iterations 50 --stop-when-converged -o conv.ply; then pass; else fail "--stop-when-converged"; fi
+
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >nophase.ply
+echo '{"phases": [{"kind": "constant", "value": 0}, {"kind": "constant", "value": 1}]}' >twophases.json
+echo '{"domain": {"min": [5,5,5], "max": [6,6,6]}, "phases": [{"kind": "constant", "value": 0}, {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2},
+  {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}, {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2},
+  {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}]}' >elsewhere.json
+expect_error "mesh without phases" 3 "nophase\.ply: .*phase0" -- "$vm" smooth nophase.ply --field "$examples/four_spheres.json" -o out.ply
+expect_error "field with too few phases" 2 "twophases\.json: has 2 phases" -- "$vm" smooth demo.ply --field twophases.json -o out.ply
+expect_error "field elsewhere" 2 "elsewhere\.json: its domain" -- "$vm" smooth demo.ply --field elsewhere.json -o out.ply
+expect_error "smooth without a field" 2 "needs the phase functions" -- "$vm" smooth demo.ply -o out.ply
+expect_error "unknown pass" 2 "unknown pass 'smoth'" -- "$vm" mesh --grid 8 --pipeline smoth,flip -o out.ply
+expect_error "unknown parameter" 2 "no parameter 'rest'" -- "$vm" mesh --grid 8 --pipeline smooth:rest=1 -o out.ply
+expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8 --pipeline smooth:rest_factor=9 -o out.ply
+expect_error "bad history format" 2 "history" -- "$vm" mesh --grid 8 --history h.txt -o out.ply
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -25,6 +25,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       check_writable(o->output);
+      check_improve_options(o->improve);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
       vm::Scene scene = o->input.empty() ? vm::demo_scene() : vm::load_scene(o->input);

@@ -44,6 +44,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   smooth->callback([s, &exit_code] {
     exit_code = run_guarded([&] {
       check_writable(s->output);
+      check_improve_options(s->improve);
       auto limit = thread_limit(s->common);
       Progress progress(!s->common.quiet);
       vm::NodeMesh mesh = vm::io::read_ply(s->mesh);

@@ -74,6 +74,9 @@ struct ImproveOptions {
   std::string history; ///< where to write per-iteration histograms (.csv, .json, .svg)
 };
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations);
+/// Checks the improvement options (pipeline, iterations, history file) before any
+/// work, so a typo fails at once rather than after a long create.
+void check_improve_options(const ImproveOptions& o);
 /// Runs the pipeline on `mesh` (validated before and after); prints a progress
 /// line per iteration on a terminal and a summary unless quiet.
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,

@@ -135,9 +135,18 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                   "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
 }
 
+void check_improve_options(const ImproveOptions& o) {
+  if (o.iterations < 0) throw vm::InvalidInput("--iterations: must be 0 or more");
+  vm::Pipeline::parse(o.pipeline, vm::builtin_registry());
+  if (!o.history.empty()) {
+    vm::QualityHistory::check_format(o.history);
+    check_writable(o.history);
+  }
+}
+
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
                    const CommonOptions& common, Progress& progress) {
-  if (o.iterations < 0) throw vm::InvalidInput("--iterations: must be 0 or more");
+  check_improve_options(o);
   const vm::PassRegistry registry = vm::builtin_registry();
   const vm::Pipeline pipeline = vm::Pipeline::parse(o.pipeline, registry);
   if (pipeline.needs_field() && !field)
@@ -148,7 +157,6 @@ void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const Improv
   run.stop_when_converged = o.stop_when_converged;
   double first_min = 0, first_mean = 0, total = 0;
   vm::QualityHistory history;
-  if (!o.history.empty()) check_writable(o.history);
   run.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh& current) {
     if (r.iteration == 0) first_min = r.min_quality, first_mean = r.mean_quality;
     if (!o.history.empty()) history.record(r.iteration, current.to_node_mesh());

@@ -70,6 +70,9 @@ public:
   /// Every writer writes to `path`.tmp-<pid> and renames it into place, so a
   /// failure leaves no file; it throws IoError "<path>: cannot write (<reason>)".
   void write(const std::string& path) const;
+  /// Throws InvalidInput, as write() would, if `path` has no known extension:
+  /// lets a caller refuse a bad name before the work that precedes writing.
+  static void check_format(const std::string& path);
 
   /// The text write_csv / write_json / write_svg would write.
   std::string csv() const;

@@ -23,6 +23,9 @@ struct IterationReport {
   size_t flips = 0;
   double seconds = 0;
   std::optional<MeshStats> stats; ///< when the pipeline has a stats pass
+  /// Wall time of each step, in pipeline order; committing the moves is charged
+  /// to the moving pass before it.
+  std::vector<double> pass_seconds;
 };
 
 struct RunOptions {
