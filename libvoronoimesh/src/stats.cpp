@@ -82,6 +82,8 @@ double angle_deg(const Vec3& u, const Vec3& v) {
 void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats& s) {
   double sum = 0;
   size_t counted = 0;
+  std::vector<double> qualities;
+  qualities.reserve(m.triangles.size());
   s.min_quality = std::numeric_limits<double>::infinity();
   s.min_angle_deg = std::numeric_limits<double>::infinity();
   s.max_angle_deg = 0;
@@ -91,6 +93,7 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
     const double q = triangle_quality(a, b, c);
     s.min_quality = std::min(s.min_quality, q);
+    qualities.push_back(q);
     sum += q;
     ++counted;
     s.below_half += q < 0.5;
@@ -105,6 +108,9 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     return;
   }
   s.mean_quality = sum / double(counted);
+  auto p01 = qualities.begin() + std::ptrdiff_t(qualities.size() / 100);
+  std::nth_element(qualities.begin(), p01, qualities.end());
+  s.quality_p01 = *p01;
 }
 
 void edge_stats(const NodeMesh& m, const EdgeTable& et, MeshStats& s) {
@@ -176,7 +182,7 @@ std::string to_text(const MeshStats& s) {
   line("triple curves", std::to_string(s.triple_curves));
   line("quadruple points", std::to_string(s.quadruple_points));
   line("higher-order points", std::to_string(s.higher_order_points));
-  line("quality min / mean", num("%.4f / %.4f", s.min_quality, s.mean_quality));
+  line("quality min / 1% / mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
   line("quality < 0.5", std::to_string(s.below_half));
   line("slivers (q < 0.1)", std::to_string(s.slivers));
   line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));
@@ -195,6 +201,7 @@ std::string to_json(const MeshStats& s) {
       {"higher_order_points", s.higher_order_points},
       {"min_quality", s.min_quality},
       {"mean_quality", s.mean_quality},
+      {"quality_p01", s.quality_p01},
       {"below_half", s.below_half},
       {"slivers", s.slivers},
       {"min_angle_deg", s.min_angle_deg},

@@ -109,13 +109,16 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_NE(text.find("surfaces               10\n"), std::string::npos) << text;
   EXPECT_NE(text.find("quadruple points       5\n"), std::string::npos) << text;
   const auto j = nlohmann::json::parse(to_json(s));
-  EXPECT_EQ(j.size(), 16u);
+  EXPECT_EQ(j.size(), 17u);
   EXPECT_EQ(j.at("vertices").get<size_t>(), s.vertices);
   EXPECT_EQ(j.at("surfaces").get<size_t>(), 10u);
   EXPECT_EQ(j.at("triple_curves").get<size_t>(), 10u);
   EXPECT_EQ(j.at("quadruple_points").get<size_t>(), 5u);
   EXPECT_EQ(j.at("higher_order_points").get<size_t>(), 0u);
   EXPECT_EQ(j.at("min_quality").get<double>(), s.min_quality);
+  EXPECT_EQ(j.at("quality_p01").get<double>(), s.quality_p01);
+  EXPECT_LE(s.min_quality, s.quality_p01);
+  EXPECT_LE(s.quality_p01, s.mean_quality);
   EXPECT_EQ(j.at("rms_edge").get<double>(), s.rms_edge);
   EXPECT_EQ(j.at("max_angle_deg").get<double>(), s.max_angle_deg);
 }

@@ -21,6 +21,7 @@ struct MeshStats {
   size_t quadruple_points = 0;  ///< nodes where 4 or more phases meet
   size_t higher_order_points = 0; ///< of those, nodes where 5 or more meet
   double min_quality = 0, mean_quality = 0;
+  double quality_p01 = 0;       ///< 1st percentile of q: 99% of triangles are at least this good
   size_t below_half = 0;        ///< triangles with q < 0.5
   size_t slivers = 0;           ///< triangles with q < 0.1
   double min_angle_deg = 0, max_angle_deg = 0;
