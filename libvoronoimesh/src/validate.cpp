@@ -1,7 +1,11 @@
 /// @file validate.cpp
 /// Node-level checks of an interface mesh (validate.hpp). Everything is built on
 /// the incidence tables of detail/topology.hpp, so the cost is linear in the
-/// triangle count (times small local sorts around nodes and edges).
+/// triangle count (times small local sorts around nodes and edges). The checks
+/// run in parallel over fixed chunks of triangles and of nodes, each chunk
+/// logging on its own, and the chunk logs are merged in order: the report is
+/// the serial one whatever the number of threads (validate() runs on every
+/// mesh create() makes, so it is worth being quick).
 
 #include "voronoimesh/validate.hpp"
 
@@ -10,17 +14,21 @@
 #include "detail/union_find.hpp"
 
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
+#include <utility>
 
 namespace vm {
 
 namespace {
 
 using detail::cat;
-using detail::EdgeTable;
 using detail::NodeTriangles;
 using detail::ProblemLog;
 
@@ -49,121 +57,186 @@ std::string list(const Ids& ids) {
   return s;
 }
 
+/// Items per chunk of the parallel checks: fixed, so the chunks (and with them
+/// the order problems are merged in) never depend on the number of threads, and
+/// large enough that a chunk's log and scratch space cost little.
+constexpr size_t kTriangleGrain = 8192;
+constexpr size_t kNodeGrain = 4096;
+
 /// Bits of the domain box faces (-x, +x, -y, +y, -z, +z) each node lies on,
 /// within 1e-9 x the box diagonal.
 std::vector<uint8_t> box_faces(const NodeMesh& m) {
   const double tol = 1e-9 * (m.domain.max - m.domain.min).norm();
   std::vector<uint8_t> mask(m.points.size(), 0);
-  for (size_t n = 0; n < m.points.size(); ++n)
-    for (int a = 0; a < 3; ++a) {
-      if (std::abs(m.points[n][a] - m.domain.min[a]) <= tol) mask[n] |= uint8_t(1u << (2 * a));
-      if (std::abs(m.points[n][a] - m.domain.max[a]) <= tol) mask[n] |= uint8_t(1u << (2 * a + 1));
-    }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m.points.size(), kNodeGrain), [&](const auto& nodes) {
+    for (size_t n = nodes.begin(); n < nodes.end(); ++n)
+      for (int a = 0; a < 3; ++a) {
+        if (std::abs(m.points[n][a] - m.domain.min[a]) <= tol) mask[n] |= uint8_t(1u << (2 * a));
+        if (std::abs(m.points[n][a] - m.domain.max[a]) <= tol) mask[n] |= uint8_t(1u << (2 * a + 1));
+      }
+  });
   return mask;
 }
 
-class NodeMeshChecker {
-public:
-  NodeMeshChecker(const NodeMesh& m, ProblemLog& log) : m_(m), log_(log), on_box_(box_faces(m)) {}
+/// What the node checks share: `usable` marks the triangles with node ids
+/// valid and distinct (the only ones `nt` holds), `paired` those also with a
+/// valid phase pair; the node checks skip the others.
+struct Tables {
+  explicit Tables(const NodeMesh& mesh)
+      : m(mesh), usable(mesh.triangles.size()), paired(mesh.triangles.size(), 0) {}
+  const NodeMesh& m;
+  std::vector<uint8_t> on_box;
+  std::vector<char> usable, paired;
+  NodeTriangles nt;
+};
 
-  void run() {
-    check_triangles();
-    check_duplicates();
-    const NodeTriangles nt = detail::node_triangles(m_.points.size(), m_.triangles, &usable_);
-    const EdgeTable et = detail::edge_table(m_.triangles, nt);
-    for (size_t e = 0; e < et.size(); ++e) check_edge(et, e);
-    for (size_t n = 0; n < m_.points.size(); ++n) check_fans(nt, n);
+void check_area(const NodeMesh& m, size_t t, ProblemLog& log) {
+  const auto& tri = m.triangles[t];
+  const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  if (area > 1e-12 * longest2 && std::isfinite(area) && std::isfinite(longest2)) return;
+  log.add({tri[0], tri[1], tri[2]}, [&] {
+    const bool finite = a.allFinite() && b.allFinite() && c.allFinite();
+    return finite ? cat("zero area: triangle ", t, " ", str(tri), ": area ", area, ", longest edge ",
+                        std::sqrt(longest2))
+                  : cat("zero area: triangle ", t, " ", str(tri), ": non-finite coordinate");
+  });
+}
+
+/// Node ids, area and phase pair of triangle t; sets tables.paired[t].
+void check_triangle(Tables& tables, size_t t, ProblemLog& log) {
+  const NodeMesh& m = tables.m;
+  const size_t nn = m.points.size(), num_phases = m.phase_names.size();
+  const auto& tri = m.triangles[t];
+  bool in_range = true;
+  for (int32_t v : tri)
+    if (v < 0 || size_t(v) >= nn) {
+      in_range = false;
+      log.add({}, [&] {
+        return cat("node out of range: triangle ", t, " ", str(tri), " has node ", v, " (", nn, " nodes)");
+      });
+    }
+  if (!in_range) return;
+  if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+    log.add({tri[0], tri[1], tri[2]}, [&] { return cat("repeated node: triangle ", t, " ", str(tri)); });
+    return;
+  }
+  check_area(m, t, log);
+  if (t >= m.pairs.size()) return;
+  const auto& p = m.pairs[t];
+  if (p[0] < 0 || p[0] >= p[1] || (num_phases > 0 && size_t(p[1]) >= num_phases)) {
+    log.add({tri[0], tri[1], tri[2]}, [&] {
+      return cat("bad pair: triangle ", t, " has pair ", str(p), " (need 0 <= p < q",
+                 num_phases > 0 ? cat(" < ", num_phases, ")") : std::string(")"));
+    });
+    return;
+  }
+  tables.paired[t] = 1;
+}
+
+/// The checks made at each node, for the nodes of one chunk. Each kind of
+/// problem goes to its own log, so that the kinds can be listed one after the
+/// other as if each had its own pass over the nodes (check_in_chunks), while
+/// one pass reads each node's triangles once. Scratch space is reused from node
+/// to node.
+class NodeChecks {
+public:
+  NodeChecks(const Tables& tables, ProblemLog& duplicates, ProblemLog& edges, ProblemLog& fans)
+      : t_(tables), m_(tables.m), duplicates_(duplicates), edges_log_(edges), fans_(fans) {}
+
+  void check(size_t n) {
+    duplicates_at(n);
+    if (closed_fan(n)) return;
+    edges_at(n);
+    fans_at(n);
   }
 
 private:
-  /// Per-triangle checks; fills usable_ (node ids valid and distinct) and
-  /// paired_ (also a valid phase pair): later checks skip the others.
-  void check_triangles() {
-    const size_t nt = m_.triangles.size(), nn = m_.points.size();
-    if (m_.pairs.size() != nt)
-      log_.add({}, [&] { return cat("size mismatch: ", nt, " triangles but ", m_.pairs.size(), " phase pairs"); });
-    usable_.assign(nt, 0);
-    paired_.assign(nt, 0);
-    const size_t num_phases = m_.phase_names.size();
-    for (size_t t = 0; t < nt; ++t) {
-      const auto& tri = m_.triangles[t];
-      bool in_range = true;
-      for (int32_t v : tri)
-        if (v < 0 || size_t(v) >= nn) {
-          in_range = false;
-          log_.add({}, [&] {
-            return cat("node out of range: triangle ", t, " ", str(tri), " has node ", v, " (", nn, " nodes)");
-          });
-        }
-      if (!in_range) continue;
-      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-        log_.add({tri[0], tri[1], tri[2]}, [&] { return cat("repeated node: triangle ", t, " ", str(tri)); });
-        continue;
-      }
-      usable_[t] = 1;
-      check_area(t);
-      if (t >= m_.pairs.size()) continue;
-      const auto& p = m_.pairs[t];
-      if (p[0] < 0 || p[0] >= p[1] || (num_phases > 0 && size_t(p[1]) >= num_phases)) {
-        log_.add({tri[0], tri[1], tri[2]}, [&] {
-          return cat("bad pair: triangle ", t, " has pair ", str(p), " (need 0 <= p < q",
-                     num_phases > 0 ? cat(" < ", num_phases, ")") : std::string(")"));
-        });
-        continue;
-      }
-      paired_[t] = 1;
+  /// Triangles on the same three nodes. Each is found at its smallest node a;
+  /// sorting by (b, c, triangle) there, nodes in order, lists them in the order
+  /// of their sorted node triples (a, b, c) over the whole mesh.
+  void duplicates_at(size_t a) {
+    dups_.clear();
+    for (int32_t t : t_.nt.of(a)) {
+      const auto [prev, next] = neighbours(t, a);
+      if (prev > int32_t(a) && next > int32_t(a)) dups_.push_back({std::min(prev, next), std::max(prev, next), t});
     }
-  }
-
-  void check_area(size_t t) {
-    const auto& tri = m_.triangles[t];
-    const Vec3 &a = m_.points[size_t(tri[0])], &b = m_.points[size_t(tri[1])], &c = m_.points[size_t(tri[2])];
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    if (area > 1e-12 * longest2 && std::isfinite(area) && std::isfinite(longest2)) return;
-    log_.add({tri[0], tri[1], tri[2]}, [&] {
-      const bool finite = a.allFinite() && b.allFinite() && c.allFinite();
-      return finite ? cat("zero area: triangle ", t, " ", str(tri), ": area ", area, ", longest edge ",
-                          std::sqrt(longest2))
-                    : cat("zero area: triangle ", t, " ", str(tri), ": non-finite coordinate");
-    });
-  }
-
-  void check_duplicates() {
-    std::vector<std::pair<std::array<int32_t, 3>, int32_t>> keys;
-    keys.reserve(m_.triangles.size());
-    for (size_t t = 0; t < m_.triangles.size(); ++t)
-      if (usable_[t]) {
-        auto k = m_.triangles[t];
-        std::sort(k.begin(), k.end());
-        keys.emplace_back(k, int32_t(t));
-      }
-    std::sort(keys.begin(), keys.end());
-    for (size_t i = 0; i < keys.size();) {
+    if (dups_.size() < 2) return;
+    std::sort(dups_.begin(), dups_.end());
+    for (size_t i = 0; i < dups_.size();) {
       size_t j = i + 1;
-      while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-      if (j - i > 1)
-        log_.add({keys[i].first[0], keys[i].first[1], keys[i].first[2]}, [&] {
+      while (j < dups_.size() && dups_[j][0] == dups_[i][0] && dups_[j][1] == dups_[i][1]) ++j;
+      if (j - i > 1) {
+        const std::array<int32_t, 3> nodes{int32_t(a), dups_[i][0], dups_[i][1]};
+        duplicates_.add({nodes[0], nodes[1], nodes[2]}, [&] {
           std::vector<int32_t> ts;
-          for (size_t k = i; k < j; ++k) ts.push_back(keys[k].second);
-          return cat("duplicate triangle: triangles ", list(ts), " on nodes ", str(keys[i].first));
+          for (size_t k = i; k < j; ++k) ts.push_back(dups_[k][2]);
+          return cat("duplicate triangle: triangles ", list(ts), " on nodes ", str(nodes));
         });
+      }
       i = j;
     }
   }
 
+  /// Fast path for the common node inside one patch: true when all its
+  /// triangles are paired, with the same pair, and their corners (prev, next)
+  /// form one cycle, each corner's next the prev of the following one (a
+  /// closed fan). Then each phase sees one fan (the second one the same cycle
+  /// reversed), and each edge {n, b} has two triangles of that pair running
+  /// along it in opposite directions: fans_at() and edges_at() would log nothing.
+  bool closed_fan(size_t n) {
+    links_.clear();
+    const PhasePair* pair = nullptr;
+    for (int32_t t : t_.nt.of(n)) {
+      const PhasePair& p = m_.pairs[size_t(t)];
+      if (!t_.paired[size_t(t)] || (pair && (p[0] != (*pair)[0] || p[1] != (*pair)[1]))) return false;
+      pair = &p;
+      links_.push_back(neighbours(t, n));
+    }
+    std::sort(links_.begin(), links_.end());
+    for (size_t i = 1; i < links_.size(); ++i)
+      if (links_[i].first == links_[i - 1].first) return false;
+    // With distinct prevs each corner has at most one successor; a walk from the
+    // first corner that first comes back to it after k steps has visited all k
+    // corners, each once.
+    const size_t k = links_.size();
+    for (size_t x = 0, step = 1; step <= k; ++step) {
+      const int32_t next = links_[x].second;
+      auto it = std::lower_bound(links_.begin(), links_.end(), next,
+                                 [](const std::pair<int32_t, int32_t>& c, int32_t v) { return c.first < v; });
+      if (it == links_.end() || it->first != next) return false;
+      x = size_t(it - links_.begin());
+      if (x == 0) return step == k;
+    }
+    return k == 0;
+  }
+
+  /// The edges {a, b} with b > a: over all nodes in order, every edge once, in
+  /// the order of edge_table().
+  void edges_at(size_t a) {
+    edges_.gather(int32_t(a), m_.triangles, t_.nt);
+    for (size_t i = 0; i < edges_.size(); ++i) check_edge({int32_t(a), edges_.other(i)}, edges_.halfedges(i));
+  }
+
+  bool paired(int32_t halfedge) const { return t_.paired[size_t(detail::he_triangle(halfedge))] != 0; }
+
   /// Per phase, each edge must be used once in each direction by the phase's
   /// outward-oriented triangles (once in total on the domain box); a junction
   /// edge must be carried by one cycle of distinct pairs.
-  void check_edge(const EdgeTable& et, size_t e) {
-    const auto [a, b] = et.nodes[e];
-    const bool on_box = (on_box_[size_t(a)] & on_box_[size_t(b)]) != 0;
+  void check_edge(const std::array<int32_t, 2>& edge, std::span<const int32_t> halfedges) {
+    // Most edges lie inside one patch, which is all right: skip the sorting below.
+    if (halfedges.size() == 2 && paired(halfedges[0]) && paired(halfedges[1]) &&
+        detail::is_patch_interior(halfedges, m_.triangles, m_.pairs))
+      return;
+    const auto [a, b] = edge;
+    const bool on_box = (t_.on_box[size_t(a)] & t_.on_box[size_t(b)]) != 0;
     uses_.clear();
     tris_.clear();
-    for (int32_t h : et.halfedges(e)) {
+    for (int32_t h : halfedges) {
       const int32_t t = detail::he_triangle(h);
       tris_.push_back(t);
-      if (!paired_[size_t(t)]) continue;
+      if (!t_.paired[size_t(t)]) continue;
       // Triangle t runs a->b (forward) or b->a; pair[0] sees it as is, pair[1] reversed.
       const bool forward = detail::he_from(m_.triangles, h) == a;
       uses_.push_back({m_.pairs[size_t(t)][0], forward ? 1 : 0, t});
@@ -179,30 +252,30 @@ private:
       degree_.push_back(fwd + bwd);
       if (!(fwd == 1 && bwd == 1) && !(on_box && fwd + bwd == 1)) {
         const char* kind = fwd + bwd == 1 ? "open boundary" : fwd + bwd == 2 ? "orientation" : "non-manifold edge";
-        log_.add({a, b}, [&] {
+        edges_log_.add({a, b}, [&] {
           std::vector<int32_t> ts;
           for (size_t k = i; k < j; ++k) ts.push_back(uses_[k][2]);
-          return cat(kind, ": phase ", uses_[i][0], ", edge ", str(et.nodes[e]), " used ", fwd, "x ", a, "->", b,
-                     " and ", bwd, "x back (triangles ", list(ts), ")", on_box ? "" : ", not on the domain box");
+          return cat(kind, ": phase ", uses_[i][0], ", edge ", str(edge), " used ", fwd, "x ", a, "->", b, " and ",
+                     bwd, "x back (triangles ", list(ts), ")", on_box ? "" : ", not on the domain box");
         });
       }
       i = j;
     }
-    if (tris_.size() >= 3 && uses_.size() == 2 * tris_.size()) check_junction(et, e, on_box);
+    if (tris_.size() >= 3 && uses_.size() == 2 * tris_.size()) check_junction(edge, on_box);
   }
 
   /// Phases are the vertices and triangles the edges of a small graph around
   /// the junction edge; it must be one cycle (every phase on two triangles), or
   /// on the domain box possibly one path (the two end phases on one triangle).
-  void check_junction(const EdgeTable& et, size_t e, bool on_box) {
+  void check_junction(const std::array<int32_t, 2>& edge, bool on_box) {
     size_t ends = 0;
     for (size_t i = 0; i < phase_ids_.size(); ++i) {
       const size_t d = degree_[i];
       if (d == 2) continue;
       if (on_box && d == 1 && ++ends <= 2) continue;
-      return report_junction(et, e, cat("phase ", phase_ids_[i], " on ", d, " of them"));
+      return report_junction(edge, cat("phase ", phase_ids_[i], " on ", d, " of them"));
     }
-    if (ends == 1) return report_junction(et, e, "the chain of pairs does not close");
+    if (ends == 1) return report_junction(edge, "the chain of pairs does not close");
     auto local = [&](int32_t phase) {
       return int32_t(std::lower_bound(phase_ids_.begin(), phase_ids_.end(), phase) - phase_ids_.begin());
     };
@@ -213,26 +286,24 @@ private:
       if (x != y) --components;
       uf.unite(x, y);
     }
-    if (components != 1) report_junction(et, e, cat(components, " separate cycles of pairs"));
+    if (components != 1) report_junction(edge, cat(components, " separate cycles of pairs"));
   }
 
-  void report_junction(const EdgeTable& et, size_t e, const std::string& why) {
-    log_.add({et.nodes[e][0], et.nodes[e][1]}, [&] {
+  void report_junction(const std::array<int32_t, 2>& edge, const std::string& why) {
+    edges_log_.add({edge[0], edge[1]}, [&] {
       std::string pairs;
       for (int32_t t : tris_) pairs += cat(" ", t, str(m_.pairs[size_t(t)]));
-      return cat("junction: edge ", str(et.nodes[e]), " with ", tris_.size(), " triangles (triangle(pair):", pairs,
+      return cat("junction: edge ", str(edge), " with ", tris_.size(), " triangles (triangle(pair):", pairs,
                  "): ", why);
     });
   }
 
   /// The outward triangles of each phase around node n must form one fan.
-  void check_fans(const NodeTriangles& nt, size_t n) {
+  void fans_at(size_t n) {
     corners_.clear();
-    for (int32_t t : nt.of(n)) {
-      if (!paired_[size_t(t)]) continue;
-      const auto& tri = m_.triangles[size_t(t)];
-      const size_t c = size_t(std::find(tri.begin(), tri.end(), int32_t(n)) - tri.begin());
-      const int32_t next = tri[(c + 1) % 3], prev = tri[(c + 2) % 3];
+    for (int32_t t : t_.nt.of(n)) {
+      if (!t_.paired[size_t(t)]) continue;
+      const auto [prev, next] = neighbours(t, n);
       // As seen by pair[0] the fan runs prev -> n -> next; pair[1] sees it reversed.
       corners_.push_back({m_.pairs[size_t(t)][0], prev, next, t});
       corners_.push_back({m_.pairs[size_t(t)][1], next, prev, t});
@@ -243,7 +314,7 @@ private:
       while (j < corners_.size() && corners_[j][0] == corners_[i][0]) ++j;
       const size_t fans = count_fans(i, j);
       if (fans > 1)
-        log_.add({int32_t(n)}, [&] {
+        fans_.add({int32_t(n)}, [&] {
           std::vector<int32_t> ts;
           for (size_t k = i; k < j; ++k) ts.push_back(corners_[k][3]);
           return cat("non-manifold node: phase ", corners_[i][0], " at node ", n, " has ", fans,
@@ -270,17 +341,62 @@ private:
     return components;
   }
 
+  /// The nodes before and after node n in triangle t.
+  std::pair<int32_t, int32_t> neighbours(int32_t t, size_t n) const {
+    const auto& tri = m_.triangles[size_t(t)];
+    if (tri[0] == int32_t(n)) return {tri[2], tri[1]};
+    if (tri[1] == int32_t(n)) return {tri[0], tri[2]};
+    return {tri[1], tri[0]};
+  }
+
+  const Tables& t_;
   const NodeMesh& m_;
-  ProblemLog& log_;
-  std::vector<uint8_t> on_box_;
-  std::vector<char> usable_, paired_;
-  // Scratch reused across edges and nodes.
+  ProblemLog &duplicates_, &edges_log_, &fans_;
+  // Scratch reused across the chunk's nodes and edges.
+  std::vector<std::array<int32_t, 3>> dups_; // (b, c, triangle)
+  std::vector<std::pair<int32_t, int32_t>> links_; // (prev, next) of closed_fan()
+  detail::EdgesAt edges_;
   std::vector<std::array<int32_t, 3>> uses_; // (phase, forward, triangle)
   std::vector<int32_t> tris_;
   std::vector<int32_t> phase_ids_;              // distinct phases on the current edge, sorted
   std::vector<size_t> degree_;                  // triangles of each of them
   std::vector<std::array<int32_t, 4>> corners_; // (phase, in, out, triangle)
 };
+
+void check_triangles(Tables& tables, ProblemLog& log) {
+  detail::check_in_chunks<1>(tables.m.triangles.size(), kTriangleGrain, log,
+                             [&](size_t begin, size_t end, auto& reports) {
+                               ProblemLog part(reports[0]);
+                               for (size_t t = begin; t < end; ++t) check_triangle(tables, t, part);
+                             });
+}
+
+/// Duplicates are listed first, then edge problems, then fan problems.
+void check_nodes(const Tables& tables, ProblemLog& log) {
+  detail::check_in_chunks<3>(tables.m.points.size(), kNodeGrain, log, [&](size_t begin, size_t end, auto& reports) {
+    ProblemLog duplicates(reports[0]), edges(reports[1]), fans(reports[2]);
+    NodeChecks checks(tables, duplicates, edges, fans);
+    for (size_t n = begin; n < end; ++n) checks.check(n);
+  });
+}
+
+void check_node_mesh(const NodeMesh& m, ProblemLog& log) {
+  const size_t num_tris = m.triangles.size(), num_nodes = m.points.size();
+  if (m.pairs.size() != num_tris)
+    log.add({}, [&] { return cat("size mismatch: ", num_tris, " triangles but ", m.pairs.size(), " phase pairs"); });
+  Tables tables(m);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, num_tris, kTriangleGrain), [&](const auto& tris) {
+    for (size_t t = tris.begin(); t < tris.end(); ++t)
+      tables.usable[t] = detail::well_formed(m.triangles[t], num_nodes);
+  });
+  // Building the node-triangle table is serial, so it runs alongside the triangle checks.
+  tbb::parallel_invoke([&] { tables.nt = detail::node_triangles(num_nodes, m.triangles, &tables.usable); },
+                       [&] {
+                         tables.on_box = box_faces(m);
+                         check_triangles(tables, log);
+                       });
+  check_nodes(tables, log);
+}
 
 } // namespace
 
@@ -294,8 +410,10 @@ std::string ValidationReport::summary() const {
 
 ValidationReport validate(const NodeMesh& m) {
   ValidationReport report;
-  ProblemLog log(report);
-  NodeMeshChecker(m, log).run();
+  {
+    ProblemLog log(report); // sorts the nodes when it goes
+    check_node_mesh(m, log);
+  }
   return report;
 }
 

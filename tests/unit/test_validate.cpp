@@ -4,6 +4,7 @@
 #include "voronoimesh/validate.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,37 @@ NodeMesh two_tets_sharing(const std::array<Vec3, 4>& second, int inside2 = 1, in
   test::add_tetrahedron(b, test::corner_tet(Vec3::Zero(), 1), 1, 0);
   test::add_tetrahedron(b, second, inside2, outside2);
   return b.mesh;
+}
+
+/// Appends `part` to `m` as a separate component (its nodes renumbered after m's).
+void append(NodeMesh& m, const NodeMesh& part) {
+  const auto offset = int32_t(m.points.size());
+  m.points.insert(m.points.end(), part.points.begin(), part.points.end());
+  for (auto t : part.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  m.pairs.insert(m.pairs.end(), part.pairs.begin(), part.pairs.end());
+}
+
+/// A 5^3 block grid (38400 triangles, several chunks of the parallel checks)
+/// with problems of every kind spread over it: a few malformed triangles, then
+/// many deleted, flipped and duplicated ones, and pinched tetrahedra at the end.
+NodeMesh broken_blocks() {
+  NodeMesh m = test::block_grains(5, 8);
+  const size_t n = m.triangles.size();
+  m.triangles[n / 3][1] = m.triangles[n / 3][0];           // repeated node
+  m.triangles[2 * n / 3][2] = 1 << 30;                     // node out of range
+  m.pairs[n - 5] = {m.pairs[n - 5][1], m.pairs[n - 5][0]}; // bad pair
+  for (size_t t = 101; t < n; t += 1999) std::swap(m.triangles[t][0], m.triangles[t][1]);
+  for (size_t t = 555; t < n; t += 2999) {
+    m.triangles.push_back(m.triangles[t]);
+    m.pairs.push_back(m.pairs[t]);
+  }
+  for (long t = long(n) - 7; t > 1000; t -= 1777) {
+    m.triangles.erase(m.triangles.begin() + t);
+    m.pairs.erase(m.pairs.begin() + t);
+  }
+  append(m, two_tets_sharing(test::corner_tet(Vec3::Zero(), -1)));
+  append(m, two_tets_sharing({Vec3(0, 0, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)}, 3, 2));
+  return m;
 }
 
 } // namespace
@@ -170,4 +202,39 @@ TEST(Validate, stale_point_mirror_is_caught) {
   om.set_point(OMesh::VertexHandle(2), OMesh::Point(5, 5, 5));
   const auto r = validate(im);
   EXPECT_TRUE(reports(r, "stale point", "OpenMesh vertex 2")) << r.summary();
+}
+
+TEST(Validate, same_report_for_any_thread_count) {
+  // Also a few flips only, so the 20 kept lines come from several chunks.
+  NodeMesh flipped = test::block_grains(5, 8);
+  for (size_t t = 7; t < flipped.triangles.size(); t += flipped.triangles.size() / 6)
+    std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
+  for (const NodeMesh& m : {broken_blocks(), flipped}) {
+    std::vector<ValidationReport> reports;
+    for (int threads : {1, 2, 8}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+      reports.push_back(validate(m));
+    }
+    const ValidationReport& serial = reports[0];
+    EXPECT_GT(serial.problem_count, 30u);
+    EXPECT_EQ(serial.problems.size(), 20u);
+    for (size_t i = 1; i < reports.size(); ++i) {
+      EXPECT_EQ(reports[i].problems, serial.problems) << reports[i].summary() << "---\n" << serial.summary();
+      EXPECT_EQ(reports[i].problem_count, serial.problem_count);
+      EXPECT_EQ(reports[i].nodes, serial.nodes);
+    }
+  }
+}
+
+TEST(Validate, problems_are_listed_kind_by_kind_in_mesh_order) {
+  // Malformed triangles first, in triangle order, then duplicates, then edge
+  // and node problems: the serial order, whichever chunk found them.
+  const auto r = validate(broken_blocks());
+  ASSERT_EQ(r.problems.size(), 20u) << r.summary();
+  EXPECT_EQ(r.problems[0].rfind("repeated node:", 0), 0u) << r.summary();
+  EXPECT_EQ(r.problems[1].rfind("node out of range:", 0), 0u) << r.summary();
+  EXPECT_EQ(r.problems[2].rfind("bad pair:", 0), 0u) << r.summary();
+  EXPECT_EQ(r.problems[3].rfind("duplicate triangle:", 0), 0u) << r.summary();
+  EXPECT_TRUE(std::is_sorted(r.nodes.begin(), r.nodes.end()));
+  EXPECT_EQ(std::adjacent_find(r.nodes.begin(), r.nodes.end()), r.nodes.end());
 }

@@ -10,9 +10,13 @@
 #include "detail/text.hpp"
 
 #include <algorithm>
+#include <array>
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 namespace vm::detail {
 
@@ -39,8 +43,35 @@ public:
     ++report_.problem_count;
   }
 
+  /// Adds the problems of `later`, found after all those logged so far, as if
+  /// they had been add()ed here one by one. (Only `later`'s kept lines are
+  /// known, but it kept its first kKept: all that this log can take.)
+  void append(ValidationReport&& later) {
+    for (size_t i = 0; i < later.problems.size() && report_.problems.size() < kKept; ++i)
+      report_.problems.push_back(std::move(later.problems[i]));
+    report_.problem_count += later.problem_count;
+    report_.nodes.insert(report_.nodes.end(), later.nodes.begin(), later.nodes.end());
+  }
+
 private:
   ValidationReport& report_;
 };
+
+/// Runs `check(begin, end, reports)` over [0, n) cut into chunks of `grain`
+/// items, in parallel. The check sorts the problems it finds into `Kinds`
+/// kinds, logging kind k into reports[k] (through its own ProblemLog); all
+/// chunks' problems of kind 0 are then appended to `log` in chunk order, then
+/// those of kind 1, and so on. So when the check handles each item on its own,
+/// the report is the one of serial passes over [0, n), one pass per kind, for
+/// any number of threads: the chunks depend on n and grain only.
+template <size_t Kinds, class Check>
+void check_in_chunks(size_t n, size_t grain, ProblemLog& log, const Check& check) {
+  const size_t chunks = (n + grain - 1) / grain;
+  std::vector<std::array<ValidationReport, Kinds>> parts(chunks);
+  tbb::parallel_for(size_t(0), chunks,
+                    [&](size_t c) { check(c * grain, std::min(n, (c + 1) * grain), parts[c]); });
+  for (size_t k = 0; k < Kinds; ++k)
+    for (auto& part : parts) log.append(std::move(part[k]));
+}
 
 } // namespace vm::detail

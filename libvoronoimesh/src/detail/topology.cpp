@@ -29,31 +29,47 @@ EdgeTable edge_table(const Triangles& tris, const NodeTriangles& nt) {
   et.off.push_back(0);
   et.he.reserve(nt.tri.size());
   et.nodes.reserve(nt.tri.size() / 2);
-  std::vector<std::pair<int32_t, int32_t>> local; // (other node, halfedge)
+  EdgesAt local;
   for (size_t a = 0; a < num_nodes; ++a) {
     et.first[a] = int32_t(et.nodes.size());
-    local.clear();
-    // Each halfedge is gathered once, at its smaller endpoint.
-    for (int32_t t : nt.of(a)) {
-      const auto& tri = tris[size_t(t)];
-      for (int k = 0; k < 3; ++k) {
-        int32_t from = tri[size_t(k)], to = tri[size_t((k + 1) % 3)];
-        int32_t other = from == int32_t(a) ? to : to == int32_t(a) ? from : -1;
-        if (other > int32_t(a)) local.emplace_back(other, 3 * t + k);
-      }
-    }
-    std::sort(local.begin(), local.end());
+    local.gather(int32_t(a), tris, nt);
+    const auto base = int32_t(et.he.size());
     for (size_t i = 0; i < local.size(); ++i) {
-      if (i == 0 || local[i].first != local[i - 1].first) {
-        if (i != 0) et.off.push_back(int32_t(et.he.size()));
-        et.nodes.push_back({int32_t(a), local[i].first});
-      }
-      et.he.push_back(local[i].second);
+      et.nodes.push_back({int32_t(a), local.other(i)});
+      et.off.push_back(base + local.halfedges_end(i));
     }
-    if (!local.empty()) et.off.push_back(int32_t(et.he.size()));
+    et.he.insert(et.he.end(), local.halfedges().begin(), local.halfedges().end());
   }
   et.first[num_nodes] = int32_t(et.nodes.size());
   return et;
+}
+
+void EdgesAt::gather(int32_t a, const Triangles& tris, const NodeTriangles& nt) {
+  // (b, halfedge) packed in one integer that sorts the same, as it sorts faster.
+  auto key = [](int32_t b, int32_t h) { return uint64_t(uint32_t(b)) << 32 | uint32_t(h); };
+  local_.clear();
+  // Each halfedge is gathered once, at its smaller endpoint.
+  for (int32_t t : nt.of(size_t(a))) {
+    const auto& tri = tris[size_t(t)];
+    for (int k = 0; k < 3; ++k) {
+      const int32_t from = tri[size_t(k)], to = tri[size_t((k + 1) % 3)];
+      const int32_t other = from == a ? to : to == a ? from : -1;
+      if (other > a) local_.push_back(key(other, 3 * t + k));
+    }
+  }
+  std::sort(local_.begin(), local_.end());
+  other_.clear();
+  off_.clear();
+  he_.clear();
+  for (size_t i = 0; i < local_.size(); ++i) {
+    const auto b = int32_t(local_[i] >> 32);
+    if (i == 0 || b != other_.back()) {
+      other_.push_back(b);
+      off_.push_back(int32_t(i));
+    }
+    he_.push_back(int32_t(uint32_t(local_[i])));
+  }
+  off_.push_back(int32_t(he_.size()));
 }
 
 int64_t EdgeTable::find(int32_t a, int32_t b) const {
@@ -62,13 +78,6 @@ int64_t EdgeTable::find(int32_t a, int32_t b) const {
   auto lo = nodes.begin() + first[size_t(a)], hi = nodes.begin() + first[size_t(a) + 1];
   auto it = std::lower_bound(lo, hi, b, [](const std::array<int32_t, 2>& e, int32_t v) { return e[1] < v; });
   return it != hi && (*it)[1] == b ? int64_t(it - nodes.begin()) : -1;
-}
-
-bool is_patch_interior(const EdgeTable& et, size_t e, const Triangles& tris, const std::vector<PhasePair>& pairs) {
-  auto hs = et.halfedges(e);
-  if (hs.size() != 2) return false;
-  return pairs[size_t(he_triangle(hs[0]))] == pairs[size_t(he_triangle(hs[1]))] &&
-         he_from(tris, hs[0]) != he_from(tris, hs[1]);
 }
 
 NodePhases node_phases(const NodeTriangles& nt, const std::vector<PhasePair>& pairs) {

@@ -62,10 +62,42 @@ struct EdgeTable {
 
 EdgeTable edge_table(const Triangles& tris, const NodeTriangles& nt);
 
-/// True when edge e lies inside one surface patch: exactly two triangles, of the
-/// same pair, running along it in opposite directions. Such an edge is the only
-/// kind the patch-split mesh glues (openmesh-probe.md, Q2).
-bool is_patch_interior(const EdgeTable& et, size_t e, const Triangles& tris, const std::vector<PhasePair>& pairs);
+/// The node-edges {a, b} with b > a, each with its halfedges: node a's part of
+/// edge_table(), in the same order (ascending b, ascending halfedges), made on
+/// the fly. Reusing one EdgesAt for many nodes allocates only while it grows,
+/// so a pass over all nodes can check edges without building the whole table.
+class EdgesAt {
+public:
+  void gather(int32_t a, const Triangles& tris, const NodeTriangles& nt);
+  size_t size() const { return other_.size(); }
+  int32_t other(size_t i) const { return other_[i]; } ///< b of the i-th edge
+  std::span<const int32_t> halfedges(size_t i) const {
+    return {he_.data() + off_[i], size_t(off_[i + 1] - off_[i])};
+  }
+  /// The halfedges of all the edges, one edge after the other (to copy them at
+  /// once): halfedges(i) ends at halfedges_end(i) in it.
+  std::span<const int32_t> halfedges() const { return he_; }
+  int32_t halfedges_end(size_t i) const { return off_[i + 1]; }
+
+private:
+  std::vector<uint64_t> local_; // (b, halfedge) of gather()
+  std::vector<int32_t> other_, off_, he_;
+};
+
+/// True when the halfedges of a node-edge lie inside one surface patch: exactly
+/// two triangles, of the same pair, running along it in opposite directions.
+/// Such an edge is the only kind the patch-split mesh glues (openmesh-probe.md, Q2).
+inline bool is_patch_interior(std::span<const int32_t> halfedges, const Triangles& tris,
+                              const std::vector<PhasePair>& pairs) {
+  if (halfedges.size() != 2) return false;
+  const PhasePair &p = pairs[size_t(he_triangle(halfedges[0]))], &q = pairs[size_t(he_triangle(halfedges[1]))];
+  // (Compared by element: std::array's == is an out-of-line memcmp here, and this is hot in validate().)
+  return p[0] == q[0] && p[1] == q[1] && he_from(tris, halfedges[0]) != he_from(tris, halfedges[1]);
+}
+inline bool is_patch_interior(const EdgeTable& et, size_t e, const Triangles& tris,
+                              const std::vector<PhasePair>& pairs) {
+  return is_patch_interior(et.halfedges(e), tris, pairs);
+}
 
 /// Distinct phases of the triangles around each node, sorted (CSR).
 struct NodePhases {
