@@ -5,7 +5,7 @@
 //   bench_improve SCENE.json GRID THREADS ITERATIONS
 //
 // Prints one Markdown table row: scene, grid, threads, triangles, total time,
-// time per iteration, time per iteration per 1000 nodes, each pass's share per
+// time per iteration, time per iteration per node (µs), each pass's share per
 // iteration (smooth, project, clamp + commit, flip), final min and mean quality.
 
 #include "voronoimesh/create.hpp"

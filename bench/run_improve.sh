@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bench=build/bench/bench_improve
-echo "| scene | grid | threads | triangles | 50 it. s | ms/it. | us/it. per 1000 nodes | smooth ms | project ms | clamp+commit ms | flip ms | min q | mean q |"
+echo "| scene | grid | threads | triangles | 50 it. s | ms/it. | µs/it. per node | smooth ms | project ms | clamp+commit ms | flip ms | min q | mean q |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for threads in 1 2; do "$bench" examples/voronoi7.json 44 "$threads" 50; done
 for grid in 140 340; do "$bench" examples/voronoi7.json "$grid" 2 50; done

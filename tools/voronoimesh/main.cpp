@@ -32,7 +32,7 @@ int run_guarded(const std::function<int()>& body) {
 int main(int argc, char** argv) {
   CLI::App app{"voronoimesh: meshes of interconnected surfaces via the Voronoi interface.\n"
                "Every interface between N phases becomes one triangle mesh whose surfaces meet\n"
-               "along triple curves and at quadruple points by sharing edges (Saye, 2014)."};
+               "along triple curves and at quadruple points by sharing edges (after R. I. Saye)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "voronoimesh 0.1.0");
   int exit_code = 0;
