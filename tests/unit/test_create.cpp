@@ -300,6 +300,34 @@ TEST(Create, output_is_identical_for_any_thread_count) {
   }
 }
 
+// The background tetrahedra tile the domain exactly: every one positively
+// oriented, their volumes summing to the box, as many as num_tets() says.
+TEST(Lattice, tetrahedra_tile_the_domain) {
+  for (Lattice kind : {Lattice::bcc, Lattice::cube6}) {
+    GridSpec grid;
+    grid.cells = {6, 4, 8};
+    grid.domain.max = Vec3(1.5, 1.0, 2.0);
+    detail::TetLattice lattice(grid, kind);
+    uint64_t count = 0;
+    double volume = 0, smallest = INFINITY;
+    for (int s = 0; s < lattice.num_slabs(); ++s)
+      lattice.for_each_tet(s, [](const int64_t*, int) { return false; }, [&](const std::array<int64_t, 4>& n) {
+        std::array<Vec3, 4> p;
+        for (int c = 0; c < 4; ++c) {
+          const auto g = lattice.grid_point(n[size_t(c)]);
+          p[size_t(c)] = grid.node_position(g[0], g[1], g[2]);
+        }
+        const double v = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6;
+        smallest = std::min(smallest, v);
+        volume += v;
+        ++count;
+      });
+    EXPECT_EQ(count, lattice.num_tets());
+    EXPECT_GT(smallest, 0);
+    EXPECT_NEAR(volume, 1.5 * 1.0 * 2.0, 1e-12);
+  }
+}
+
 TEST(Create, rejects_a_snap_outside_its_range) {
   Scene s = demo_scene();
   s.grid.cells = {4, 4, 4};

@@ -45,32 +45,20 @@ inline i128 det(const std::array<std::array<i128, 4>, 4>& m, int n) {
 
 inline unsigned __int128 abs_u(i128 v) { return v < 0 ? (unsigned __int128)(-v) : (unsigned __int128)v; }
 
-/// Greatest common divisor (binary), gcd(0, b) = b.
-inline uint64_t gcd(uint64_t a, uint64_t b) {
-  if (a == 0) return b;
-  if (b == 0) return a;
-  int shift = __builtin_ctzll(a | b);
-  a >>= __builtin_ctzll(a);
-  while (b != 0) {
-    b >>= __builtin_ctzll(b);
-    if (a > b) std::swap(a, b);
-    b -= a;
-  }
-  return a << shift;
+inline int count_trailing_zeros(uint64_t x) { return __builtin_ctzll(x); }
+inline int count_trailing_zeros(unsigned __int128 x) {
+  const uint64_t lo = uint64_t(x);
+  return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(uint64_t(x >> 64));
 }
 
-/// Greatest common divisor of 128-bit magnitudes.
-inline unsigned __int128 gcd(unsigned __int128 a, unsigned __int128 b) {
+/// Greatest common divisor (binary), gcd(0, b) = b; for uint64_t and 128-bit magnitudes.
+template <class U> U gcd(U a, U b) {
   if (a == 0) return b;
   if (b == 0) return a;
-  auto ctz = [](unsigned __int128 x) {
-    uint64_t lo = uint64_t(x);
-    return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(uint64_t(x >> 64));
-  };
-  int shift = ctz(a | b);
-  a >>= ctz(a);
+  const int shift = count_trailing_zeros(U(a | b));
+  a >>= count_trailing_zeros(a);
   while (b != 0) {
-    b >>= ctz(b);
+    b >>= count_trailing_zeros(b);
     if (a > b) std::swap(a, b);
     b -= a;
   }
