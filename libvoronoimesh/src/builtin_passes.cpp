@@ -56,9 +56,12 @@ void register_builtin_passes(PassRegistry& registry) {
   registry.add(make_info(
       "flip", "flip edges inside a surface when it raises the pair's smaller quality (Alg. 5, sect. 4.3)",
       {{"skip_quality", FlipParams{}.skip_quality, 0.0, 1.0, false, "leave pairs of at least this quality (Alg. 5, line 7)"},
-       {"max_rounds", double(FlipParams{}.max_rounds), 1, 1000, true, "rounds of node-disjoint flips per iteration"}},
+       {"max_rounds", double(FlipParams{}.max_rounds), 1, 1000, true, "rounds of node-disjoint flips per iteration"},
+       {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
+        "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
       false, false, [](PassContext& c, const ParamValues& p) {
-        c.flips += flip_edges(c.mesh, FlipParams{p.at("skip_quality"), int(p.at("max_rounds"))}).flips;
+        c.flips +=
+            flip_edges(c.mesh, FlipParams{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below")}).flips;
       }));
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (stats.hpp)", {},
                          false, false,

@@ -1,5 +1,6 @@
 #include "voronoimesh/flip.hpp"
 
+#include "voronoimesh/collapse.hpp"
 #include "voronoimesh/stats.hpp"
 
 #include "detail/parallel.hpp"
@@ -129,6 +130,7 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
     stats.rounds = round + 1;
   }
   if (stats.flips) mesh.topology_changed();
+  stats.collapses = collapse_junction_slivers(mesh, CollapseParams{params.collapse_below});
   return stats;
 }
 

@@ -11,11 +11,15 @@ struct FlipParams {
   double skip_quality = 0.9;
   /// Rounds of flips per call; each round flips a set of edges sharing no node.
   int max_rounds = 8;
+  /// Afterwards, collapse junction triangles below this quality that no flip can
+  /// remove (collapse.hpp; beyond the paper). 0 turns it off.
+  double collapse_below = 0.05;
 };
 
 struct FlipStats {
   size_t flips = 0;
   int rounds = 0;
+  size_t collapses = 0;
 };
 
 /// Flips every edge shared by two triangles of the same surface when that raises
@@ -24,6 +28,8 @@ struct FlipStats {
 /// and a flip never creates an edge that exists in another patch. In rounds: all
 /// edges are judged in parallel, then the best (by quality gain, ties by edge)
 /// that share no node are flipped; so the result is the same for any thread count.
+/// Then degenerate junction triangles are collapsed (collapse_junction_slivers),
+/// which renumbers the nodes.
 FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params = {});
 
 } // namespace vm

@@ -1,0 +1,29 @@
+#pragma once
+/// @file collapse.hpp
+/// Removal of degenerate triangles at junctions by collapsing an edge. Beyond the
+/// paper: where quadruple points lie closer than a grid cell, triangles with all
+/// three corners on junction curves can become degenerate; clamping then freezes
+/// their corners (a degenerate triangle allows no move) and, their other edges
+/// being junctions, no flip can remove them.
+
+#include "voronoimesh/mesh.hpp"
+
+namespace vm {
+
+struct CollapseParams {
+  /// Triangles below this quality whose three corners all lie on junctions (or
+  /// the box) are collapsed. 0 turns collapsing off.
+  double below_quality = 0.05;
+  /// At most this many collapses per call (each is validated on its own).
+  int max_collapses = 64;
+};
+
+/// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
+/// its phases and box faces among a's, so a already lies on every constraint of b:
+/// b's triangles are moved to a and the triangles on both a and b disappear, in
+/// every surface at once. A collapse is kept only if no triangle turns over and
+/// the mesh stays valid. Rebuilds `mesh` (node ids change) when anything was
+/// collapsed; returns the number of collapses.
+size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params = {});
+
+} // namespace vm
