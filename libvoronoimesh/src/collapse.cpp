@@ -5,6 +5,7 @@
 #include "voronoimesh/validate.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vm {
 namespace {
@@ -23,9 +24,10 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
 }
 
-/// `m` with node b merged into node a: triangles on both disappear. Returns false
-/// (leaving `out` unspecified) if a remaining triangle would turn over.
-bool merged(const NodeMesh& m, int32_t a, int32_t b, NodeMesh& out) {
+/// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
+/// triangles that lose a corner disappear. Returns false (leaving `out`
+/// unspecified) if a remaining triangle would turn over.
+bool merged(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out) {
   out.points = m.points;
   out.domain = m.domain;
   out.phase_names = m.phase_names;
@@ -33,14 +35,11 @@ bool merged(const NodeMesh& m, int32_t a, int32_t b, NodeMesh& out) {
   out.pairs.clear();
   for (size_t t = 0; t < m.num_triangles(); ++t) {
     auto tri = m.triangles[t];
-    const bool has_a = std::find(tri.begin(), tri.end(), a) != tri.end();
-    const bool has_b = std::find(tri.begin(), tri.end(), b) != tri.end();
-    if (has_a && has_b) continue;
-    if (has_b) {
-      const Vec3 before = normal(m, tri);
-      std::replace(tri.begin(), tri.end(), b, a);
-      if (normal(m, tri).dot(before) <= 0) return false;
-    }
+    bool moved = false;
+    for (int32_t& v : tri)
+      if (into[size_t(v)] >= 0) v = into[size_t(v)], moved = true;
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+    if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) return false;
     out.triangles.push_back(tri);
     out.pairs.push_back(m.pairs[t]);
   }
@@ -87,32 +86,55 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
   std::sort(slivers.begin(), slivers.end());
   NodeMesh m = mesh.to_node_mesh();
 
-  // Node ids stay those of `mesh` until the end (merged() keeps every node), so
-  // each collapse is judged with the original phases. Triangle indices refer to
-  // the original triangles; one with a node merged away is left alone.
-  const std::vector<std::array<int32_t, 3>> original = m.triangles;
-  std::vector<char> gone(m.num_nodes(), 0);
-  size_t done = 0;
-  NodeMesh trial;
+  // The edge (b -> a) each sliver would collapse: the shortest whose b has its
+  // constraints among a's. Node ids are those of `mesh` throughout (merged()
+  // keeps every node), so each choice is judged with the original phases.
+  struct Collapse {
+    int32_t a, b;
+  };
+  std::vector<Collapse> chosen;
+  std::vector<char> touched(m.num_nodes(), 0);
   for (const auto& [q, t] : slivers) {
-    if (int(done) >= params.max_collapses) break;
-    const auto& corners = original[t];
-    if (std::any_of(corners.begin(), corners.end(), [&](int32_t v) { return gone[size_t(v)]; })) continue;
-    // Edges (b -> a) that may collapse, shortest first.
-    std::vector<std::pair<double, std::pair<int32_t, int32_t>>> edges;
+    if (int(chosen.size()) >= params.max_collapses) break;
+    const auto& corners = m.triangles[t];
+    std::pair<double, Collapse> best{INFINITY, {-1, -1}};
     for (int k = 0; k < 3; ++k) {
       const int32_t u = corners[size_t(k)], w = corners[size_t((k + 1) % 3)];
       const double len = (m.points[size_t(u)] - m.points[size_t(w)]).squaredNorm();
-      if (covers(mesh, u, w)) edges.push_back({len, {u, w}});
-      else if (covers(mesh, w, u)) edges.push_back({len, {w, u}});
+      if (len < best.first && covers(mesh, u, w)) best = {len, {u, w}};
+      else if (len < best.first && covers(mesh, w, u)) best = {len, {w, u}};
     }
-    std::sort(edges.begin(), edges.end());
-    for (const auto& [len, e] : edges) {
-      if (!merged(m, e.first, e.second, trial) || !validate(trial).ok()) continue;
-      m = trial;
-      gone[size_t(e.second)] = 1;
-      ++done;
-      break;
+    const Collapse c = best.second;
+    if (c.a < 0 || touched[size_t(c.a)] || touched[size_t(c.b)]) continue;
+    // Collapses in one batch must not share a triangle: claim both rings.
+    bool clear = true;
+    for (int32_t n : {c.a, c.b})
+      for (int32_t w : mesh.neighbours(n)) clear = clear && !touched[size_t(w)];
+    if (!clear) continue;
+    for (int32_t n : {c.a, c.b}) {
+      touched[size_t(n)] = 1;
+      for (int32_t w : mesh.neighbours(n)) touched[size_t(w)] = 1;
+    }
+    chosen.push_back(c);
+  }
+
+  // All at once, validated once; if that fails, one by one.
+  std::vector<int32_t> into(m.num_nodes(), -1);
+  for (const Collapse& c : chosen) into[size_t(c.b)] = c.a;
+  NodeMesh trial;
+  size_t done = 0;
+  if (!chosen.empty() && merged(m, into, trial) && validate(trial).ok()) {
+    m = std::move(trial);
+    done = chosen.size();
+  } else {
+    std::fill(into.begin(), into.end(), -1);
+    for (const Collapse& c : chosen) {
+      into[size_t(c.b)] = c.a;
+      if (merged(m, into, trial) && validate(trial).ok()) {
+        m = trial;
+        ++done;
+      }
+      into[size_t(c.b)] = -1;
     }
   }
   if (done) {

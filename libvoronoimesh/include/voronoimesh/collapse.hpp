@@ -14,15 +14,16 @@ struct CollapseParams {
   /// Triangles below this quality whose three corners all lie on junctions (or
   /// the box) are collapsed. 0 turns collapsing off.
   double below_quality = 0.05;
-  /// At most this many collapses per call (each is validated on its own).
+  /// At most this many collapses per call.
   int max_collapses = 64;
 };
 
 /// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
 /// its phases and box faces among a's, so a already lies on every constraint of b:
 /// b's triangles are moved to a and the triangles on both a and b disappear, in
-/// every surface at once. A collapse is kept only if no triangle turns over and
-/// the mesh stays valid. Rebuilds `mesh` (node ids change) when anything was
+/// every surface at once. Collapses that share no triangle go in one batch; a
+/// batch (or, if it fails, each collapse) is kept only if no triangle turns over
+/// and the mesh stays valid. Rebuilds `mesh` (node ids change) when anything was
 /// collapsed; returns the number of collapses.
 size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params = {});
 
