@@ -10,15 +10,6 @@
 namespace vm {
 namespace {
 
-/// True when node b's phases and box faces are all among node a's.
-bool covers(const InterfaceMesh& m, int32_t a, int32_t b) {
-  if (m.box_faces()[size_t(b)] & ~m.box_faces()[size_t(a)]) return false;
-  const PhaseSet &pa = m.phases()[size_t(a)], &pb = m.phases()[size_t(b)];
-  for (int i = 0; i < phase_count(pb); ++i)
-    if (std::find(pa.begin(), pa.begin() + phase_count(pa), pb[size_t(i)]) == pa.begin() + phase_count(pa)) return false;
-  return true;
-}
-
 Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   const Vec3& a = m.points[size_t(t[0])];
   return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
@@ -72,12 +63,7 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
   const auto& pos = mesh.positions();
   std::vector<std::pair<double, size_t>> slivers;
   for (auto f : om.faces()) {
-    std::array<int32_t, 3> c;
-    auto h = om.halfedge_handle(f);
-    for (auto& n : c) {
-      n = mesh.node(om.to_vertex_handle(h));
-      h = om.next_halfedge_handle(h);
-    }
+    const std::array<int32_t, 3> c = mesh.face_nodes(f);
     if (std::any_of(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) < 3; })) continue;
     const double q = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
     if (q < params.below_quality) slivers.push_back({q, size_t(f.idx())});
@@ -101,8 +87,8 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
     for (int k = 0; k < 3; ++k) {
       const int32_t u = corners[size_t(k)], w = corners[size_t((k + 1) % 3)];
       const double len = (m.points[size_t(u)] - m.points[size_t(w)]).squaredNorm();
-      if (len < best.first && covers(mesh, u, w)) best = {len, {u, w}};
-      else if (len < best.first && covers(mesh, w, u)) best = {len, {w, u}};
+      if (len < best.first && mesh.constraints_within(w, u)) best = {len, {u, w}};
+      else if (len < best.first && mesh.constraints_within(u, w)) best = {len, {w, u}};
     }
     const Collapse c = best.second;
     if (c.a < 0 || touched[size_t(c.a)] || touched[size_t(c.b)]) continue;

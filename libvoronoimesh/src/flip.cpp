@@ -25,15 +25,9 @@ public:
   }
   double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
   void update(OMesh::FaceHandle f) {
-    const OMesh& om = mesh_.omesh();
-    auto h = om.halfedge_handle(f);
+    const auto c = mesh_.face_nodes(f);
     const auto& pos = mesh_.positions();
-    std::array<const Vec3*, 3> p;
-    for (auto& corner : p) {
-      corner = &pos[size_t(mesh_.node(om.to_vertex_handle(h)))];
-      h = om.next_halfedge_handle(h);
-    }
-    q_[size_t(f.idx())] = triangle_quality(*p[0], *p[1], *p[2]);
+    q_[size_t(f.idx())] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
   }
 
 private:

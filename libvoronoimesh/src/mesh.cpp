@@ -217,18 +217,28 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
   m.triangles.reserve(mesh_.n_faces());
   m.pairs.reserve(mesh_.n_faces());
   for (auto fh : mesh_.faces()) {
-    // add_face stores the halfedge v2->v0 on the face, so walking from its
-    // target gives the corners back in their input order.
-    auto h = mesh_.halfedge_handle(fh);
-    std::array<int32_t, 3> tri{};
-    for (auto& n : tri) {
-      n = node(mesh_.to_vertex_handle(h));
-      h = mesh_.next_halfedge_handle(h);
-    }
-    m.triangles.push_back(tri);
+    m.triangles.push_back(face_nodes(fh));
     m.pairs.push_back(pair(fh));
   }
   return m;
+}
+
+std::array<int32_t, 3> InterfaceMesh::face_nodes(OMesh::FaceHandle f) const {
+  // add_face stores the halfedge v2->v0 on the face, so walking from its target
+  // gives the corners back in their input order.
+  auto h = mesh_.halfedge_handle(f);
+  std::array<int32_t, 3> tri{};
+  for (auto& n : tri) {
+    n = node(mesh_.to_vertex_handle(h));
+    h = mesh_.next_halfedge_handle(h);
+  }
+  return tri;
+}
+
+bool InterfaceMesh::constraints_within(int32_t a, int32_t b) const {
+  if (box_[size_t(a)] & ~box_[size_t(b)]) return false;
+  const PhaseSet &pa = phases_[size_t(a)], &pb = phases_[size_t(b)];
+  return std::includes(pb.begin(), pb.begin() + phase_count(pb), pa.begin(), pa.begin() + phase_count(pa));
 }
 
 } // namespace vm

@@ -69,11 +69,15 @@ bool Pipeline::needs_field() const {
 
 std::string Pipeline::describe() const {
   std::string out;
+  // Appends only: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
   for (const Step& s : steps_) {
-    out += (out.empty() ? "" : ", ") + s.info.name + "(";
+    if (!out.empty()) out += ", ";
+    out += s.info.name;
+    out += "(";
     bool first = true;
     for (const auto& [k, v] : s.params) {
-      out += (first ? "" : ", ") + detail::cat(k, "=", v);
+      if (!first) out += ", ";
+      out += detail::cat(k, "=", v);
       first = false;
     }
     out += ")";
@@ -88,13 +92,8 @@ std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   const auto& pos = mesh.positions();
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
-      auto h = om.halfedge_handle(OMesh::FaceHandle(int(f)));
-      const Vec3& a = pos[size_t(mesh.node(om.to_vertex_handle(h)))];
-      h = om.next_halfedge_handle(h);
-      const Vec3& b = pos[size_t(mesh.node(om.to_vertex_handle(h)))];
-      h = om.next_halfedge_handle(h);
-      const Vec3& d = pos[size_t(mesh.node(om.to_vertex_handle(h)))];
-      const double q = triangle_quality(a, b, d);
+      const auto t = mesh.face_nodes(OMesh::FaceHandle(int(f)));
+      const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);
       lo[c] = std::min(lo[c], q);
       sum[c] += q;
     }
@@ -112,7 +111,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
 
   PassContext context(mesh, field);
   auto [best_min, best_mean] = quality_summary(mesh);
-  if (options.observer) options.observer({0, best_min, best_mean, 0, 0}, mesh);
+  if (options.observer) options.observer({0, best_min, best_mean, 0, 0, std::nullopt, {}}, mesh);
   int stalled = 0, done = 0;
   for (int it = 1; it <= options.iterations; ++it) {
     const auto start = std::chrono::steady_clock::now();

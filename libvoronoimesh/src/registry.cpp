@@ -25,7 +25,10 @@ const PassInfo& PassRegistry::get(const std::string& name) const {
   for (const PassInfo& p : passes_)
     if (p.name == name) return p;
   std::string known;
-  for (const PassInfo* p : all()) known += (known.empty() ? "" : ", ") + p->name;
+  for (const PassInfo* p : all()) {
+    if (!known.empty()) known += ", ";
+    known += p->name;
+  }
   throw InvalidInput(located("pipeline", "unknown pass '" + name + "' (known: " + known + ")"));
 }
 
@@ -44,7 +47,10 @@ ParamValues PassRegistry::resolve(const std::string& pass, const ParamValues& gi
     auto spec = std::find_if(info.params.begin(), info.params.end(), [&](const ParamSpec& s) { return s.name == name; });
     if (spec == info.params.end()) {
       std::string known;
-      for (const ParamSpec& s : info.params) known += (known.empty() ? "" : ", ") + s.name;
+      for (const ParamSpec& s : info.params) {
+        if (!known.empty()) known += ", ";
+        known += s.name;
+      }
       throw InvalidInput(located("pipeline", "pass '" + pass + "' has no parameter '" + name + "' (it has: " +
                                                  (known.empty() ? "none" : known) + ")"));
     }

@@ -15,14 +15,6 @@ std::span<const int16_t> phases_of(const InterfaceMesh& m, int32_t n) {
   return {s.data(), size_t(phase_count(s))};
 }
 
-/// True when node a's phases and box faces are all among node b's: b is on the
-/// same surface, curve or box edge as a, or on a junction of it.
-bool same_or_higher_type(const InterfaceMesh& m, int32_t a, int32_t b) {
-  if (m.box_faces()[size_t(a)] & ~m.box_faces()[size_t(b)]) return false;
-  auto pa = phases_of(m, a), pb = phases_of(m, b);
-  return std::includes(pb.begin(), pb.end(), pa.begin(), pa.end());
-}
-
 } // namespace
 
 int junction_order(const InterfaceMesh& mesh, int32_t n) {
@@ -74,7 +66,7 @@ void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, co
       // help and repulsion pushes nodes off their curves (sect. 4.2.1).
       int same = 0;
       for (int32_t w : ring)
-        if (same_or_higher_type(mesh, v, w)) {
+        if (mesh.constraints_within(v, w)) {
           force += 0.5 * (pos[size_t(w)] - x);
           ++same;
         }

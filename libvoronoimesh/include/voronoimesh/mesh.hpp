@@ -75,6 +75,11 @@ public:
   /// Faces of the domain box each node lies on: bit 2a for the min side of axis
   /// a, bit 2a+1 for the max side (within 1e-9 of the box diagonal).
   const std::vector<uint8_t>& box_faces() const { return box_; }
+  /// The nodes of face f in its orientation order (node-level triangle f).
+  std::array<int32_t, 3> face_nodes(OMesh::FaceHandle f) const;
+  /// True when node a's phases and box faces are all among node b's: b lies on
+  /// every surface, curve and box face a lies on.
+  bool constraints_within(int32_t a, int32_t b) const;
   /// Calls f(a, b) for every triangle at node n, with (n, a, b) in the
   /// triangle's orientation order.
   template <class F> void for_each_triangle_at(int32_t n, F&& f) const;
