@@ -187,11 +187,12 @@ std::string to_text(const MeshStats& s) {
   line("slivers (q < 0.1)", std::to_string(s.slivers));
   line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));
   line("edge min / max / rms", num("%.6g / %.6g / %.6g", s.min_edge, s.max_edge, s.rms_edge));
+  if (s.self_intersections) line("self-intersections", std::to_string(*s.self_intersections) + " triangle pairs");
   return out;
 }
 
 std::string to_json(const MeshStats& s) {
-  const nlohmann::ordered_json j = {
+  nlohmann::ordered_json j = {
       {"vertices", s.vertices},
       {"triangles", s.triangles},
       {"phases", s.phases},
@@ -210,6 +211,7 @@ std::string to_json(const MeshStats& s) {
       {"max_edge", s.max_edge},
       {"rms_edge", s.rms_edge},
   };
+  if (s.self_intersections) j["self_intersections"] = *s.self_intersections;
   return j.dump(2);
 }
 

@@ -32,6 +32,7 @@ for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology: 
   if grep -qE "^$want" stats.txt; then pass; else fail "demo stats lack '$want': $(cat stats.txt)"; fi
 done
 if "$vm" stats --json demo.ply | grep -q '"surfaces": *10'; then pass; else fail "stats --json"; fi
+if "$vm" stats --json demo.ply | grep -q '"self_intersections": *0'; then pass; else fail "stats self-intersections"; fi
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do

@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include "voronoimesh/intersections.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/stats.hpp"
 #include "voronoimesh/validate.hpp"
@@ -16,7 +17,8 @@ void add_stats_command(CLI::App& app, int& exit_code) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "stats", "Counts (vertices, triangles, surfaces, triple curves, quadruple points) and quality of a mesh.");
+      "stats", "Counts (vertices, triangles, surfaces, triple curves, quadruple points), quality, and checks (topology, "
+      "self-intersections) of a mesh; exit code 4 if a check fails.");
   cmd->add_option("mesh", o->mesh, "Mesh file (.ply written by voronoimesh)")->required();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
   cmd->callback([o, &exit_code] {
@@ -24,14 +26,18 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);
+      // Only a mesh whose topology is sound can be checked for crossings.
+      if (report.ok()) s.self_intersections = vm::find_self_intersections(mesh, 0).count;
+      const bool crossing = s.self_intersections.value_or(0) > 0;
       if (o->json) {
         std::cout << vm::to_json(s) << "\n";
       } else {
         std::cout << vm::to_text(s);
-        std::cout << "topology:          " << (report.ok() ? "valid" : "INVALID") << "\n";
+        std::cout << "topology:          "
+                  << (!report.ok() ? "INVALID" : crossing ? "INVALID (triangles intersect)" : "valid") << "\n";
         for (const auto& p : report.problems) std::cout << "  " << p << "\n";
       }
-      return report.ok() ? kOk : kTopology;
+      return report.ok() && !crossing ? kOk : kTopology;
     });
   });
 }

@@ -4,6 +4,7 @@
 
 #include "voronoimesh/node_mesh.hpp"
 
+#include <optional>
 #include <string>
 
 namespace vm {
@@ -26,6 +27,9 @@ struct MeshStats {
   size_t slivers = 0;           ///< triangles with q < 0.1
   double min_angle_deg = 0, max_angle_deg = 0;
   double min_edge = 0, max_edge = 0, rms_edge = 0;
+  /// Pairs of triangles that intersect (find_self_intersections); not measured by
+  /// compute_stats, which must stay cheap: set by callers that check.
+  std::optional<size_t> self_intersections;
 };
 
 MeshStats compute_stats(const NodeMesh& m);
