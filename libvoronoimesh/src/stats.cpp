@@ -182,7 +182,7 @@ std::string to_text(const MeshStats& s) {
   line("triple curves", std::to_string(s.triple_curves));
   line("quadruple points", std::to_string(s.quadruple_points));
   line("higher-order points", std::to_string(s.higher_order_points));
-  line("quality min / 1% / mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
+  line("quality min/1%/mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
   line("quality < 0.5", std::to_string(s.below_half));
   line("slivers (q < 0.1)", std::to_string(s.slivers));
   line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));

@@ -28,7 +28,7 @@ expect_error() {
 
 # The main job on the built-in demo, read back by stats.
 if "$vm" create -q -o demo.ply && "$vm" stats demo.ply >stats.txt; then pass; else fail "create/stats on the demo"; fi
-for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology: +valid"; do
+for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology +valid"; do
   if grep -qE "^$want" stats.txt; then pass; else fail "demo stats lack '$want': $(cat stats.txt)"; fi
 done
 if "$vm" stats --json demo.ply | grep -q '"surfaces": *10'; then pass; else fail "stats --json"; fi
@@ -71,7 +71,7 @@ expect_error "stats of a missing file" 3 "nothere\.ply" -- "$vm" stats nothere.p
 
 # Improvement: the main job, its options, and the commands around it.
 if "$vm" mesh -q --grid 32 --history hist.svg -o m.ply && "$vm" stats m.ply >mstats.txt; then pass; else fail "mesh with --history"; fi
-if grep -qE "^topology: +valid" mstats.txt && grep -q "</svg>" hist.svg; then pass; else fail "mesh result or history picture"; fi
+if grep -qE "^topology +valid" mstats.txt && grep -q "</svg>" hist.svg; then pass; else fail "mesh result or history picture"; fi
 "$vm" mesh -q "$examples/voronoi30.json" --grid 32 --iterations 5 --threads 1 -o mt1.ply
 "$vm" mesh -q "$examples/voronoi30.json" --grid 32 --iterations 5 --threads 2 -o mt2.ply
 if cmp -s mt1.ply mt2.ply; then pass; else fail "mesh --threads 1 and 2 give different files"; fi

@@ -33,7 +33,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         std::cout << vm::to_json(s) << "\n";
       } else {
         std::cout << vm::to_text(s);
-        std::cout << "topology:          "
+        std::cout << "topology               "
                   << (!report.ok() ? "INVALID" : crossing ? "INVALID (triangles intersect)" : "valid") << "\n";
         for (const auto& p : report.problems) std::cout << "  " << p << "\n";
       }
