@@ -4,17 +4,16 @@
 
 #include "voronoimesh/history.hpp"
 
+#include "detail/atomic_write.hpp"
 #include "detail/text.hpp"
 #include "detail/topology.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/stats.hpp"
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -60,22 +59,6 @@ const std::array<MeasureBins, kNumMeasures>& all_bins() {
 
 double angle_deg(const Vec3& u, const Vec3& v) {
   return std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
-}
-
-/// Writes `text` to `path` through a temporary file renamed into place.
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  auto fail = [&](int err) {
-    std::remove(tmp.c_str());
-    throw IoError(located(path, cat("cannot write (", std::strerror(err != 0 ? err : EIO), ")")));
-  };
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) fail(errno);
-  int err = 0;
-  if (std::fwrite(text.data(), 1, text.size(), f) != text.size()) err = errno;
-  if (std::fclose(f) != 0 && err == 0) err = errno != 0 ? errno : EIO;
-  if (err != 0) fail(err);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(errno);
 }
 
 std::string lower_extension(const std::string& path) {
@@ -411,15 +394,15 @@ std::string QualityHistory::svg() const {
 }
 
 void QualityHistory::write_csv(const std::string& path) const {
-  write_atomically(path, csv());
+  detail::write_atomically(path, [&](std::ostream& f) { f << csv(); });
 }
 
 void QualityHistory::write_json(const std::string& path) const {
-  write_atomically(path, json());
+  detail::write_atomically(path, [&](std::ostream& f) { f << json(); });
 }
 
 void QualityHistory::write_svg(const std::string& path) const {
-  write_atomically(path, svg());
+  detail::write_atomically(path, [&](std::ostream& f) { f << svg(); });
 }
 
 void QualityHistory::check_format(const std::string& path) {

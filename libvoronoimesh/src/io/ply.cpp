@@ -4,17 +4,14 @@
 
 #include "voronoimesh/io/ply.hpp"
 
+#include "detail/atomic_write.hpp"
 #include "detail/text.hpp"
 #include "voronoimesh/errors.hpp"
 
-#include <unistd.h>
 
 #include <bit>
-#include <cerrno>
 #include <charconv>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -85,7 +82,7 @@ std::string header(const NodeMesh& m, bool ascii) {
 }
 
 /// Writes the body in chunks so memory stays small for large meshes.
-void write_body(std::ofstream& f, const NodeMesh& m, bool ascii) {
+void write_body(std::ostream& f, const NodeMesh& m, bool ascii) {
   constexpr size_t kChunk = 1 << 20;
   std::string buf;
   auto flush = [&](bool force) {
@@ -125,22 +122,11 @@ void write_body(std::ofstream& f, const NodeMesh& m, bool ascii) {
 
 void write_ply(const NodeMesh& m, const std::string& path, bool ascii) {
   check_mesh(m, path);
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  std::error_code ec;
-  try {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw IoError(located(path, cat("cannot create ", tmp, ": ", std::strerror(errno))));
+  detail::write_atomically(path, [&](std::ostream& f) {
     const std::string h = header(m, ascii);
     f.write(h.data(), std::streamsize(h.size()));
     write_body(f, m, ascii);
-    f.close();
-    if (!f) throw IoError(located(path, cat("write failed: ", std::strerror(errno))));
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw IoError(located(path, cat("cannot rename ", tmp, " into place: ", ec.message())));
-  } catch (...) {
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
+  });
 }
 
 } // namespace vm::io
