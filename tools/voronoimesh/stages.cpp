@@ -109,7 +109,11 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
   progress.stage("creating the mesh...");
   vm::NodeMesh mesh;
   vm::CreateStats cs = vm::create_initial_mesh(field, params, mesh);
-  for (int p = 0; p < scene.field->num_phases(); ++p) mesh.phase_names.push_back(scene.field->phase_name(p));
+  for (int p = 0; p < scene.field->num_phases(); ++p) {
+    mesh.phase_names.push_back(scene.field->phase_name(p));
+    if (scene.field->phase_label(p) != p) mesh.phase_labels.resize(size_t(scene.field->num_phases()));
+  }
+  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = scene.field->phase_label(int(p));
   progress.done();
   if (!o.skip_validation) require_valid(mesh, "the created mesh");
   if (!common.quiet)

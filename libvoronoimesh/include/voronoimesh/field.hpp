@@ -5,6 +5,7 @@
 
 #include "voronoimesh/types.hpp"
 
+#include <cstdint>
 #include <span>
 #include <string>
 
@@ -20,6 +21,9 @@ public:
   virtual int num_phases() const = 0;
   /// Display name of phase `i` (the scene's "name", or "phase<i>").
   virtual std::string phase_name(int i) const = 0;
+  /// The id phase `i` shows in output files (a label volume's label value).
+  /// Strictly increasing in i. Default: i itself.
+  virtual int32_t phase_label(int i) const { return i; }
   /// phi_i(x) for every phase; `out.size() == num_phases()`.
   virtual void values(const Vec3& x, std::span<double> out) const = 0;
   /// phi_i(x) of one phase.

@@ -23,6 +23,10 @@ struct NodeMesh {
   std::vector<PhasePair> pairs;
   /// Phase names by id, when known (may be empty).
   std::vector<std::string> phase_names;
+  /// The id each phase shows in files (a label volume's label value), by phase
+  /// id; strictly increasing, so orientation conventions survive the mapping.
+  /// Empty: files show the phase ids themselves.
+  std::vector<int32_t> phase_labels;
   /// The domain box; edges lying on it may bound a single triangle.
   Box domain;
 
