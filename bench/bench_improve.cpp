@@ -2,8 +2,9 @@
 // thread count per run. Creates the initial mesh, then runs the paper's pipeline
 // (smooth, project, clamp, flip) for ITERATIONS iterations.
 //
-//   bench_improve SCENE.json GRID THREADS ITERATIONS
+//   bench_improve SCENE.json GRID THREADS ITERATIONS [unguarded]
 //
+// "unguarded" turns the crossing guard (guard.hpp) off, to measure its cost.
 // Prints one Markdown table row: scene, grid, threads, triangles, total time,
 // time per iteration, time per iteration per node (µs), each pass's share per
 // iteration (smooth, project, clamp + commit, flip), final min and mean quality.
@@ -17,10 +18,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: bench_improve SCENE.json GRID THREADS ITERATIONS\n");
+    std::fprintf(stderr, "usage: bench_improve SCENE.json GRID THREADS ITERATIONS [unguarded]\n");
     return 2;
   }
   const int grid = std::atoi(argv[2]), threads = std::atoi(argv[3]), iterations = std::atoi(argv[4]);
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
   double total = 0, min_q = 0, mean_q = 0;
   vm::RunOptions run;
   run.iterations = iterations;
+  run.guard_crossings = !(argc > 5 && std::string(argv[5]) == "unguarded");
   run.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh&) {
     total += r.seconds;
     for (size_t i = 0; i < r.pass_seconds.size(); ++i) per_pass[i] += r.pass_seconds[i];

@@ -60,8 +60,9 @@ void register_builtin_passes(PassRegistry& registry) {
        {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
         "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
       false, false, [](PassContext& c, const ParamValues& p) {
-        c.flips +=
-            flip_edges(c.mesh, FlipParams{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below")}).flips;
+        c.flips += flip_edges(c.mesh, FlipParams{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below"),
+                                                 c.guard_crossings})
+                       .flips;
       }));
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (stats.hpp)", {},
                          false, false,

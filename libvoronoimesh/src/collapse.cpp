@@ -1,5 +1,6 @@
 #include "voronoimesh/collapse.hpp"
 
+#include "voronoimesh/intersections.hpp"
 #include "voronoimesh/smooth.hpp"
 #include "voronoimesh/stats.hpp"
 #include "voronoimesh/validate.hpp"
@@ -22,6 +23,7 @@ bool merged(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out) 
   out.points = m.points;
   out.domain = m.domain;
   out.phase_names = m.phase_names;
+  out.phase_labels = m.phase_labels;
   out.triangles.clear();
   out.pairs.clear();
   for (size_t t = 0; t < m.num_triangles(); ++t) {
@@ -51,6 +53,20 @@ void drop_unused_nodes(NodeMesh& m) {
   for (auto& t : m.triangles)
     for (int32_t& v : t) v = id[size_t(v)];
   m.points = std::move(points);
+}
+
+/// `trial` (m after merging by `into`) is a valid mesh and, if asked, none of
+/// its triangles at a merge target crosses a triangle of another surface.
+bool acceptable(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings) {
+  if (!validate(trial).ok()) return false;
+  if (!guard_crossings) return true;
+  std::vector<uint8_t> target(trial.num_nodes(), 0);
+  for (int32_t a : into)
+    if (a >= 0) target[size_t(a)] = 1;
+  std::vector<uint8_t> involved(trial.num_triangles(), 0);
+  for (size_t t = 0; t < trial.num_triangles(); ++t)
+    for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
+  return find_self_intersections(trial, 0, involved, true).ok();
 }
 
 } // namespace
@@ -109,14 +125,14 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
   for (const Collapse& c : chosen) into[size_t(c.b)] = c.a;
   NodeMesh trial;
   size_t done = 0;
-  if (!chosen.empty() && merged(m, into, trial) && validate(trial).ok()) {
+  if (!chosen.empty() && merged(m, into, trial) && acceptable(trial, into, params.guard_crossings)) {
     m = std::move(trial);
     done = chosen.size();
   } else {
     std::fill(into.begin(), into.end(), -1);
     for (const Collapse& c : chosen) {
       into[size_t(c.b)] = c.a;
-      if (merged(m, into, trial) && validate(trial).ok()) {
+      if (merged(m, into, trial) && acceptable(trial, into, params.guard_crossings)) {
         m = trial;
         ++done;
       }

@@ -1,11 +1,13 @@
 #include "voronoimesh/flip.hpp"
 
 #include "voronoimesh/collapse.hpp"
+#include "voronoimesh/intersections.hpp"
 #include "voronoimesh/stats.hpp"
 
 #include "detail/parallel.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace vm {
@@ -76,9 +78,10 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   return ear ? 1 + (after - before) : after - before;
 }
 
-} // namespace
-
-FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+/// The rounds of Algorithm 5, never flipping a `banned` edge. Appends every
+/// flipped edge to `log`, in order.
+FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
+                      std::vector<int32_t>& log) {
   FlipStats stats;
   FaceQuality quality(mesh);
   std::vector<char> taken(mesh.num_nodes(), 0);
@@ -91,6 +94,7 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
     judged.assign(edges.size(), Candidate{-1, -1, {}});
     detail::parallel_for_each_index(edges.size(), [&](size_t i) {
       judged[i].edge = edges[i];
+      if (banned[size_t(edges[i])]) return;
       judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
     });
     found.clear();
@@ -110,6 +114,7 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
       for (int32_t n : c.nodes) taken[size_t(n)] = 1;
       const OMesh::EdgeHandle eh(c.edge);
       om.flip(eh);
+      log.push_back(c.edge);
       ++stats.flips;
       for (int side = 0; side < 2; ++side) {
         const auto f = om.face_handle(om.halfedge_handle(eh, side));
@@ -124,7 +129,60 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
     stats.rounds = round + 1;
   }
   if (stats.flips) mesh.topology_changed();
-  stats.collapses = collapse_junction_slivers(mesh, CollapseParams{params.collapse_below});
+  return stats;
+}
+
+/// The flipped edges whose faces now cross a triangle of another surface; each
+/// crossing is charged to the last flip that made either of its faces.
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log) {
+  const OMesh& om = mesh.omesh();
+  std::vector<int32_t> last_flip(om.n_faces(), -1);
+  std::vector<uint8_t> involved(om.n_faces(), 0);
+  for (size_t i = 0; i < log.size(); ++i)
+    for (int side = 0; side < 2; ++side) {
+      const auto f = size_t(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(log[i]), side)).idx());
+      last_flip[f] = int32_t(i);
+      involved[f] = 1;
+    }
+  const IntersectionReport found =
+      find_self_intersections(mesh.to_node_mesh(), std::numeric_limits<size_t>::max(), involved, true);
+  std::vector<int32_t> culprits;
+  for (const auto& pair : found.pairs)
+    for (int32_t f : pair)
+      if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
+  return culprits;
+}
+
+/// Flips the logged edges back, last first: flipping an edge twice restores the
+/// quad's first diagonal.
+void undo_flips(InterfaceMesh& mesh, const std::vector<int32_t>& log) {
+  OMesh& om = mesh.omesh_for_topology();
+  for (auto e = log.rbegin(); e != log.rend(); ++e) om.flip(OMesh::EdgeHandle(*e));
+  mesh.topology_changed();
+}
+
+} // namespace
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+  // A flip moves no node but can still push the new diagonal through a
+  // neighbouring surface where a phase is thinner than the quad. Such flips are
+  // found after the rounds, all flips are undone, the culprits banned, and the
+  // rounds run again; if that keeps failing, this call flips nothing.
+  std::vector<char> banned(mesh.omesh().n_edges(), 0);
+  FlipStats stats;
+  for (int attempt = 0;; ++attempt) {
+    std::vector<int32_t> log;
+    stats = flip_rounds(mesh, params, banned, log);
+    if (log.empty() || !params.guard_crossings) break;
+    const std::vector<int32_t> culprits = crossing_flips(mesh, log);
+    if (culprits.empty()) break;
+    undo_flips(mesh, log);
+    stats = {};
+    if (attempt == kMaxFlipAttempts) break;
+    for (int32_t e : culprits) banned[size_t(e)] = 1;
+  }
+  stats.collapses = collapse_junction_slivers(
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings});
   return stats;
 }
 

@@ -602,7 +602,9 @@ struct Found {
   }
 };
 
-void check_input(const NodeMesh& m) {
+void check_input(const NodeMesh& m, bool needs_pairs) {
+  if (needs_pairs && m.pairs.size() != m.triangles.size())
+    throw InvalidInput("find_self_intersections: one phase pair per triangle expected");
   for (const Vec3& p : m.points)
     if (!p.allFinite()) throw InvalidInput("find_self_intersections: non-finite node coordinate");
   const auto n = int32_t(m.points.size());
@@ -615,8 +617,11 @@ void check_input(const NodeMesh& m) {
 
 } // namespace
 
-IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported) {
-  check_input(m);
+IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+                                           bool across_surfaces_only) {
+  check_input(m, across_surfaces_only);
+  if (!involved.empty() && involved.size() != m.triangles.size())
+    throw InvalidInput("find_self_intersections: one involved flag per triangle expected");
   const size_t nt = m.triangles.size();
   IntersectionReport report;
   if (nt < 2) return report;
@@ -660,6 +665,10 @@ IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reporte
   tbb::enumerable_thread_specific<Found> found;
   auto consider = [&](Found& f, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s) {
     if ((first_t | first_s) != 7) return; // not the pair's own cell
+    if (!involved.empty() && !involved[size_t(t)] && !involved[size_t(s)]) return;
+    if (across_surfaces_only && m.pairs[size_t(t)][0] == m.pairs[size_t(s)][0] &&
+        m.pairs[size_t(t)][1] == m.pairs[size_t(s)][1])
+      return;
     if (boxes[size_t(t)].overlaps(boxes[size_t(s)]) && improper(t, s)) f.add(t, s, max_reported);
   };
   // Pairs of one level, in their common cell.

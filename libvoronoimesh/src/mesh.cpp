@@ -71,6 +71,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   im.pos_ = m.points;
   im.domain_ = m.domain;
   im.names_ = m.phase_names;
+  im.labels_ = m.phase_labels;
 
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
   const detail::EdgeTable et = detail::edge_table(tris, nt);
@@ -209,11 +210,20 @@ void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
   });
 }
 
+void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions) {
+  detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
+    const auto n = size_t(nodes[i]);
+    pos_[n] = positions[i];
+    for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+  });
+}
+
 NodeMesh InterfaceMesh::to_node_mesh() const {
   NodeMesh m;
   m.points = pos_;
   m.domain = domain_;
   m.phase_names = names_;
+  m.phase_labels = labels_;
   m.triangles.reserve(mesh_.n_faces());
   m.pairs.reserve(mesh_.n_faces());
   for (auto fh : mesh_.faces()) {

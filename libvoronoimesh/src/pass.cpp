@@ -1,5 +1,7 @@
 #include "voronoimesh/pass.hpp"
 
+#include "voronoimesh/guard.hpp"
+
 namespace vm {
 
 std::vector<Vec3>& PassContext::displacement() {
@@ -12,7 +14,8 @@ std::vector<Vec3>& PassContext::displacement() {
 
 void PassContext::commit() {
   if (!pending) return;
-  mesh.move_nodes(delta);
+  if (guard_crossings) undone_moves += commit_without_crossings(mesh, delta).undone_nodes;
+  else mesh.move_nodes(delta);
   pending = false;
 }
 

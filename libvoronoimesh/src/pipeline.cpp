@@ -110,13 +110,15 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   for (const Step& s : steps_) passes.push_back(s.info.make(s.params));
 
   PassContext context(mesh, field);
+  context.guard_crossings = options.guard_crossings;
   auto [best_min, best_mean] = quality_summary(mesh);
-  if (options.observer) options.observer({0, best_min, best_mean, 0, 0, std::nullopt, {}}, mesh);
+  if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
   int stalled = 0, done = 0;
   for (int it = 1; it <= options.iterations; ++it) {
     const auto start = std::chrono::steady_clock::now();
     context.iteration = it;
     context.flips = 0;
+    context.undone_moves = 0;
     context.stats.reset();
     std::vector<double> pass_seconds(passes.size(), 0.0);
     size_t last_moving = 0;
@@ -135,7 +137,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);
     if (options.observer)
-      options.observer({it, min_q, mean_q, context.flips,
+      options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
                         pass_seconds},
                        mesh);

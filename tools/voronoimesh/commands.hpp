@@ -71,6 +71,7 @@ struct ImproveOptions {
   int iterations = 20;
   std::string pipeline = vm::kDefaultPipeline;
   bool stop_when_converged = false;
+  bool unguarded = false; ///< skip the crossing guard (guard.hpp)
   std::string history; ///< where to write per-iteration histograms (.csv, .json, .svg)
 };
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations);

@@ -134,6 +134,8 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
       ->capture_default_str();
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
+  cmd->add_flag("--no-crossing-guard", o.unguarded,
+                "Do not undo moves and flips that make two surfaces cross (faster; only safe on well-resolved scenes)");
   cmd->add_option("--history", o.history,
                   "Write per-iteration histograms of inradius, circumradius, edge length, quality, angles and vertex "
                   "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
@@ -159,15 +161,16 @@ void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const Improv
   vm::RunOptions run;
   run.iterations = o.iterations;
   run.stop_when_converged = o.stop_when_converged;
+  run.guard_crossings = !o.unguarded;
   double first_min = 0, first_mean = 0, total = 0;
   vm::QualityHistory history;
   run.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh& current) {
     if (r.iteration == 0) first_min = r.min_quality, first_mean = r.mean_quality;
     if (!o.history.empty()) history.record(r.iteration, current.to_node_mesh());
     total += r.seconds;
-    char line[160];
-    std::snprintf(line, sizeof line, "iteration %d/%d: min q %.3f, mean q %.3f, %zu flips, %.1f ms", r.iteration,
-                  o.iterations, r.min_quality, r.mean_quality, r.flips, r.seconds * 1e3);
+    char line[192];
+    std::snprintf(line, sizeof line, "iteration %d/%d: min q %.3f, mean q %.3f, %zu flips, %zu moves undone, %.1f ms",
+                  r.iteration, o.iterations, r.min_quality, r.mean_quality, r.flips, r.undone_moves, r.seconds * 1e3);
     progress.stage(line);
   };
   const int done = pipeline.run(im, field, run);

@@ -16,14 +16,17 @@ struct CollapseParams {
   double below_quality = 0.05;
   /// At most this many collapses per call.
   int max_collapses = 64;
+  /// Refuse collapses after which a moved triangle crosses another surface.
+  bool guard_crossings = true;
 };
 
 /// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
 /// its phases and box faces among a's, so a already lies on every constraint of b:
 /// b's triangles are moved to a and the triangles on both a and b disappear, in
 /// every surface at once. Collapses that share no triangle go in one batch; a
-/// batch (or, if it fails, each collapse) is kept only if no triangle turns over
-/// and the mesh stays valid. Rebuilds `mesh` (node ids change) when anything was
+/// batch (or, if it fails, each collapse) is kept only if no triangle turns over,
+/// the mesh stays valid and (with guard_crossings) no triangle at a kept node
+/// crosses another surface. Rebuilds `mesh` (node ids change) when anything was
 /// collapsed; returns the number of collapses.
 size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params = {});
 

@@ -14,7 +14,13 @@ struct FlipParams {
   /// Afterwards, collapse junction triangles below this quality that no flip can
   /// remove (collapse.hpp; beyond the paper). 0 turns it off.
   double collapse_below = 0.05;
+  /// Refuse flips and collapses that would make two surfaces cross (guard.hpp).
+  bool guard_crossings = true;
 };
+
+/// Times flip_edges() bans the flips that made surfaces cross and tries again
+/// before giving up on flipping for that call.
+constexpr int kMaxFlipAttempts = 3;
 
 struct FlipStats {
   size_t flips = 0;
@@ -28,8 +34,10 @@ struct FlipStats {
 /// and a flip never creates an edge that exists in another patch. In rounds: all
 /// edges are judged in parallel, then the best (by quality gain, ties by edge)
 /// that share no node are flipped; so the result is the same for any thread count.
-/// Then degenerate junction triangles are collapsed (collapse_junction_slivers),
-/// which renumbers the nodes.
+/// With guard_crossings, flips whose new triangles would cross another surface
+/// are banned (and, after kMaxFlipAttempts, the call flips nothing): a mesh
+/// without crossings keeps none. Then degenerate junction triangles are collapsed
+/// (collapse_junction_slivers), which renumbers the nodes.
 FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params = {});
 
 } // namespace vm

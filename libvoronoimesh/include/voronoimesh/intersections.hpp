@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace vm {
@@ -53,7 +54,13 @@ struct IntersectionReport {
 ///
 /// @param m the mesh; node ids must lie in [0, num_nodes()).
 /// @param max_reported how many pairs to list in the report (count is always complete).
+/// @param involved when not empty (one flag per triangle), only pairs with at
+///        least one flagged triangle are tested and counted.
+/// @param across_surfaces_only test only pairs of triangles with different phase
+///        pairs (most candidate pairs are neighbours within one surface).
 /// @throws InvalidInput on a node id out of range or a non-finite coordinate.
-IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported = 20);
+IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported = 20,
+                                           std::span<const uint8_t> involved = {},
+                                           bool across_surfaces_only = false);
 
 } // namespace vm

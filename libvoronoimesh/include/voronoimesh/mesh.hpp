@@ -59,6 +59,8 @@ public:
   /// positions into the OpenMesh points, in parallel. The only way positions
   /// change, so point() can never go stale (openmesh-probe.md, pitfall 4).
   void move_nodes(const std::vector<Vec3>& delta);
+  /// Puts each node nodes[i] exactly at positions[i] (to undo a move bit for bit).
+  void place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions);
   /// The OpenMesh mesh, for topology changes (flips). Call topology_changed()
   /// afterwards.
   OMesh& omesh_for_topology() { return mesh_; }
@@ -101,6 +103,7 @@ private:
   std::vector<uint8_t> box_;
   Box domain_;
   std::vector<std::string> names_;
+  std::vector<int32_t> labels_;
 };
 
 template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {

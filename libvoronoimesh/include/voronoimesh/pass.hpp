@@ -40,12 +40,16 @@ struct PassContext {
   bool pending = false;              ///< delta holds moves not yet committed
   int iteration = 0;
   size_t flips = 0;                  ///< flips in the current iteration
+  /// Commit through the crossing guard (guard.hpp), so that no move makes two
+  /// triangles intersect.
+  bool guard_crossings = true;
+  size_t undone_moves = 0;           ///< moves the guard undid in the current iteration
   std::optional<MeshStats> stats;    ///< set by the stats pass
 
   explicit PassContext(InterfaceMesh& m, const PhaseField* f = nullptr) : mesh(m), field(f) {}
   /// The displacement buffer, zeroed if nothing is pending.
   std::vector<Vec3>& displacement();
-  /// Applies the pending displacement to the mesh.
+  /// Applies the pending displacement to the mesh (through the guard if on).
   void commit();
 };
 

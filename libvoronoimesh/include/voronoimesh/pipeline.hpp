@@ -21,6 +21,7 @@ struct IterationReport {
   double min_quality = 0;
   double mean_quality = 0;
   size_t flips = 0;
+  size_t undone_moves = 0;    ///< node moves the crossing guard undid
   double seconds = 0;
   std::optional<MeshStats> stats; ///< when the pipeline has a stats pass
   /// Wall time of each step, in pipeline order; committing the moves is charged
@@ -35,6 +36,9 @@ struct RunOptions {
   bool stop_when_converged = false;
   double tolerance = 1e-3;
   int patience = 3;
+  /// Undo any move that would make two triangles intersect (guard.hpp). Off
+  /// saves the exact intersection check of every iteration.
+  bool guard_crossings = true;
   /// Called after every iteration (and with iteration 0 before the first).
   std::function<void(const IterationReport&, const InterfaceMesh&)> observer;
 };

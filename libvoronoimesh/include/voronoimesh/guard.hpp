@@ -1,0 +1,34 @@
+#pragma once
+/// @file guard.hpp
+/// Committing node moves without letting surfaces cross.
+///
+/// Clamping (Alg. 3) keeps each triangle from inverting within its own fan, but
+/// it cannot see a *different* surface: where a phase is thinner than an edge
+/// (clusters of quadruple points, triple curves meeting at shallow angles),
+/// projection and smoothing can push a triangle through a neighbouring surface.
+/// The guard undoes exactly the moves that would do that (not in the paper).
+
+#include "voronoimesh/mesh.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace vm {
+
+/// What commit_without_crossings() did.
+struct GuardReport {
+  size_t undone_nodes = 0; ///< nodes left where they were
+  int rounds = 0;          ///< intersection checks made
+};
+
+/// Moves every node by delta[n], then finds the triangle pairs that intersect
+/// improperly (exactly, intersections.hpp) and have a moved node, puts the moved
+/// nodes of both triangles back exactly where they were, and repeats until no
+/// such pair is left. Pairs among unmoved triangles are not looked at, so
+/// crossings the mesh already had are neither counted nor cured; a mesh free of
+/// them stays free. Undoing moves never inverts a triangle that clamping made
+/// safe: any subset of clamped moves is safe (eq. 5's factor 1/2). `delta` is
+/// set to the moves actually made. Deterministic for any thread count.
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta);
+
+} // namespace vm

@@ -1,0 +1,109 @@
+// Tests of the crossing guard (guard.hpp): moves and flips that would push one
+// surface through another are undone, on a hand-made move and on a scene where
+// the unguarded pipeline does cross.
+
+#include "voronoimesh/create.hpp"
+#include "voronoimesh/guard.hpp"
+#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/scene.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace vm;
+
+InterfaceMesh initial_mesh(const Scene& scene) {
+  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  NodeMesh m;
+  create_initial_mesh(field, {}, m);
+  return InterfaceMesh::from_node_mesh(m);
+}
+
+Scene four_spheres(int grid) {
+  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/four_spheres.json");
+  s.grid.cells = {grid, grid, grid};
+  return s;
+}
+
+/// A node of `m` on surface `a`-`b` only, and one on a different surface.
+std::pair<int32_t, int32_t> nodes_on_two_surfaces(const InterfaceMesh& m) {
+  int32_t first = -1;
+  for (size_t v = 0; v < m.num_nodes(); ++v) {
+    const PhaseSet& s = m.phases()[v];
+    if (phase_count(s) != 2) continue;
+    if (first < 0) first = int32_t(v);
+    else if (m.phases()[size_t(first)] != s) return {first, int32_t(v)};
+  }
+  return {-1, -1};
+}
+
+TEST(Guard, undoes_exactly_the_move_that_would_cross_and_keeps_the_others) {
+  InterfaceMesh mesh = initial_mesh(four_spheres(16));
+  ASSERT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
+  const auto [v, w] = nodes_on_two_surfaces(mesh);
+  ASSERT_GE(v, 0);
+  const std::vector<Vec3> before = mesh.positions();
+  // v jumps onto w (a surface node of another surface): its triangles would touch
+  // w's. Another node, far from both, makes a tiny harmless move.
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+  delta[size_t(v)] = before[size_t(w)] - before[size_t(v)];
+  int32_t far = -1;
+  for (size_t u = 0; u < mesh.num_nodes() && far < 0; ++u)
+    if ((before[u] - before[size_t(v)]).norm() > 0.3 && (before[u] - before[size_t(w)]).norm() > 0.3) far = int32_t(u);
+  ASSERT_GE(far, 0);
+  delta[size_t(far)] = Vec3(1e-6, 0, 0);
+
+  // Unguarded, the move does make triangles intersect (so the test can fail).
+  InterfaceMesh unguarded = mesh;
+  unguarded.move_nodes(delta);
+  ASSERT_GT(find_self_intersections(unguarded.to_node_mesh()).count, 0u);
+
+  const GuardReport report = commit_without_crossings(mesh, delta);
+  EXPECT_EQ(report.undone_nodes, 1u);
+  EXPECT_EQ(mesh.positions()[size_t(v)], before[size_t(v)]); // bit for bit
+  EXPECT_TRUE(delta[size_t(v)].isZero(0));
+  EXPECT_EQ(mesh.positions()[size_t(far)], before[size_t(far)] + Vec3(1e-6, 0, 0));
+  EXPECT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
+}
+
+// Eight large overlapping spheres at a coarse grid: phases thinner than an edge
+// between clusters of quadruple points (found by scripts/stress_improve.py).
+constexpr const char* kCrowdedSpheres = R"({"grid": 32, "phases": [{"kind": "constant", "value": 0},
+  {"kind": "sphere", "center": [0.2469, 0.2893, 0.6135], "radius": 0.3492},
+  {"kind": "sphere", "center": [0.2969, 0.2291, 0.7920], "radius": 0.2334},
+  {"kind": "sphere", "center": [0.4435, 0.3424, 0.5564], "radius": 0.3066},
+  {"kind": "sphere", "center": [0.4734, 0.4531, 0.2334], "radius": 0.3290},
+  {"kind": "sphere", "center": [0.2196, 0.4961, 0.7031], "radius": 0.1326},
+  {"kind": "sphere", "center": [0.6390, 0.7699, 0.5782], "radius": 0.2970},
+  {"kind": "sphere", "center": [0.2640, 0.4607, 0.2895], "radius": 0.3112},
+  {"kind": "sphere", "center": [0.3769, 0.4719, 0.7996], "radius": 0.3131}]})";
+
+TEST(Guard, the_default_pipeline_never_crosses_where_the_unguarded_one_does) {
+  const Scene scene = parse_scene(kCrowdedSpheres, "crowded spheres");
+  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());
+  for (bool guard : {false, true}) {
+    SCOPED_TRACE(guard ? "guarded" : "unguarded");
+    InterfaceMesh mesh = initial_mesh(scene);
+    size_t worst = 0, undone = 0;
+    RunOptions run;
+    run.iterations = 20;
+    run.guard_crossings = guard;
+    run.observer = [&](const IterationReport& r, const InterfaceMesh& m) {
+      worst = std::max(worst, find_self_intersections(m.to_node_mesh()).count);
+      undone += r.undone_moves;
+    };
+    pipeline.run(mesh, scene.field.get(), run);
+    EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+    if (guard) {
+      EXPECT_EQ(worst, 0u);
+      EXPECT_GT(undone, 0u); // the guard had work to do
+    } else {
+      EXPECT_GT(worst, 0u); // the scene is hard enough to test the guard
+    }
+  }
+}
+
+} // namespace
