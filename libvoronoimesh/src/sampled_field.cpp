@@ -2,6 +2,8 @@
 
 #include "voronoimesh/errors.hpp"
 
+#include "detail/top_k.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -9,7 +11,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <span>
 #include <sstream>
 
@@ -46,25 +47,9 @@ void check_grid(const GridSpec& grid) {
   throw InvalidInput(located("phase " + field.phase_name(i), "value is " + what + " at " + point_text(x)));
 }
 
-/// Writes the ids.size() largest of the values `v` into `ids` and `vals` (largest
-/// first, lower id first among equal values) and returns the node's floor value.
-/// `order` is scratch space of v.size() entries.
-double keep_top_k(std::span<const double> v, std::span<int32_t> order, std::span<int32_t> ids,
-                  std::span<double> vals, double h) {
-  const size_t k = ids.size();
-  std::iota(order.begin(), order.end(), 0);
-  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(k), order.end(), [&](int32_t a, int32_t b) {
-    return v[size_t(a)] > v[size_t(b)] || (v[size_t(a)] == v[size_t(b)] && a < b);
-  });
-  for (size_t slot = 0; slot < k; ++slot) {
-    ids[slot] = order[slot];
-    vals[slot] = v[size_t(order[slot])];
-  }
-  // Below the K-th value by at least the spread of the stored values and at least
-  // h, so a missing phase does not compete near where it was not sampled; nextafter
-  // keeps it strictly below when h vanishes next to huge values.
-  const double last = vals[k - 1];
-  return std::min(last - std::max(vals[0] - last, h), std::nextafter(last, -HUGE_VAL));
+/// The node's floor value, from its kept values (largest first).
+double node_floor(std::span<const double> vals, double h) {
+  return detail::floor_below(vals.front(), vals.back(), h);
 }
 
 } // namespace
@@ -95,21 +80,20 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
 
   // One task range = rows of nodes along x; every node is written by one task only.
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, nodes[1] * nodes[2]), [&](const auto& rows) {
-    std::vector<double> v(static_cast<size_t>(n_phases));
-    std::vector<int32_t> order(static_cast<size_t>(n_phases));
     for (int64_t row = rows.begin(); row != rows.end(); ++row) {
       const int64_t j = row % nodes[1], kz = row / nodes[1];
       for (int64_t i = 0; i < nodes[0]; ++i) {
         const int64_t n = grid.node_index(i, j, kz);
         if (n > first_bad.load(std::memory_order_relaxed)) return;
-        field.values(grid.node_position(i, j, kz), v);
-        if (!std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); })) {
+        const std::span<int32_t> ids{&s.ids_[size_t(n) * kk], kk};
+        const std::span<double> vals{&s.values_[size_t(n) * kk], kk};
+        field.top_values(grid.node_position(i, j, kz), ids, vals);
+        if (!std::all_of(vals.begin(), vals.end(), [](double d) { return std::isfinite(d); })) {
           int64_t seen = first_bad.load();
           while (n < seen && !first_bad.compare_exchange_weak(seen, n)) {}
           return;
         }
-        s.floor_[size_t(n)] = keep_top_k(v, order, {&s.ids_[size_t(n) * kk], kk},
-                                         {&s.values_[size_t(n) * kk], kk}, h);
+        s.floor_[size_t(n)] = node_floor(vals, h);
       }
     }
   });

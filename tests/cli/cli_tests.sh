@@ -95,5 +95,35 @@ expect_error "unknown parameter" 2 "no parameter 'rest'" -- "$vm" mesh --grid 8 
 expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8 --pipeline smooth:rest_factor=9 -o out.ply
 expect_error "bad history format" 2 "history" -- "$vm" mesh --grid 8 --history h.txt -o out.ply
 
+# Label volumes (NRRD written here): a 16^3 cube of label 1 inside label 3, and a cube of label 5 beside it.
+nrrd_labels() { # FILE [extra header lines]: 16x16x16 uchar
+  { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 16 16\n%bencoding: raw\n\n' "${2:-}"
+    for k in $(seq 16); do for j in $(seq 16); do
+      if [ "$k" -gt 4 ] && [ "$k" -le 12 ] && [ "$j" -gt 4 ] && [ "$j" -le 12 ]; then printf '\3\3\3\3\1\1\1\1\5\5\5\5\3\3\3\3'
+      else printf '\3\3\3\3\3\3\3\3\3\3\3\3\3\3\3\3'; fi
+    done; done; } >"$1"
+}
+nrrd_labels labels.nrrd
+nrrd_labels oblique.nrrd 'space dimension: 3\nspace directions: (1,0.2,0) (0,1,0) (0,0,1)\n'
+if "$vm" create -q labels.nrrd -o l.ply && "$vm" stats l.ply | grep -qE "^phases +3" ; then pass; else fail "create on a label volume"; fi
+if "$vm" stats l.ply | grep -qE "^topology +valid"; then pass; else fail "label volume mesh is not valid"; fi
+if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | grep -qE "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
+if "$vm" smooth -q l.ply --field labels.nrrd --iterations 2 -o ls.ply; then pass; else fail "smooth --field on a label volume"; fi
+if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply; then pass; else fail "--signed-distance"; fi
+if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | grep -qE "^phases +2"; then pass; else fail "--merge-labels"; fi
+if "$vm" create -q labels.nrrd --drop-labels 5 --background 3 -o d.ply && "$vm" stats d.ply | grep -qE "^phases +2"; then pass; else fail "--drop-labels"; fi
+if "$vm" create --help | grep -q "Label volumes"; then pass; else fail "--help lacks the 'Label volumes' group"; fi
+printf '# x y z label\n0 0 0 1\n0 1 0 1\n1 0 0 2\n1 1 1 2\n0.5 0.5 1 3\n' >cloud.xyz
+if "$vm" create -q cloud.xyz -o c.ply && "$vm" stats c.ply | grep -qE "^phases +3"; then pass; else fail "create on a point cloud"; fi
+printf '0 0 0 1\n1 1 one 2\n' >badcloud.xyz
+: >later.nii.gz
+expect_error "oblique direction" 2 "oblique.*--ignore-direction" -- "$vm" create oblique.nrrd -o out.ply
+expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$vm" create labels.nrrd --drop-labels 1,5 --background 3 -o out.ply
+expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
+expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1+x -o out.ply
+expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
+expect_error "format not yet" 2 "later\.nii\.gz: format not supported yet" -- "$vm" create later.nii.gz -o out.ply
+expect_error "unknown input" 2 "unknown input type" -- "$vm" create labels.vtk -o out.ply
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

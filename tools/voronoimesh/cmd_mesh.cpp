@@ -10,6 +10,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   struct Options {
     std::string input, output;
     CreateOptions create;
+    InputCliOptions input_options;
     ImproveOptions improve;
     CommonOptions common;
   };
@@ -17,9 +18,12 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it as PLY.");
   cmd->add_option("input", o->input,
-                  "Scene file (JSON, see docs/scenes.md). Without it, the built-in demo: four overlapping spheres.");
+                  "Input: a scene (.json, docs/scenes.md), a label volume or distance grid (.nrrd, .nhdr), or a "
+                  "labelled point cloud (.xyz, .txt, .pts, .csv); see docs/inputs.md. Without it, the built-in demo: "
+                  "four overlapping spheres.");
   cmd->add_option("-o,--output", o->output, "Output mesh (.ply)")->required();
   add_create_options(cmd, o->create);
+  add_input_options(cmd, o->input_options);
   add_improve_options(cmd, o->improve, 20);
   add_common_options(cmd, o->common, true);
   cmd->callback([o, &exit_code] {
@@ -28,7 +32,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       check_improve_options(o->improve);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
-      vm::Scene scene = o->input.empty() ? vm::demo_scene() : vm::load_scene(o->input);
+      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
       improve_stage(mesh, scene.field.get(), o->improve, o->common, progress);
       vm::io::write_ply(mesh, o->output, o->common.ascii);

@@ -31,13 +31,18 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   struct Options {
     std::string mesh, field, output;
     ImproveOptions improve;
+    InputCliOptions input;
+    int top_k = 4;
     CommonOptions common;
   };
   auto s = std::make_shared<Options>();
   CLI::App* smooth = app.add_subcommand(
       "smooth", "Improve a mesh with a pipeline of passes (default: smooth, project, clamp, flip) and write it.");
   smooth->add_option("mesh", s->mesh, "Mesh file (.ply written by voronoimesh)")->required();
-  smooth->add_option("--field", s->field, "Scene file (JSON) whose phase functions the mesh was made from");
+  smooth->add_option("--field", s->field, "The input the mesh was made from (scene, volume or point cloud, as for create)");
+  smooth->add_option("--top-k", s->top_k, "Phases kept per voxel of a --field volume (as given to create)")
+      ->capture_default_str();
+  add_input_options(smooth, s->input);
   smooth->add_option("-o,--output", s->output, "Output mesh (.ply)")->required();
   add_improve_options(smooth, s->improve, 20);
   add_common_options(smooth, s->common, true);
@@ -51,7 +56,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
       require_valid(mesh, s->mesh);
       std::optional<vm::Scene> scene;
       if (!s->field.empty()) {
-        scene = vm::load_scene(s->field);
+        scene = read_input(s->field, s->input, s->top_k, progress);
         check_field_matches(mesh, s->mesh, *scene, s->field);
       }
       improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, s->common, progress);

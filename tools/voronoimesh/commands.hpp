@@ -5,6 +5,7 @@
 /// one-line message and the exit codes below.
 
 #include "voronoimesh/create.hpp"
+#include "voronoimesh/input.hpp"
 #include "voronoimesh/node_mesh.hpp"
 #include "voronoimesh/pipeline.hpp"
 #include "voronoimesh/scene.hpp"
@@ -65,6 +66,17 @@ struct CreateOptions {
 void add_create_options(CLI::App* cmd, CreateOptions& o);
 /// Samples `scene` and creates its initial mesh; prints a summary unless quiet.
 vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonOptions& common, Progress& progress);
+
+/// Options for inputs other than scenes (label volumes, point clouds), in their
+/// own --help groups.
+struct InputCliOptions {
+  vm::InputOptions input;
+  std::vector<std::string> merge; ///< "A+B" groups, parsed by read_input()
+  bool signed_distance = false;
+};
+void add_input_options(CLI::App* cmd, InputCliOptions& o);
+/// Reads `path` with vm::load_input (the built-in demo if empty), `top_k` phases kept per voxel.
+vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress);
 
 /// Options of the improvement stage (mesh, smooth).
 struct ImproveOptions {

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <cstdio>
@@ -124,6 +125,52 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
                  mesh.num_triangles(), t_sample, cs.seconds, (unsigned long long)cs.tets_visited,
                  (unsigned long long)cs.tets_cut, cs.check_seconds, (unsigned long long)cs.unsnapped_nodes);
   return mesh;
+}
+
+void add_input_options(CLI::App* cmd, InputCliOptions& o) {
+  const char* labels = "Label volumes";
+  cmd->add_option("--drop-labels", o.input.drop_labels, "Labels whose voxels become background, L,L,...")
+      ->delimiter(',')->group(labels);
+  cmd->add_option("--merge-labels", o.merge, "Label groups merged into their smallest label, A+B,C+D+E,...")
+      ->delimiter(',')->group(labels);
+  cmd->add_option("--background", o.input.background, "The background label (a phase named 'background')")
+      ->capture_default_str()->group(labels);
+  cmd->add_flag("--no-background", o.input.no_background,
+                "Background voxels are no phase: the labels around them fill them, meeting halfway across gaps "
+                "(grain maps with unindexed voxels); a gap wider than the smoothing radius or band is an error")
+      ->group(labels);
+  cmd->add_flag("--signed-distance", o.signed_distance,
+                "Phase functions by exact signed distance (clamped to --band) instead of the smoothed indicator")
+      ->group(labels);
+  cmd->add_option("--smoothing", o.input.smoothing, "Gaussian sigma of the smoothed indicator, in voxels")
+      ->capture_default_str()->group(labels);
+  cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
+      ->capture_default_str()->group(labels);
+  cmd->add_flag("--ignore-direction", o.input.ignore_direction,
+                "Use the voxel axes as they are when the volume's direction matrix is oblique")
+      ->group(labels);
+}
+
+vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress) {
+  if (path.empty()) return vm::demo_scene();
+  for (const std::string& group : o.merge) {
+    std::vector<int32_t> labels;
+    size_t start = 0;
+    for (size_t plus = 0; plus != std::string::npos; start = plus + 1) {
+      plus = group.find('+', start);
+      const std::string part = group.substr(start, plus == std::string::npos ? std::string::npos : plus - start);
+      int32_t value = 0;
+      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+      if (ec != std::errc() || end != part.data() + part.size() || part.empty())
+        throw vm::InvalidInput("--merge-labels: expected groups of integer labels as A+B, got '" + group + "'");
+      labels.push_back(value);
+    }
+    o.input.merge_labels.push_back(labels);
+  }
+  o.input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
+  o.input.top_k = top_k;
+  progress.stage("reading " + path + "...");
+  return vm::load_input(path, o.input);
 }
 
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {

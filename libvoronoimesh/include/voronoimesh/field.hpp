@@ -30,6 +30,13 @@ public:
   virtual double value(int i, const Vec3& x) const = 0;
   /// grad phi_i(x) of one phase.
   virtual Vec3 gradient(int i, const Vec3& x) const = 0;
+  /// The `ids.size()` (<= num_phases()) largest phases at x and their values,
+  /// largest first, lower id first among equal values: what SampledField keeps
+  /// per grid node. If any phase's value is NaN or infinite, the first such
+  /// phase is put in slot 0 instead, so callers can report it. The default
+  /// evaluates every phase with values(); fields with many phases (label
+  /// volumes, point clouds) override it so that it costs what k costs, not N.
+  virtual void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const;
 };
 
 } // namespace vm

@@ -2,6 +2,7 @@
 /// @file detail/text.hpp
 /// Building one-line messages.
 
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -27,6 +28,12 @@ std::string cat(const Parts&... parts) {
       s += std::string_view(p);
   };
   (add(parts), ...);
+  return s;
+}
+
+/// `s` in lower case (ASCII), e.g. to compare file extensions.
+inline std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
 

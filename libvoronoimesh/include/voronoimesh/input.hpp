@@ -1,0 +1,43 @@
+#pragma once
+/// @file input.hpp
+/// Every input voronoimesh meshes: JSON scenes, label volumes, signed-distance
+/// grids and labelled point clouds (format and options: docs/inputs.md).
+
+#include "voronoimesh/scene.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// How a label volume's phase functions are made (docs/inputs.md).
+enum class LabelFunction {
+  smoothed_indicator, ///< Gaussian-smoothed indicator of each label (default)
+  signed_distance,    ///< exact Euclidean signed distance, clamped to a band
+};
+
+/// Options for reading inputs other than JSON scenes.
+struct InputOptions {
+  // Label volumes.
+  std::vector<int32_t> drop_labels;               ///< these labels become background
+  std::vector<std::vector<int32_t>> merge_labels; ///< each group becomes its smallest label
+  int32_t background = 0;                         ///< the background label
+  bool no_background = false;                     ///< background voxels are no phase: the labels around fill them
+  LabelFunction label_function = LabelFunction::smoothed_indicator;
+  double smoothing = 1.0;        ///< Gaussian sigma in voxels (smoothed indicator), in (0, 8]
+  double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
+  bool ignore_direction = false; ///< take an oblique direction matrix as the identity
+  int top_k = 4;                 ///< phases kept per voxel, in [1, 16]
+};
+
+/// Reads `path` as whatever it is, by extension: .json a scene (load_scene);
+/// a volume (io::is_volume_file): integers are a label volume, one phase per
+/// label ordered by label value, reals a signed-distance grid with one component
+/// per phase (larger = inside). The scene's grid is the voxel grid, nodes at
+/// voxel centres (one voxel more along an axis with an odd number of cells, so
+/// the bcc lattice keeps them). Throws InvalidInput (bad content or option,
+/// unknown extension) or IoError (unreadable), one line naming the file.
+Scene load_input(const std::string& path, const InputOptions& options = {});
+
+} // namespace vm

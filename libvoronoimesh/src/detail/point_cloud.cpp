@@ -1,0 +1,168 @@
+#include "detail/point_cloud.hpp"
+
+#include "voronoimesh/errors.hpp"
+
+#include "detail/text.hpp"
+#include "detail/text_file.hpp"
+#include "detail/top_k.hpp"
+
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace vm::detail {
+
+namespace {
+
+/// The points nanoflann indexes.
+struct Points {
+  std::vector<Vec3> p;
+  size_t kdtree_get_point_count() const { return p.size(); }
+  double kdtree_get_pt(size_t i, size_t dim) const { return p[i][int(dim)]; }
+  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
+};
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, uint32_t>;
+
+/// A k-d tree over its own copy of the points.
+struct Indexed {
+  Points points;
+  std::unique_ptr<Tree> tree;
+  explicit Indexed(std::vector<Vec3> p) : points{std::move(p)}, tree(std::make_unique<Tree>(3, points)) {}
+  /// The nearest point to x.
+  const Vec3& nearest(const Vec3& x) const {
+    uint32_t i = 0;
+    double d2 = 0;
+    tree->knnSearch(x.data(), 1, &i, &d2);
+    return points.p[i];
+  }
+};
+
+class PointCloudField final : public PhaseField {
+public:
+  PointCloudField(std::vector<Vec3> points, const std::vector<int32_t>& phase_of_point, std::vector<int32_t> labels)
+      : labels_(std::move(labels)), phase_of_point_(phase_of_point), all_(points) {
+    std::vector<std::vector<Vec3>> split(labels_.size());
+    for (size_t i = 0; i < points.size(); ++i) split[size_t(phase_of_point[i])].push_back(points[i]);
+    for (auto& s : split) regions_.push_back(std::make_unique<Indexed>(std::move(s)));
+  }
+  int num_phases() const override { return int(labels_.size()); }
+  std::string phase_name(int i) const override { return cat("label", labels_.at(size_t(i))); }
+  int32_t phase_label(int i) const override { return labels_.at(size_t(i)); }
+  double value(int i, const Vec3& x) const override { return -(x - regions_[size_t(i)]->nearest(x)).norm(); }
+  /// -(x - p) / |x - p| for the nearest p of the region; 0 on p.
+  Vec3 gradient(int i, const Vec3& x) const override {
+    const Vec3 d = x - regions_[size_t(i)]->nearest(x);
+    const double n = d.norm();
+    return n > 0 ? Vec3(-d / n) : Vec3::Zero();
+  }
+  void values(const Vec3& x, std::span<double> out) const override {
+    for (int i = 0; i < num_phases(); ++i) out[size_t(i)] = value(i, x);
+  }
+  /// The k nearest distinct regions, from the nearest points of all regions
+  /// together: the first point met of each region is its nearest.
+  void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const override {
+    thread_local std::vector<uint32_t> idx;
+    thread_local std::vector<double> d2;
+    const size_t total = all_.points.p.size();
+    for (size_t want = 8 * ids.size();; want *= 4) {
+      want = std::min(want, total);
+      idx.resize(want), d2.resize(want);
+      const size_t got = all_.tree->knnSearch(x.data(), want, idx.data(), d2.data());
+      size_t found = 0;
+      for (size_t j = 0; j < got && found < ids.size(); ++j) {
+        const int32_t phase = phase_of_point_[idx[j]];
+        if (std::find(ids.begin(), ids.begin() + std::ptrdiff_t(found), phase) != ids.begin() + std::ptrdiff_t(found)) continue;
+        ids[found] = phase;
+        vals[found++] = -std::sqrt(d2[j]);
+      }
+      if (found == ids.size() || want == total) break;
+    }
+    // Equal distances: lower id first, as everywhere else.
+    std::vector<std::pair<double, int32_t>> sorted;
+    for (size_t s = 0; s < ids.size(); ++s) sorted.emplace_back(vals[s], ids[s]);
+    std::sort(sorted.begin(), sorted.end(), [](auto& a, auto& b) { return ranks_before(a.first, a.second, b.first, b.second); });
+    for (size_t s = 0; s < ids.size(); ++s) ids[s] = sorted[s].second, vals[s] = sorted[s].first;
+  }
+
+private:
+  std::vector<int32_t> labels_;
+  std::vector<int32_t> phase_of_point_;
+  Indexed all_;
+  std::vector<std::unique_ptr<Indexed>> regions_;
+};
+
+/// The fields of one line split at whitespace and commas.
+std::vector<std::string> fields_of(const std::string& line) {
+  std::string s = line.substr(0, line.find('#'));
+  std::replace(s.begin(), s.end(), ',', ' ');
+  std::istringstream in(s);
+  std::vector<std::string> out;
+  for (std::string f; in >> f;) out.push_back(f);
+  return out;
+}
+
+template <class T> bool parse(const std::string& s, T& v) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+} // namespace
+
+bool is_point_file(const std::string& path) {
+  const std::string p = lower(path);
+  return p.ends_with(".xyz") || p.ends_with(".txt") || p.ends_with(".pts") || p.ends_with(".csv");
+}
+
+Scene point_cloud_scene(const std::string& path, const InputOptions&) {
+  std::istringstream text(read_text_file(path));
+  std::vector<Vec3> points;
+  std::vector<int32_t> point_labels;
+  int line_no = 0;
+  bool first = true;
+  for (std::string line; std::getline(text, line);) {
+    ++line_no;
+    const auto f = fields_of(line);
+    if (f.empty()) continue;
+    Vec3 p;
+    int32_t label = 0;
+    const bool ok = f.size() == 4 && parse(f[0], p.x()) && parse(f[1], p.y()) && parse(f[2], p.z()) && parse(f[3], label);
+    if (!ok && first && lower(path).ends_with(".csv")) { first = false; continue; } // a header row
+    first = false;
+    if (!ok)
+      throw InvalidInput(located(path, cat("line ", line_no, ": expected 'x y z label' (three numbers and an integer), got '", line, "'")));
+    if (!p.allFinite()) throw InvalidInput(located(path, cat("line ", line_no, ": coordinates must be finite")));
+    points.push_back(p);
+    point_labels.push_back(label);
+  }
+  std::vector<int32_t> labels = point_labels;
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  if (labels.size() < 2)
+    throw InvalidInput(located(path, cat("has ", labels.size(), " label(s); a labelled point cloud needs 2 or more")));
+  std::vector<int32_t> phase_of_point(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    phase_of_point[i] = int32_t(std::lower_bound(labels.begin(), labels.end(), point_labels[i]) - labels.begin());
+
+  Box box{points[0], points[0]};
+  for (const Vec3& p : points) box.min = box.min.cwiseMin(p), box.max = box.max.cwiseMax(p);
+  const double side = std::max((box.max - box.min).maxCoeff(), 1e-9 * std::max(1.0, box.max.cwiseAbs().maxCoeff()));
+  const double margin = 0.05 * side, h = (side + 2 * margin) / 64;
+  Scene scene;
+  for (int a = 0; a < 3; ++a) {
+    // Cells of size h (at least 2), centred on the points.
+    const int cells = std::max(2, int(std::ceil((box.max[a] - box.min[a] + 2 * margin) / h - 1e-9)));
+    const double mid = (box.min[a] + box.max[a]) / 2;
+    scene.grid.cells[size_t(a)] = cells;
+    scene.grid.domain.min[a] = mid - cells * h / 2;
+    scene.grid.domain.max[a] = mid + cells * h / 2;
+  }
+  scene.field = std::make_shared<PointCloudField>(std::move(points), phase_of_point, std::move(labels));
+  return scene;
+}
+
+} // namespace vm::detail

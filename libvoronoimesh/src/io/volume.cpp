@@ -1,0 +1,57 @@
+/// @file io/volume.cpp
+/// Picks a volume reader by the file's extension.
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/io/volume.hpp"
+
+#include "detail/text.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+namespace vm::io {
+
+namespace {
+
+using detail::lower;
+
+struct Format {
+  std::string_view extension; ///< lower case, with the dot
+  Volume (*read)(const std::string&);
+};
+
+/// Every extension read_volume() knows. The NIfTI, MetaImage and INR readers
+/// are written on another branch; until they are merged their extensions
+/// map to nullptr and give "format not supported yet".
+// TODO(merge): point these at read_nifti, read_metaimage and read_inr.
+constexpr std::array<Format, 8> formats{{{".nrrd", read_nrrd},
+                                         {".nhdr", read_nrrd},
+                                         {".nii", nullptr},
+                                         {".nii.gz", nullptr},
+                                         {".mha", nullptr},
+                                         {".mhd", nullptr},
+                                         {".inr", nullptr},
+                                         {".inr.gz", nullptr}}};
+
+/// The format whose extension ends `path` (longest match, so ".nii.gz" wins over ".gz").
+const Format* format_of(const std::string& path) {
+  const std::string p = lower(path);
+  const Format* best = nullptr;
+  for (const Format& f : formats)
+    if (p.ends_with(f.extension) && (!best || f.extension.size() > best->extension.size())) best = &f;
+  return best;
+}
+
+} // namespace
+
+bool is_volume_file(const std::string& path) { return format_of(path) != nullptr; }
+
+Volume read_volume(const std::string& path) {
+  const Format* f = format_of(path);
+  if (!f) throw InvalidInput(located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .inr or .inr.gz)"));
+  if (!f->read) throw InvalidInput(located(path, "format not supported yet (" + std::string(f->extension) + ")"));
+  return f->read(path);
+}
+
+} // namespace vm::io

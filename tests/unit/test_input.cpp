@@ -1,0 +1,271 @@
+// Tests of load_input on label volumes, distance grids and labelled point
+// clouds written by the tests themselves: the right phases and labels, valid
+// meshes before and after improvement, sub-voxel accuracy against the surface
+// the labels were rasterised from, and label options.
+#include "voronoimesh/create.hpp"
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/input.hpp"
+#include "voronoimesh/io/volume.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/sampled_field.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace vm;
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("vm_test_input_" + name)).string();
+}
+
+/// Writes an attached raw NRRD: `header` holds the type/dimension/sizes lines and
+/// any geometry, `data` the samples.
+template <class T>
+std::string write_nrrd(const std::string& name, const std::string& header, const std::vector<T>& data) {
+  const std::string path = temp_path(name);
+  std::ofstream out(path, std::ios::binary);
+  out << "NRRD0004\n" << header << "encoding: raw\nendian: little\n\n";
+  out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(T)));
+  return path;
+}
+
+constexpr int n = 32;                     // voxels per axis
+constexpr double voxel = 0.5;             // spacing
+const Vec3 origin(1, 2, 3);               // centre of voxel 0
+const Vec3 centre_vox(15.3, 15.6, 15.8);  // sphere centre, voxel units
+constexpr double radius_vox = 10.0;
+
+Vec3 world(const Vec3& vox) { return origin + voxel * vox; }
+
+/// Labels of a 32^3 volume: `inside` within the sphere, 0 elsewhere, and
+/// `more(i, j, k)` may override (returning -1 keeps the sphere's label).
+std::vector<uint16_t> sphere_labels(uint16_t inside, const std::function<int(int, int, int)>& more = {}) {
+  std::vector<uint16_t> v;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        int l = (Vec3(i, j, k) - centre_vox).norm() < radius_vox ? inside : 0;
+        if (more && more(i, j, k) >= 0) l = more(i, j, k);
+        v.push_back(uint16_t(l));
+      }
+  return v;
+}
+
+const std::string sphere_header = "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
+                                  "space directions: (0.5,0,0) (0,0.5,0) (0,0,0.5)\nspace origin: (1,2,3)\n";
+
+NodeMesh create(const Scene& scene) {
+  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  NodeMesh mesh;
+  create_initial_mesh(field, {}, mesh);
+  return mesh;
+}
+
+std::vector<int32_t> labels_of(const PhaseField& f) {
+  std::vector<int32_t> out;
+  for (int i = 0; i < f.num_phases(); ++i) out.push_back(f.phase_label(i));
+  return out;
+}
+
+/// Largest distance, in voxels, from a vertex of the sphere's surface to the true sphere.
+double sphere_error_voxels(const NodeMesh& mesh) {
+  double worst = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int32_t node : mesh.triangles[t])
+      worst = std::max(worst, std::abs((mesh.points[size_t(node)] - world(centre_vox)).norm() / voxel - radius_vox));
+  return worst;
+}
+
+void improve(NodeMesh& node_mesh, const PhaseField& field) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(node_mesh);
+  RunOptions run;
+  run.iterations = 10;
+  Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, &field, run);
+  node_mesh = mesh.to_node_mesh();
+}
+
+TEST(Nrrd, reads_geometry_and_labels) {
+  const io::Volume v = io::read_volume(write_nrrd("geometry.nrrd", sphere_header, sphere_labels(7)));
+  EXPECT_TRUE(v.integer);
+  EXPECT_EQ(v.size, (std::array<int64_t, 3>{32, 32, 32}));
+  EXPECT_DOUBLE_EQ(v.spacing.x(), 0.5);
+  EXPECT_EQ(v.origin, origin);
+  EXPECT_EQ(v.labels.size(), size_t(n * n * n));
+}
+
+TEST(Nrrd, refuses_truncated_data_and_2d_images) {
+  std::vector<uint16_t> labels = sphere_labels(7);
+  labels.resize(100);
+  EXPECT_THROW(io::read_volume(write_nrrd("short.nrrd", sphere_header, labels)), InvalidInput);
+  EXPECT_THROW(io::read_volume(write_nrrd("flat.nrrd", "type: uchar\ndimension: 2\nsizes: 2 2\n", std::vector<uint8_t>(4))),
+               InvalidInput);
+  EXPECT_THROW(io::read_volume(temp_path("missing.nrrd")), IoError);
+  EXPECT_THROW(io::read_volume(temp_path("later.nii.gz")), InvalidInput);
+}
+
+// Smoothed indicators: one phase per label with its label value, a valid mesh,
+// within a fraction of a voxel of the sphere the labels came from; still valid
+// and closer after improvement.
+TEST(LabelVolume, sphere_is_reproduced_below_voxel_size) {
+  const Scene scene = load_input(write_nrrd("sphere.nrrd", sphere_header, sphere_labels(7)));
+  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{0, 7}));
+  EXPECT_EQ(scene.field->phase_name(0), "background");
+  NodeMesh mesh = create(scene);
+  EXPECT_TRUE(validate(mesh).ok());
+  const double created = sphere_error_voxels(mesh);
+  EXPECT_LT(created, 0.5);
+  improve(mesh, *scene.field);
+  EXPECT_TRUE(validate(mesh).ok());
+  const double improved = sphere_error_voxels(mesh);
+  EXPECT_LT(improved, 0.35);
+  std::printf("sphere, smoothed indicator: max error %.3f voxels created, %.3f improved\n", created, improved);
+}
+
+TEST(LabelVolume, signed_distance_sphere_is_reproduced_below_voxel_size) {
+  InputOptions o;
+  o.label_function = LabelFunction::signed_distance;
+  const Scene scene = load_input(write_nrrd("sphere_sd.nrrd", sphere_header, sphere_labels(7)), o);
+  NodeMesh mesh = create(scene);
+  EXPECT_TRUE(validate(mesh).ok());
+  improve(mesh, *scene.field);
+  EXPECT_TRUE(validate(mesh).ok());
+  const double improved = sphere_error_voxels(mesh);
+  EXPECT_LT(improved, 0.5);
+  std::printf("sphere, signed distance: max error %.3f voxels improved\n", improved);
+}
+
+// Three labels (a sphere cut in two halves plus background): a triple curve.
+TEST(LabelVolume, three_labels_and_label_options) {
+  const std::string path = write_nrrd("halves.nrrd", sphere_header, sphere_labels(3, [](int i, int j, int k) {
+    return (Vec3(i, j, k) - centre_vox).norm() < radius_vox && i > 15 ? 9 : -1;
+  }));
+  const Scene scene = load_input(path);
+  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{0, 3, 9}));
+  NodeMesh mesh = create(scene);
+  EXPECT_TRUE(validate(mesh).ok());
+  improve(mesh, *scene.field);
+  EXPECT_TRUE(validate(mesh).ok());
+
+  InputOptions drop;
+  drop.drop_labels = {9};
+  EXPECT_EQ(labels_of(*load_input(path, drop).field), (std::vector<int32_t>{0, 3}));
+  InputOptions merge;
+  merge.merge_labels = {{9, 3}};
+  EXPECT_EQ(labels_of(*load_input(path, merge).field), (std::vector<int32_t>{0, 3}));
+  // The background is far wider than the smoothing: left to the labels, it would be arbitrary.
+  EXPECT_THROW(load_input(path, InputOptions{.no_background = true}), InvalidInput);
+  InputOptions bg3;
+  bg3.background = 3;
+  EXPECT_EQ(load_input(path, bg3).field->phase_name(1), "background");
+  InputOptions absent;
+  absent.drop_labels = {4};
+  EXPECT_THROW(load_input(path, absent), InvalidInput);
+}
+
+// Grain maps: unindexed voxels (label 0) between two grains are filled by the
+// grains with --no-background, meeting halfway.
+TEST(LabelVolume, no_background_fills_gaps_between_grains) {
+  std::vector<uint16_t> v;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) v.push_back(uint16_t(i < 15 ? 1 : i > 16 ? 2 : 0)); // gap: i = 15, 16
+  InputOptions o;
+  o.no_background = true;
+  const Scene scene = load_input(write_nrrd("grains.nrrd", sphere_header, v), o);
+  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{1, 2}));
+  NodeMesh mesh = create(scene);
+  ASSERT_FALSE(mesh.points.empty());
+  improve(mesh, *scene.field); // projection puts the nodes on the field's own surface
+  for (const Vec3& p : mesh.points) EXPECT_NEAR((p.x() - origin.x()) / voxel, 15.5, 0.05);
+}
+
+// A few hundred labels: the field keeps K per voxel, so this stays fast.
+TEST(LabelVolume, many_labels_stay_cheap) {
+  std::vector<uint16_t> v;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) v.push_back(uint16_t(1 + i / 4 + 8 * (j / 4) + 64 * (k / 8))); // 8x8x4 = 256 blocks
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene scene = load_input(write_nrrd("blocks.nrrd", sphere_header, v));
+  EXPECT_EQ(scene.field->num_phases(), 256);
+  const NodeMesh mesh = create(scene);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_TRUE(validate(mesh).ok());
+  EXPECT_LT(seconds, 5.0);
+}
+
+TEST(LabelVolume, axis_flips_are_honoured_and_oblique_directions_refused) {
+  const std::string flipped = "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
+                              "space directions: (-0.5,0,0) (0,0,0.5) (0,0.5,0)\nspace origin: (1,2,3)\n";
+  const Scene scene = load_input(write_nrrd("flipped.nrrd", flipped, sphere_labels(7)));
+  EXPECT_NEAR(scene.grid.domain.min.x(), 1 - 0.5 * 31, 1e-12) << "x runs backwards from the origin";
+  const std::string oblique = "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
+                              "space directions: (0.5,0.1,0) (0,0.5,0) (0,0,0.5)\n";
+  const std::string path = write_nrrd("oblique.nrrd", oblique, sphere_labels(7));
+  try {
+    load_input(path);
+    FAIL() << "an oblique direction was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--ignore-direction"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(load_input(path, InputOptions{.ignore_direction = true}));
+}
+
+// A 3-component float NRRD, components first: one phase per component.
+TEST(DistanceGrid, components_are_phases) {
+  std::vector<float> d;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double r = (Vec3(i, j, k) - centre_vox).norm();
+        d.push_back(0.f);                                      // outside
+        d.push_back(float(radius_vox - r));                    // sphere, i <= 15
+        d.push_back(float(radius_vox - r - (15.4 - i > 0 ? 15.4 - i : 0))); // the same sphere, beyond i = 15.4
+      }
+  const Scene scene = load_input(write_nrrd("dist.nrrd",
+                                            "type: float\ndimension: 4\nsizes: 3 32 32 32\nkinds: vector domain domain domain\n", d));
+  EXPECT_EQ(scene.field->num_phases(), 3);
+  const NodeMesh mesh = create(scene);
+  EXPECT_TRUE(validate(mesh).ok());
+  EXPECT_THROW(load_input(write_nrrd("dist4.nrrd", "type: float\ndimension: 4\nsizes: 32 32 32 3\nkinds: domain domain domain vector\n", d)), InvalidInput);
+}
+
+// Eq. 7: two clusters of points; the surface lies halfway between them.
+TEST(PointCloud, surface_lies_halfway_between_labelled_points) {
+  const std::string path = temp_path("cloud.xyz");
+  {
+    std::ofstream out(path);
+    out << "# x y z label\n";
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) out << 0.0 << " " << i * 0.2 << " " << j * 0.2 << " 4\n" << 1.0 << " " << i * 0.2 << " " << j * 0.2 << " 11\n";
+  }
+  const Scene scene = load_input(path);
+  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{4, 11}));
+  NodeMesh mesh = create(scene);
+  EXPECT_TRUE(validate(mesh).ok());
+  improve(mesh, *scene.field);
+  EXPECT_TRUE(validate(mesh).ok());
+  for (const Vec3& p : mesh.points) EXPECT_NEAR(p.x(), 0.5, 1e-6);
+
+  std::ofstream(temp_path("bad.xyz")) << "0 0 0 1\n0 0 zero 2\n";
+  try {
+    load_input(temp_path("bad.xyz"));
+    FAIL() << "a bad line was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
