@@ -6,6 +6,7 @@ packages=(
   cmake g++ make pkg-config
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
+  zlib1g-dev libnifti2-dev
 )
 missing=()
 for p in "${packages[@]}"; do

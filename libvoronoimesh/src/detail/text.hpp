@@ -1,7 +1,8 @@
 #pragma once
 /// @file detail/text.hpp
-/// Building one-line messages.
+/// Building one-line messages, and reading numbers from header text.
 
+#include <charconv>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -28,6 +29,13 @@ std::string cat(const Parts&... parts) {
   };
   (add(parts), ...);
   return s;
+}
+
+/// True when the whole of `s` is a number of type T, stored in `v`.
+template <class T>
+bool parse_number(std::string_view s, T& v) {
+  auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
 } // namespace vm::detail
