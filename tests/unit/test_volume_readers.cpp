@@ -233,6 +233,22 @@ TEST_F(VolumeReaders, nifti_pair_pixdim_only_uint8_and_float64) {
   expect_values(v);
 }
 
+TEST_F(VolumeReaders, nifti2_reads_too) {
+  // nifti2_io 3.0.1 writes a NIfTI-2 file without its header; build it from the library's struct.
+  Nim nim = make_nifti(DT_INT32, encode<int32_t>(labels(true), false));
+  nifti_2_header hdr;
+  ASSERT_EQ(nifti_convert_nim2n2hdr(nim.get(), &hdr), 0);
+  std::memcpy(hdr.magic, "n+2\0\r\n\032\n", 8);
+  hdr.vox_offset = 544;
+  write("two.nii", std::string(reinterpret_cast<const char*>(&hdr), sizeof hdr) + std::string(4, '\0') +
+                       encode<int32_t>(labels(true), false));
+  ASSERT_EQ(sizeof hdr, 540u);
+  const io::Volume v = io::read_nifti(path("two.nii"));
+  expect_size(v);
+  expect_labels(v, true);
+  expect_geometry(v, Vec3(1.5, 2, 0.5), Vec3::Zero());
+}
+
 TEST_F(VolumeReaders, nifti_scaled_integers_become_values) {
   Nim nim = make_nifti(DT_UINT16, encode<uint16_t>(labels(false), false));
   nim->scl_slope = 0.5;
@@ -488,7 +504,7 @@ void write_gz(const std::string& file, const std::string& bytes) {
 }
 
 TEST_F(VolumeReaders, inr_uchar_little_endian_with_origin) {
-  write("a.inr", inr_header("VDIM=1\nTYPE=unsigned fixed\nPIXSIZE=8 bits\nSCALE=2**0\nCPU=decm\nVX=0.5\nVY=1.5\n"
+  write("a.inr", inr_header("VDIM=1\nTYPE=unsigned fixed\nPIXSIZE=8 bits\nSCALE=2**0\nCPU=decm\nVX=0.5 \nVY=1.5\n"
                             "VZ=2.5\nTX=-3\nTY=4.25\nTZ=10\n#a comment\n") +
                      encode<uint8_t>(labels(false), false));
   const io::Volume v = io::read_inr(path("a.inr"));

@@ -99,7 +99,8 @@ std::map<std::string, std::string> parse_fields(const std::string& path, const s
   const size_t stop = header.size() - header_end.size();
   for (int line_no = 2; pos < stop; ++line_no) {
     const size_t eol = header.find('\n', pos);
-    const std::string line = header.substr(pos, eol - pos);
+    std::string line = header.substr(pos, eol - pos);
+    line.erase(line.find_last_not_of(" \t\r") + 1); // trailing blanks some writers leave
     pos = eol + 1;
     if (line.empty() || line[0] == '#') continue;
     const size_t eq = line.find('=');

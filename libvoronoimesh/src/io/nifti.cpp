@@ -2,7 +2,8 @@
 /// NIfTI (.nii, .nii.gz, .hdr/.img pairs; NIfTI-2 as well) through the NIfTI
 /// reference library nifti2_io, which also reads NIfTI-1 files, decompresses
 /// them through znzlib and swaps bytes to the machine's order. Coordinates are
-/// the file's own world space (RAS+ for scanner data), not converted.
+/// the file's own world space (RAS+ for scanner data) in its xyz_units
+/// (usually mm), not converted.
 
 #include "voronoimesh/io/volume.hpp"
 
@@ -78,24 +79,42 @@ void read_dims(const std::string& path, const nifti_image& nim, Volume& v) {
   v.components = int(dim(5));
 }
 
-/// Throws unless pixdim[1..3] as the file holds them are positive: nifti2_io
-/// silently turns a non-positive voxel size into 1 when it reads the header.
-void check_pixdim(const std::string& path, const char* header_name) {
-  int version = 0;
-  std::unique_ptr<void, void (*)(void*)> raw(nifti_read_header(header_name, &version, 0), std::free);
-  if (!raw) throw InvalidInput(located(path, "cannot read the NIfTI header"));
-  for (int a = 1; a <= 3; ++a) {
-    const double d = version == 2 ? static_cast<nifti_2_header*>(raw.get())->pixdim[a]
-                                  : static_cast<nifti_1_header*>(raw.get())->pixdim[a];
-    if (!(d > 0) || !std::isfinite(d))
-      throw InvalidInput(located(path, cat("pixdim[", a, "] is ", d, ", must be > 0")));
+/// The header as the file holds it (bytes swapped to the machine's order):
+/// nifti2_io's own checks let an ANALYZE header without the NIfTI magic pass,
+/// and it turns a non-positive voxel size into 1 when it fills a nifti_image.
+class RawHeader {
+public:
+  RawHeader(const std::string& path, const char* header_name)
+      : raw_(nifti_read_header(header_name, &version_, 0), std::free) {
+    if (!raw_ || (version_ != 1 && version_ != 2))
+      throw InvalidInput(located(path, "not a NIfTI file (no valid 348- or 540-byte header)"));
+    const char* m = version_ == 2 ? n2()->magic : n1()->magic;
+    if (m[0] != 'n' || (m[1] != '+' && m[1] != 'i') || m[2] != char('0' + version_) || m[3] != '\0')
+      throw InvalidInput(located(path, cat("no NIfTI-", version_, " magic ('n+", version_, "', 'ni", version_,
+                                           "'): an ANALYZE 7.5 file (undefined orientation) or a corrupt header")));
   }
-}
+
+  /// Throws unless pixdim[1..3] are positive.
+  void check_pixdim(const std::string& path) const {
+    for (int a = 1; a <= 3; ++a) {
+      const double d = version_ == 2 ? n2()->pixdim[a] : n1()->pixdim[a];
+      if (!(d > 0) || !std::isfinite(d))
+        throw InvalidInput(located(path, cat("pixdim[", a, "] is ", d, ", must be > 0")));
+    }
+  }
+
+private:
+  const nifti_1_header* n1() const { return static_cast<const nifti_1_header*>(raw_.get()); }
+  const nifti_2_header* n2() const { return static_cast<const nifti_2_header*>(raw_.get()); }
+
+  int version_ = 0;
+  std::unique_ptr<void, void (*)(void*)> raw_;
+};
 
 /// The index-to-space map: the sform when sform_code > 0, else the qform when
 /// qform_code > 0, else the voxel sizes alone (NIfTI's "method 1").
-void read_geometry(const std::string& path, const char* header_name, const nifti_image& nim, Volume& v) {
-  if (nim.sform_code <= 0) check_pixdim(path, header_name);
+void read_geometry(const std::string& path, const RawHeader& raw, const nifti_image& nim, Volume& v) {
+  if (nim.sform_code <= 0) raw.check_pixdim(path);
   Eigen::Matrix3d steps = Eigen::Matrix3d::Zero();
   Vec3 origin = Vec3::Zero();
   if (nim.sform_code > 0 || nim.qform_code > 0) {
@@ -150,18 +169,14 @@ Volume read_nifti(const std::string& path) {
   require_readable(path, path);
   std::unique_ptr<char, CFree> header_name(nifti_findhdrname(path.c_str()));
   if (!header_name) throw InvalidInput(located(path, "no NIfTI header found for it"));
-  const int kind = is_nifti_file(header_name.get());
-  if (kind < 0) throw InvalidInput(located(path, "not a NIfTI file (no valid 348- or 540-byte header)"));
-  if (kind == 0)
-    throw InvalidInput(located(path, "no NIfTI magic ('n+1', 'ni1'): an ANALYZE 7.5 file (undefined orientation) "
-                                     "or a corrupt header"));
+  const RawHeader raw(path, header_name.get());
   std::unique_ptr<nifti_image, NiftiFree> nim(nifti_image_read(header_name.get(), 0));
   if (!nim) throw InvalidInput(located(path, "invalid NIfTI header (dim, datatype or vox_offset out of range)"));
   Volume v;
   read_dims(path, *nim, v);
   const detail::VoxelType type = voxel_type(path, nim->datatype);
   const uint64_t needed = detail::voxel_data_bytes(path, v, type);
-  read_geometry(path, header_name.get(), *nim, v);
+  read_geometry(path, raw, *nim, v);
 
   // Check the data's length against the file before the library allocates it.
   if (!nim->iname) throw InvalidInput(located(path, "no image file found for this header"));
