@@ -7,6 +7,7 @@ packages=(
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
+  zlib1g-dev libnifti2-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -122,7 +122,7 @@ expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$v
 expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
 expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1+x -o out.ply
 expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
-expect_error "format not yet" 2 "later\.nii\.gz: format not supported yet" -- "$vm" create later.nii.gz -o out.ply
+expect_error "empty NIfTI" 2 "later\.nii\.gz: not a NIfTI file" -- "$vm" create later.nii.gz -o out.ply
 expect_error "unknown input" 2 "unknown input type" -- "$vm" create labels.vtk -o out.ply
 
 echo "$passed passed, $failed failed"

@@ -112,7 +112,7 @@ TEST(Nrrd, refuses_truncated_data_and_2d_images) {
   EXPECT_THROW(io::read_volume(write_nrrd("flat.nrrd", "type: uchar\ndimension: 2\nsizes: 2 2\n", std::vector<uint8_t>(4))),
                InvalidInput);
   EXPECT_THROW(io::read_volume(temp_path("missing.nrrd")), IoError);
-  EXPECT_THROW(io::read_volume(temp_path("later.nii.gz")), InvalidInput);
+  EXPECT_THROW(io::read_volume(temp_path("unknown.vol")), InvalidInput); // not a volume extension
 }
 
 // Smoothed indicators: one phase per label with its label value, a valid mesh,

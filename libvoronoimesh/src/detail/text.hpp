@@ -1,8 +1,9 @@
 #pragma once
 /// @file detail/text.hpp
-/// Building one-line messages.
+/// Building one-line messages, and reading numbers from header text.
 
 #include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -35,6 +36,13 @@ std::string cat(const Parts&... parts) {
 inline std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   return s;
+}
+
+/// True when the whole of `s` is a number of type T, stored in `v`.
+template <class T>
+bool parse_number(std::string_view s, T& v) {
+  auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
 } // namespace vm::detail

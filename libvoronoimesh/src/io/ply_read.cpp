@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +27,7 @@ namespace vm::io {
 namespace {
 
 using detail::cat;
+using detail::parse_number;
 
 enum class Format { ascii, binary_le, binary_be };
 
@@ -88,12 +88,6 @@ std::vector<std::string_view> split(std::string_view line) {
     i = j;
   }
   return words;
-}
-
-template <class T>
-bool parse(std::string_view s, T& v) {
-  auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
 class Reader {
@@ -169,7 +163,7 @@ private:
         continue;
       } else if (w[0] == "element") {
         Element e;
-        if (w.size() != 3 || !parse(w[2], e.count)) fail(cat("bad element line '", line, "'"));
+        if (w.size() != 3 || !parse_number(w[2], e.count)) fail(cat("bad element line '", line, "'"));
         e.name = std::string(w[1]);
         h.elements.push_back(std::move(e));
       } else if (w[0] == "property") {
@@ -209,12 +203,12 @@ private:
     if (w.size() == 8 && w[1] == "domain") {
       std::array<double, 6> v{};
       for (size_t i = 0; i < 6; ++i)
-        if (!parse(w[i + 2], v[i]) || !std::isfinite(v[i])) fail(cat("bad domain comment '", line, "'"));
+        if (!parse_number(w[i + 2], v[i]) || !std::isfinite(v[i])) fail(cat("bad domain comment '", line, "'"));
       h.domain = Box{Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5])};
     } else if (w.size() >= 3 && w[1] == "phase") {
       size_t id = 0;
       // Phase ids fit int16 everywhere (PhaseSet), which also keeps a hostile id from forcing a huge allocation.
-      if (!parse(w[2], id) || id > size_t(std::numeric_limits<int16_t>::max()))
+      if (!parse_number(w[2], id) || id > size_t(std::numeric_limits<int16_t>::max()))
         fail(cat("bad phase comment '", line, "'"));
       const size_t name_at = size_t(w[2].data() + w[2].size() - line.data());
       std::string_view name = line.substr(std::min(line.size(), name_at + 1));
@@ -275,10 +269,10 @@ private:
     double v = 0;
     bool ok = false;
     if (t.kind == Kind::floating) {
-      ok = parse(tok, v);
+      ok = parse_number(tok, v);
     } else {
       int64_t i = 0;
-      ok = parse(tok, i);
+      ok = parse_number(tok, i);
       v = double(i);
     }
     if (!ok) fail(cat("bad number '", tok.substr(0, 40), "' in ", what()));

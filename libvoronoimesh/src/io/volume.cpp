@@ -21,18 +21,16 @@ struct Format {
   Volume (*read)(const std::string&);
 };
 
-/// Every extension read_volume() knows. The NIfTI, MetaImage and INR readers
-/// are written on another branch; until they are merged their extensions
-/// map to nullptr and give "format not supported yet".
-// TODO(merge): point these at read_nifti, read_metaimage and read_inr.
-constexpr std::array<Format, 8> formats{{{".nrrd", read_nrrd},
+/// Every extension read_volume() knows (.hdr: the header of a NIfTI .hdr/.img pair).
+constexpr std::array<Format, 9> formats{{{".nrrd", read_nrrd},
                                          {".nhdr", read_nrrd},
-                                         {".nii", nullptr},
-                                         {".nii.gz", nullptr},
-                                         {".mha", nullptr},
-                                         {".mhd", nullptr},
-                                         {".inr", nullptr},
-                                         {".inr.gz", nullptr}}};
+                                         {".nii", read_nifti},
+                                         {".nii.gz", read_nifti},
+                                         {".hdr", read_nifti},
+                                         {".mha", read_metaimage},
+                                         {".mhd", read_metaimage},
+                                         {".inr", read_inr},
+                                         {".inr.gz", read_inr}}};
 
 /// The format whose extension ends `path` (longest match, so ".nii.gz" wins over ".gz").
 const Format* format_of(const std::string& path) {
@@ -49,8 +47,9 @@ bool is_volume_file(const std::string& path) { return format_of(path) != nullptr
 
 Volume read_volume(const std::string& path) {
   const Format* f = format_of(path);
-  if (!f) throw InvalidInput(located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, .inr or .inr.gz)"));
-  if (!f->read) throw InvalidInput(located(path, "format not supported yet (" + std::string(f->extension) + ")"));
+  if (!f)
+    throw InvalidInput(
+        located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr or .inr.gz)"));
   return f->read(path);
 }
 
