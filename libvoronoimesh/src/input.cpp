@@ -7,6 +7,7 @@
 #include "detail/label_field.hpp"
 #include "detail/point_cloud.hpp"
 #include "detail/text.hpp"
+#include "detail/voxel_grid.hpp"
 
 #include <algorithm>
 #include <unordered_set>
@@ -28,19 +29,6 @@ void check_options(const InputOptions& o) {
   if (o.top_k < 1 || o.top_k > 16) throw InvalidInput("--top-k: must be between 1 and 16");
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
-}
-
-/// The voxel grid of `field_grid` as the scene's grid: one more cell along an
-/// axis with an odd count, so the bcc lattice (even cells) keeps the voxel centres.
-GridSpec scene_grid(const GridSpec& field_grid, const std::string& path) {
-  GridSpec g = field_grid;
-  const Vec3 h = field_grid.spacing();
-  for (int a = 0; a < 3; ++a) {
-    if (g.cells[size_t(a)] % 2) ++g.cells[size_t(a)], g.domain.max[a] += h[a];
-    if (g.cells[size_t(a)] > 4096)
-      throw InvalidInput(located(path, cat("has ", g.cells[size_t(a)], " voxels along an axis; give --grid (at most 4096)")));
-  }
-  return g;
 }
 
 /// The distinct values of `labels`, sorted (runs of equal labels cost one lookup).
@@ -103,7 +91,7 @@ Scene label_scene(const io::Volume& v, const InputOptions& o, const std::string&
   params.band = o.band;
   params.k = o.top_k;
   auto field = detail::label_field(pv, params, path);
-  return Scene{scene_grid(field->grid(), path), field};
+  return Scene{detail::even_scene_grid(field->grid(), path), field};
 }
 
 Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
@@ -112,13 +100,7 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
                                      "or one file per phase through a scene's \"grid\" phases"));
   if (size_t(v.components) > max_phases)
     throw InvalidInput(located(path, cat("has ", v.components, " components; at most ", max_phases)));
-  GridSpec grid;
-  for (int a = 0; a < 3; ++a) {
-    if (v.size[size_t(a)] < 2) throw InvalidInput(located(path, "a distance grid needs at least 2 voxels along each axis"));
-    grid.cells[size_t(a)] = int(v.size[size_t(a)] - 1);
-  }
-  grid.domain.min = v.origin;
-  grid.domain.max = v.origin + v.spacing.cwiseProduct(Vec3(grid.cells[0], grid.cells[1], grid.cells[2]));
+  const GridSpec grid = detail::voxel_grid(v.size, v.spacing, v.origin, path, "a distance grid");
   std::vector<std::string> names;
   for (int i = 0; i < v.components; ++i) names.push_back(cat("phase", i));
   auto field = std::make_shared<detail::TopKGridField>(grid, o.top_k, std::move(names), std::vector<int32_t>{});
@@ -126,7 +108,7 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
   for (int64_t n = 0; n < v.voxel_count(); ++n)
     for (size_t i = 0; i < c; ++i) field->offer(n, int32_t(i), v.values[size_t(n) * c + i]);
   field->finish(0.f); // every phase was offered everywhere: nothing to pad
-  return Scene{scene_grid(grid, path), field};
+  return Scene{detail::even_scene_grid(grid, path), field};
 }
 
 } // namespace

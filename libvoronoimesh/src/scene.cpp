@@ -6,6 +6,7 @@
 #include "detail/phase_function.hpp"
 #include "detail/phase_reader.hpp"
 #include "detail/text_file.hpp"
+#include "detail/voxel_grid.hpp"
 
 #include <cmath>
 #include <map>
@@ -74,7 +75,7 @@ std::string phase_name(const JsonObject& phase, size_t i) {
   return name;
 }
 
-std::shared_ptr<const PhaseField> read_phases(const JsonObject& scene, const Box& domain) {
+std::shared_ptr<const PhaseField> read_phases(const JsonObject& scene, const detail::PhaseContext& context) {
   const json& list = scene.at("phases");
   if (!list.is_array()) scene.fail("'phases' must be an array of phase objects, got " + brief(list));
   if (list.size() < 2)
@@ -89,7 +90,7 @@ std::shared_ptr<const PhaseField> read_phases(const JsonObject& scene, const Box
     std::string name = phase_name(phase, i);
     if (auto [it, fresh] = used.emplace(name, i); !fresh)
       phase.fail("name '" + name + "' is already used by phase " + std::to_string(it->second));
-    field->add(std::move(name), detail::read_phase(phase, domain));
+    field->add(std::move(name), detail::read_phase(phase, context));
   }
   return field;
 }
@@ -123,9 +124,18 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   if (scene.has("description")) scene.string("description"); // checks that it is text
 
   Scene out;
-  if (scene.has("domain")) out.grid.domain = read_domain(scene.object("domain"));
+  // Grid phases first: without a "domain" the scene meshes their voxels, on
+  // the voxel grid, as load_input does for a multi-component file.
+  const detail::GridFiles grids(scene);
+  if (scene.has("domain")) {
+    const JsonObject domain = scene.object("domain");
+    out.grid.domain = read_domain(domain);
+    if (!grids.empty()) grids.check_domain(domain, out.grid.domain);
+  } else if (!grids.empty()) {
+    out.grid = detail::even_scene_grid(grids.grid(), source);
+  }
   if (scene.has("grid")) out.grid.cells = read_grid(scene);
-  out.field = read_phases(scene, out.grid.domain);
+  out.field = read_phases(scene, {out.grid.domain, grids});
   return out;
 }
 

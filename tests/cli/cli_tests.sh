@@ -125,5 +125,41 @@ expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud
 expect_error "empty NIfTI" 2 "later\.nii\.gz: not a NIfTI file" -- "$vm" create later.nii.gz -o out.ply
 expect_error "unknown input" 2 "unknown input type" -- "$vm" create labels.vtk -o out.ply
 
+# Scene "grid" phases: one ASCII float NRRD per phase (two spheres on 16^3 voxels), beside the scene in a
+# folder of their own, mesh exactly as the same values in one 3-component file.
+nrrd_distance() { # FILE COMPONENTS [SLICES]: components (0 outside, 1 and 2 spheres) per voxel of 16x16xSLICES
+  local count=$(( $(tr -cd , <<<"$2" | wc -c) + 1 )) slices=${3:-16} sizes
+  sizes="16 16 $slices" && [ "$count" -gt 1 ] && sizes="$count $sizes"
+  { printf 'NRRD0004\ntype: float\ndimension: %s\nsizes: %s\nencoding: ascii\n\n' "$(wc -w <<<"$sizes")" "$sizes"
+    awk -v comps="$2" -v slices="$slices" 'BEGIN { n = split(comps, c, ",")
+      for (k = 0; k < slices; k++) for (j = 0; j < 16; j++) for (i = 0; i < 16; i++) {
+        line = ""
+        for (m = 1; m <= n; m++) {
+          if (c[m] == 0) v = 0
+          else if (c[m] == 1) v = 5 - sqrt((i - 6.2) ^ 2 + (j - 7.4) ^ 2 + (k - 7.7) ^ 2)
+          else v = 4.5 - sqrt((i - 10.1) ^ 2 + (j - 8.3) ^ 2 + (k - 7.1) ^ 2)
+          line = line (m > 1 ? " " : "") v
+        }
+        print line
+      } }'; } >"$1"
+}
+mkdir -p grids
+nrrd_distance grids/p0.nrrd 0 && nrrd_distance grids/p1.nrrd 1 && nrrd_distance grids/p2.nrrd 2
+nrrd_distance all.nrrd 0,1,2
+nrrd_distance grids/short.nrrd 1 8
+printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "p1.nrrd"}, {"kind": "grid", "file": "p2.nrrd"}]}\n' >grids/scene.json
+printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "p1.nrrd", "component": 2}]}\n' >grids/component.json
+printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "gone.nrrd"}]}\n' >grids/missing.json
+printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "short.nrrd"}]}\n' >grids/other.json
+printf '{"domain": {"min": [0, 0, 0], "max": [20, 1, 1]}, "phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "sphere", "center": [5, 5, 5], "radius": 2}]}\n' >grids/domain.json
+if "$vm" create -q grids/scene.json -o gs.ply && "$vm" create -q all.nrrd -o ga.ply && cmp -s gs.ply ga.ply; then pass
+else fail "grid phases do not mesh as the multi-component file"; fi
+if "$vm" stats gs.ply | grep -qE "^phases +3" && "$vm" stats gs.ply | grep -qE "^topology +valid"; then pass; else fail "grid phase mesh is not valid"; fi
+if "$vm" mesh -q grids/scene.json --iterations 3 -o gm.ply && "$vm" stats gm.ply >/dev/null; then pass; else fail "mesh on grid phases"; fi
+expect_error "grid file missing" 3 "grids/missing\.json: phase 1: .*gone\.nrrd: cannot open" -- "$vm" create grids/missing.json -o out.ply
+expect_error "grid component" 2 "grids/component\.json: phase 1: 'component' 2 is out of range" -- "$vm" create grids/component.json -o out.ply
+expect_error "grids differ" 2 "grids/other\.json: phase 1: 'short\.nrrd' is not on the grid of 'p0\.nrrd' \(phase 0\): sizes 16x16x8 vs 16x16x16" -- "$vm" create grids/other.json -o out.ply
+expect_error "domain beyond grids" 2 "grids/domain\.json: domain: reaches beyond the voxels of the grid phases along x" -- "$vm" create grids/domain.json -o out.ply
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,6 +1,7 @@
 #pragma once
 /// @file scene.hpp
-/// Closed-form scenes read from JSON (format: docs/scenes.md).
+/// Scenes read from JSON: phase functions in closed form or from distance-grid
+/// files (format: docs/scenes.md).
 
 #include "voronoimesh/field.hpp"
 #include "voronoimesh/types.hpp"
@@ -17,9 +18,12 @@ struct Scene {
 };
 
 /// Parses a scene from JSON text. `source` names the text in error messages
-/// (usually the file name). Throws InvalidInput with a one-line message naming
-/// `source` and the problem (malformed JSON, unknown phase kind, grid out of
-/// range [1, 4096], fewer than two phases, a bad expression...).
+/// (usually the file name); the files of "grid" phases are found relative to
+/// its folder (the working directory if it has none). Throws InvalidInput with
+/// a one-line message naming `source` and the problem (malformed JSON, unknown
+/// phase kind, grid out of range [1, 4096], fewer than two phases, a bad
+/// expression, grid phase files on different grids...), IoError if a grid
+/// phase's file cannot be read.
 Scene parse_scene(const std::string& json_text, const std::string& source);
 
 /// Reads and parses a scene file. Throws IoError if it cannot be read.

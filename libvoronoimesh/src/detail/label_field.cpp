@@ -5,6 +5,7 @@
 #include "detail/distance_transform.hpp"
 #include "detail/parallel.hpp"
 #include "detail/text.hpp"
+#include "detail/voxel_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -153,15 +154,7 @@ void add_signed_distances(const PhaseVoxels& v, TopKGridField& field, float band
 } // namespace
 
 std::shared_ptr<const TopKGridField> label_field(const PhaseVoxels& v, const LabelFieldParams& p, const std::string& source) {
-  GridSpec grid;
-  for (int a = 0; a < 3; ++a) {
-    if (v.size[size_t(a)] < 2)
-      throw InvalidInput(located(source, cat("has ", v.size[size_t(a)], " voxel(s) along axis ", std::string(1, "xyz"[a]),
-                                             "; a label volume needs at least 2")));
-    grid.cells[size_t(a)] = int(v.size[size_t(a)] - 1);
-  }
-  grid.domain.min = v.origin;
-  grid.domain.max = v.origin + v.spacing.cwiseProduct(Vec3(double(grid.cells[0]), double(grid.cells[1]), double(grid.cells[2])));
+  const GridSpec grid = voxel_grid(v.size, v.spacing, v.origin, source, "a label volume");
   auto field = std::make_shared<TopKGridField>(grid, p.k, v.names, v.labels);
   const float band = float(p.band * v.spacing.minCoeff());
   if (p.signed_distance)

@@ -3,6 +3,7 @@
 /// Builds a phase function from one entry of a scene's "phases" list
 /// (format: docs/scenes.md).
 
+#include "detail/grid_phases.hpp"
 #include "detail/json_object.hpp"
 #include "detail/phase_function.hpp"
 
@@ -10,9 +11,15 @@
 
 namespace vm::detail {
 
-/// The phase function `phase` describes, by its "kind". `domain` sets the
-/// central-difference step of expressions. Throws InvalidInput on any mistake,
-/// including keys the kind does not know ("name" and "kind" are always allowed).
-std::unique_ptr<const PhaseFunction> read_phase(const JsonObject& phase, const Box& domain);
+/// What a phase may need beyond its own keys.
+struct PhaseContext {
+  Box domain;             ///< the scene's domain: sets the central-difference step of expressions
+  const GridFiles& grids; ///< the files of the scene's "grid" phases, already read
+};
+
+/// The phase function `phase` describes, by its "kind". Throws InvalidInput on
+/// any mistake, including keys the kind does not know ("name" and "kind" are
+/// always allowed).
+std::unique_ptr<const PhaseFunction> read_phase(const JsonObject& phase, const PhaseContext& context);
 
 } // namespace vm::detail
