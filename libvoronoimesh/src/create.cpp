@@ -31,6 +31,7 @@ struct SlabResult {
   detail::CutCounters counters;
   uint64_t tets = 0;
   uint64_t dropped = 0;
+  uint64_t box_triangles = 0;
 };
 
 /// The mesh of one extraction, and the exact point behind every vertex.
@@ -41,10 +42,11 @@ struct Extraction {
   std::vector<PhasePair> pairs;
 };
 
-/// Cuts the tetrahedra of one slab. Points are numbered within the slab; a
-/// triangle with two corners on one point is dropped.
+/// Cuts the tetrahedra of one slab, and with `outside` >= 0 their faces on the
+/// box too. Points are numbered within the slab; a triangle with two corners on
+/// one point is dropped.
 void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid, int slab,
-              SlabResult& r) {
+              int32_t outside, SlabResult& r) {
   detail::TetCutter cutter(values, lattice, grid);
   std::unordered_map<LimitKey, int32_t, LimitKeyHash> local;
   std::vector<CutTriangle> cut;
@@ -56,9 +58,25 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
       if (values.label(nodes[c]) != label) return false;
     return true;
   };
-  r.tets = lattice.for_each_tet(slab, one_winner, [&](const std::array<int64_t, 4>& nodes) {
+  // Closing needs every block on the box, even with one winner: its faces there
+  // are that phase's boundary.
+  auto on_box = [&](const int64_t* nodes, int count) {
+    for (int c = 0; c < count; ++c) {
+      const detail::GridPoint p = lattice.grid_point(nodes[c]);
+      for (int a = 0; a < 3; ++a)
+        if (p[size_t(a)] == 0 || p[size_t(a)] == grid.cells[size_t(a)]) return true;
+    }
+    return false;
+  };
+  auto skip = [&](const int64_t* nodes, int count) {
+    return one_winner(nodes, count) && !(outside >= 0 && on_box(nodes, count));
+  };
+  r.tets = lattice.for_each_tet(slab, skip, [&](const std::array<int64_t, 4>& nodes) {
     cut.clear();
     cutter.cut(nodes, cut, r.counters);
+    const size_t interior = cut.size();
+    if (outside >= 0) cutter.cut_box_faces(nodes, outside, cut, r.counters);
+    r.box_triangles += cut.size() - interior;
     for (const CutTriangle& t : cut) {
       std::array<int32_t, 3> tri;
       for (int c = 0; c < 3; ++c) {
@@ -84,9 +102,10 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
 /// of the thread count, and are merged in order: the result is the same for any
 /// number of threads.
 Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
-                   CreateStats& stats) {
+                   int32_t outside, CreateStats& stats) {
   std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
-  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) { cut_slab(lattice, values, grid, s, slabs[size_t(s)]); });
+  tbb::parallel_for(0, lattice.num_slabs(),
+                    [&](int s) { cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]); });
 
   Extraction e;
   std::unordered_map<LimitKey, int32_t, LimitKeyHash> ids;
@@ -103,6 +122,7 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
     stats.degenerate_cuts += s.counters.degenerate;
     stats.collapsed_polygons += s.counters.collapsed;
     stats.dropped_triangles += s.dropped;
+    stats.box_triangles += s.box_triangles;
     global.resize(s.keys.size());
     for (size_t k = 0; k < s.keys.size(); ++k) {
       auto [it, inserted] = ids.try_emplace(s.keys[k], int32_t(e.points.size()));
@@ -230,7 +250,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   for (int round = 0;; ++round) {
     detail::NodeValues values(field, lattice, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
     CreateStats round_stats;
-    e = extract(lattice, values, grid, round_stats);
+    e = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, round_stats);
     resolve_coincident_triangles(e, round_stats);
     round_stats.snapped_nodes = values.snapped_nodes();
     round_stats.unsnapped_nodes = stats.unsnapped_nodes;

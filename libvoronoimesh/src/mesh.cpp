@@ -6,6 +6,8 @@
 
 #include "voronoimesh/mesh.hpp"
 
+#include "voronoimesh/closed_domain.hpp"
+
 #include "detail/parallel.hpp"
 #include "detail/text.hpp"
 #include "detail/topology.hpp"
@@ -216,6 +218,15 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
     pos_[n] = positions[i];
     for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
   });
+}
+
+int32_t InterfaceMesh::outside_phase() const {
+  return !names_.empty() && names_.back() == kOutsidePhaseName ? int32_t(names_.size() - 1) : -1;
+}
+
+bool InterfaceMesh::has_phase(int32_t n, int32_t p) const {
+  const PhaseSet& s = phases_[size_t(n)];
+  return std::find(s.begin(), s.end(), int16_t(p)) != s.end();
 }
 
 NodeMesh InterfaceMesh::to_node_mesh() const {

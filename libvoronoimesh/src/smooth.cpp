@@ -27,6 +27,12 @@ void constrain_to_box(Vec3& d, uint8_t box_faces) {
 }
 
 double rms_edge_length(const InterfaceMesh& mesh) {
+  // The box faces of a closed mesh are not interfaces: their triangles are the
+  // lattice's faces, about twice the interface edges, and would set l0 too long.
+  const int32_t outside = mesh.outside_phase();
+  auto on_box_surface = [&](int32_t v, int32_t w) {
+    return outside >= 0 && mesh.has_phase(v, outside) && mesh.has_phase(w, outside);
+  };
   // Partial sums over fixed chunks of nodes, added in order: deterministic.
   const size_t n = mesh.num_nodes(), chunk = 4096, chunks = (n + chunk - 1) / chunk;
   std::vector<double> sum(chunks, 0.0);
@@ -35,7 +41,7 @@ double rms_edge_length(const InterfaceMesh& mesh) {
   detail::parallel_for_each_index(chunks, [&](size_t c) {
     for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v)
       for (int32_t w : mesh.neighbours(int32_t(v)))
-        if (size_t(w) > v) {
+        if (size_t(w) > v && !on_box_surface(int32_t(v), w)) {
           sum[c] += (pos[v] - pos[size_t(w)]).squaredNorm();
           ++count[c];
         }

@@ -43,6 +43,13 @@ for scene in "$examples"/*.json; do
 done
 if "$vm" create -q --grid 16 --ascii -o a.ply && head -2 a.ply | grep -q "format ascii"; then pass; else fail "--ascii"; fi
 
+# Closed domains: an extra phase 'outside', a valid mesh that smooth can improve again.
+if "$vm" mesh -q "$examples/voronoi7.json" --grid 24 --close --iterations 5 -o closed.ply &&
+  "$vm" stats closed.ply >closed.txt && grep -qE "^phases +8" closed.txt && grep -q "topology *valid" closed.txt &&
+  grep -q "comment phase 7 outside" closed.ply; then pass; else fail "mesh --close: $(cat closed.txt)"; fi
+if "$vm" smooth -q closed.ply --field "$examples/voronoi7.json" --iterations 3 -o closed2.ply &&
+  "$vm" stats closed2.ply | grep -q "topology *valid"; then pass; else fail "smooth of a closed mesh"; fi
+
 # Identical files for any thread count.
 "$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 1 -o t1.ply
 "$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 2 -o t2.ply

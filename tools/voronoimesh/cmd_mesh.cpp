@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/io/ply.hpp"
 
 #include <memory>
@@ -34,7 +35,9 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       Progress progress(!o->common.quiet);
       vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
-      improve_stage(mesh, scene.field.get(), o->improve, o->common, progress);
+      // A closed mesh has one more phase, outside the box; the passes need its function too.
+      const auto phases = o->create.close ? vm::with_outside_phase(scene.field, scene.grid.domain) : scene.field;
+      improve_stage(mesh, phases.get(), o->improve, o->common, progress);
       vm::io::write_ply(mesh, o->output, o->common.ascii);
       return kOk;
     });

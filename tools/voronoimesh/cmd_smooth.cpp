@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include "voronoimesh/closed_domain.hpp"
+
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/ply.hpp"
 
@@ -57,6 +59,8 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
       std::optional<vm::Scene> scene;
       if (!s->field.empty()) {
         scene = read_input(s->field, s->input, s->top_k, progress);
+        if (vm::is_closed_mesh(mesh, scene->field->num_phases()))
+          scene->field = vm::with_outside_phase(scene->field, scene->grid.domain);
         check_field_matches(mesh, s->mesh, *scene, s->field);
       }
       improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, s->common, progress);

@@ -62,6 +62,7 @@ struct CreateOptions {
   std::string lattice = "bcc";
   int top_k = 4;
   bool skip_validation = false;
+  bool close = false; ///< box faces become surfaces against an "outside" phase
 };
 void add_create_options(CLI::App* cmd, CreateOptions& o);
 /// Samples `scene` and creates its initial mesh; prints a summary unless quiet.

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 
+#include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/history.hpp"
 #include "voronoimesh/mesh.hpp"
@@ -83,6 +84,9 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
   cmd->add_option("--top-k", o.top_k, "Phases kept per grid point (memory does not grow with the phase count)")
       ->capture_default_str();
   cmd->add_flag("--no-validate", o.skip_validation, "Skip the topological check of the result");
+  cmd->add_flag("--close", o.close,
+                "Close the domain: the box faces become surfaces between each phase and an extra phase 'outside', "
+                "so every phase is a closed, watertight volume (for volume meshing)");
 }
 
 vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonOptions& common, Progress& progress) {
@@ -99,6 +103,7 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
   vm::CreateParams params;
   params.snap = o.snap;
   params.lattice = o.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
+  params.close = o.close;
   const vm::GridSpec grid = vm::grid_for_lattice(scene.grid, params.lattice);
   refuse_if_too_big(vm::estimate_create_memory(grid, o.top_k, params.lattice), grid);
 
@@ -110,11 +115,12 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
   progress.stage("creating the mesh...");
   vm::NodeMesh mesh;
   vm::CreateStats cs = vm::create_initial_mesh(field, params, mesh);
-  for (int p = 0; p < scene.field->num_phases(); ++p) {
-    mesh.phase_names.push_back(scene.field->phase_name(p));
-    if (scene.field->phase_label(p) != p) mesh.phase_labels.resize(size_t(scene.field->num_phases()));
+  const auto phases = o.close ? vm::with_outside_phase(scene.field, grid.domain) : scene.field;
+  for (int p = 0; p < phases->num_phases(); ++p) {
+    mesh.phase_names.push_back(phases->phase_name(p));
+    if (phases->phase_label(p) != p) mesh.phase_labels.resize(size_t(phases->num_phases()));
   }
-  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = scene.field->phase_label(int(p));
+  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = phases->phase_label(int(p));
   progress.done();
   if (!o.skip_validation) require_valid(mesh, "the created mesh");
   if (!common.quiet)

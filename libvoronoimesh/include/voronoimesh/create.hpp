@@ -21,6 +21,11 @@ struct CreateParams {
   /// than eps*h at a lattice node are made equal (Algorithm 2, line 1). The paper
   /// found 0.2 h good for distance-like functions (sect. 4.1). 0 turns it off.
   double snap = 0.2;
+  /// Close the domain: the box faces become surfaces between each phase and an
+  /// extra phase "outside" (id = the field's phase count), so that every phase is
+  /// a closed volume (see with_outside_phase() in closed_domain.hpp for improving
+  /// such a mesh). Not in the paper.
+  bool close = false;
 };
 
 /// What create did, for benchmarks and logs.
@@ -32,6 +37,7 @@ struct CreateStats {
   uint64_t dropped_triangles = 0;  ///< triangles with two corners at one point
   uint64_t coincident_pairs = 0;   ///< couples of triangles on the same three points, resolved
   uint64_t degenerate_cuts = 0;    ///< ties the perturbation could not order (should stay 0)
+  uint64_t box_triangles = 0;      ///< triangles on the box faces (with close)
   uint64_t snapped_nodes = 0;      ///< lattice nodes whose values snapping changed
   uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
   int repair_rounds = 0;           ///< extra extractions that undoing snapping needed

@@ -88,6 +88,10 @@ public:
   const std::vector<PhaseSet>& phases() const { return phases_; }
   const Box& domain() const { return domain_; }
   const std::vector<std::string>& phase_names() const { return names_; }
+  /// The phase outside the box of a closed mesh (closed_domain.hpp), or -1.
+  int32_t outside_phase() const;
+  /// True when phase p is among node n's phases.
+  bool has_phase(int32_t n, int32_t p) const;
 
 private:
   void build_adjacency();

@@ -15,7 +15,8 @@ struct SmoothParams {
   double rest_factor = 1.2;
 };
 
-/// RMS edge length over all node-level edges (eq. 3 without the factor).
+/// RMS edge length over all node-level edges (eq. 3 without the factor), except
+/// the edges on the box faces of a closed mesh (closed_domain.hpp).
 /// Summed in a fixed order, so it is the same for any thread count.
 double rms_edge_length(const InterfaceMesh& mesh);
 

@@ -279,7 +279,10 @@ bool TetCutter::chop(Polygon& poly, int a, int b, int k, CutCounters& counters) 
         for (int q = 0; q < w.size; ++q)
           if (u.phases[p] == w.phases[q]) x.phases[x.size++] = u.phases[p];
       const int dim = std::popcount(x.mask) - 1;
-      if (x.size != dim || dim < 2) { // a tie the perturbation did not separate
+      // Tied phases at a vertex are one more than its element's dimension; on
+      // the edge both ends share, one fewer (on a box face's boundary, the
+      // face's own phase alone along a lattice edge).
+      if (x.size != dim || dim < 1) { // a tie the perturbation did not separate
         ++counters.degenerate;
         return false;
       }
@@ -292,7 +295,7 @@ bool TetCutter::chop(Polygon& poly, int a, int b, int k, CutCounters& counters) 
   return poly.size() >= 3;
 }
 
-void TetCutter::emit(const Polygon& poly, int a, int b, std::vector<CutTriangle>& out, CutCounters& counters) {
+void TetCutter::emit(const Polygon& poly, const PhasePair& pair, std::vector<CutTriangle>& out, CutCounters& counters) {
   // Distinct limit points in cyclic order.
   std::vector<LimitKey>& keys = keys_;
   std::vector<Vec3>& pos = pos_;
@@ -326,7 +329,6 @@ void TetCutter::emit(const Polygon& poly, int a, int b, std::vector<CutTriangle>
       apex = s;
     }
   }
-  const PhasePair pair{ids_[a], ids_[b]};
   for (int t = 1; t + 1 < m; ++t)
     out.push_back({{keys[apex], keys[(apex + t) % m], keys[(apex + t + 1) % m]}, pair});
 }
@@ -347,9 +349,58 @@ bool TetCutter::cut(const std::array<int64_t, 4>& nodes, std::vector<CutTriangle
       bool alive = true;
       for (int k = 0; k < np && alive; ++k)
         if (k != a && k != b) alive = chop(poly, a, b, k, counters);
-      if (alive) emit(poly, a, b, out, counters);
+      if (alive) emit(poly, {ids_[a], ids_[b]}, out, counters);
     }
   return true;
+}
+
+void TetCutter::cut_box_faces(const std::array<int64_t, 4>& nodes, int32_t outside, std::vector<CutTriangle>& out,
+                              CutCounters& counters) {
+  std::array<GridPoint, 4> g;
+  for (int c = 0; c < 4; ++c) g[size_t(c)] = lattice_.grid_point(nodes[size_t(c)]);
+  bool collected = false;
+  for (int opposite = 0; opposite < 4; ++opposite) {
+    std::array<int, 3> face;
+    for (int c = 0, n = 0; c < 4; ++c)
+      if (c != opposite) face[size_t(n++)] = c;
+    // The box plane holding all three corners, if any, and its outward side.
+    int axis = -1, side = 0;
+    for (int a = 0; a < 3 && axis < 0; ++a)
+      for (int s : {0, 1}) {
+        const int32_t plane = s ? grid_.cells[size_t(a)] : 0;
+        if (g[size_t(face[0])][size_t(a)] == plane && g[size_t(face[1])][size_t(a)] == plane &&
+            g[size_t(face[2])][size_t(a)] == plane) {
+          axis = a;
+          side = s ? 1 : -1;
+        }
+      }
+    if (axis < 0) continue;
+    if (!collected) {
+      nodes_ = nodes;
+      collect_phases(nodes);
+      collected = true;
+    }
+    // Corner order whose right-hand normal points out of the box.
+    auto at = [&](int c) { return Vec3(g[size_t(c)][0], g[size_t(c)][1], g[size_t(c)][2]); };
+    const Vec3 normal = (at(face[1]) - at(face[0])).cross(at(face[2]) - at(face[0]));
+    if (normal[axis] * side < 0) std::swap(face[1], face[2]);
+    const int np = int(ids_.size());
+    for (int a = 0; a < np; ++a) {
+      Polygon& poly = poly_;
+      poly.clear();
+      for (int c : face) {
+        PolyVertex v;
+        v.mask = uint8_t(1 << c);
+        v.size = 1;
+        v.phases = {uint8_t(a), 0, 0, 0};
+        poly.push_back(v);
+      }
+      bool alive = true;
+      for (int k = 0; k < np && alive; ++k)
+        if (k != a) alive = chop(poly, a, a, k, counters);
+      if (alive) emit(poly, {ids_[a], outside}, out, counters);
+    }
+  }
 }
 
 } // namespace vm::detail

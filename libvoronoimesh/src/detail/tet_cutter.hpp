@@ -41,6 +41,15 @@ public:
   /// nodes.
   bool cut(const std::array<int64_t, 4>& nodes, std::vector<CutTriangle>& out, CutCounters& counters);
 
+  /// Appends, for every face of the tetrahedron on the domain box, the region of
+  /// each phase on that face (the face chopped by phi'_a >= phi'_k for every other
+  /// k), triangulated, as triangles of pair (a, outside) whose normals point out
+  /// of the box. Corners are limit points like those of cut(), so they are the
+  /// very vertices where the interfaces meet the box. `outside` must exceed every
+  /// phase id.
+  void cut_box_faces(const std::array<int64_t, 4>& nodes, int32_t outside, std::vector<CutTriangle>& out,
+                     CutCounters& counters);
+
   /// Coordinates of a limit point.
   Vec3 position(const LimitKey& key) const;
 
@@ -60,7 +69,7 @@ private:
   LimitKey edge_limit_key(const PolyVertex& v, int ca, int cb) const;
   void initial_polygon(int a, int b, Polygon& poly) const;
   bool chop(Polygon& poly, int a, int b, int k, CutCounters& counters);
-  void emit(const Polygon& poly, int a, int b, std::vector<CutTriangle>& out, CutCounters& counters);
+  void emit(const Polygon& poly, const PhasePair& pair, std::vector<CutTriangle>& out, CutCounters& counters);
 
   const NodeValues& values_;
   const TetLattice& lattice_;

@@ -1,0 +1,151 @@
+// Tests of closed domains (CreateParams::close, closed_domain.hpp): the box faces
+// become surfaces against an "outside" phase, every phase is a closed volume,
+// and improvement keeps box nodes on their faces, edges and corners.
+
+#include "voronoimesh/closed_domain.hpp"
+#include "voronoimesh/create.hpp"
+#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/scene.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+namespace {
+
+using namespace vm;
+
+Scene example(const std::string& name, int grid) {
+  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
+  s.grid.cells = {grid, grid, grid};
+  return s;
+}
+
+NodeMesh closed_mesh(const Scene& scene) {
+  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  CreateParams params;
+  params.close = true;
+  NodeMesh m;
+  create_initial_mesh(field, params, m);
+  const auto phases = with_outside_phase(scene.field, scene.grid.domain);
+  for (int p = 0; p < phases->num_phases(); ++p) m.phase_names.push_back(phases->phase_name(p));
+  return m;
+}
+
+/// Volume enclosed by each phase (divergence theorem over its triangles, with the
+/// normal of pair (a, b) pointing out of a and into b).
+std::map<int32_t, double> phase_volumes(const NodeMesh& m) {
+  std::map<int32_t, double> v;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const auto& tri = m.triangles[t];
+    const double six = m.points[size_t(tri[0])].dot(m.points[size_t(tri[1])].cross(m.points[size_t(tri[2])]));
+    v[m.pairs[t][0]] += six / 6;
+    v[m.pairs[t][1]] -= six / 6;
+  }
+  return v;
+}
+
+/// Distance of p from the surface of `box`.
+double off_box(const Box& box, const Vec3& p) {
+  double d = INFINITY;
+  for (int a = 0; a < 3; ++a) d = std::min({d, std::abs(p[a] - box.min[a]), std::abs(p[a] - box.max[a])});
+  return d;
+}
+
+void expect_closed_partition(const NodeMesh& m, int field_phases) {
+  ASSERT_TRUE(validate(m).ok()) << validate(m).summary();
+  // Every edge is shared by at least two triangles: nothing is open, not even on the box.
+  std::map<std::pair<int32_t, int32_t>, int> edges;
+  for (const auto& t : m.triangles)
+    for (int c = 0; c < 3; ++c) ++edges[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
+  size_t open = 0;
+  for (const auto& [e, n] : edges) open += n < 2;
+  EXPECT_EQ(open, 0u);
+  // The phases fill the box: their volumes are positive and add up to it, and the
+  // outside phase encloses minus the box.
+  const Vec3 size = m.domain.max - m.domain.min;
+  const double box = size.prod();
+  const auto volumes = phase_volumes(m);
+  double inside = 0;
+  for (const auto& [phase, volume] : volumes)
+    if (phase != field_phases) {
+      EXPECT_GT(volume, 0) << "phase " << phase;
+      inside += volume;
+    }
+  EXPECT_NEAR(inside, box, 1e-9 * box);
+  EXPECT_NEAR(volumes.at(field_phases), -box, 1e-9 * box);
+  // Outside triangles lie on the box.
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    if (m.pairs[t][1] == field_phases)
+      for (int32_t v : m.triangles[t]) EXPECT_LT(off_box(m.domain, m.points[size_t(v)]), 1e-12);
+}
+
+TEST(Close, created_phases_are_closed_volumes_that_fill_the_box) {
+  for (const char* name : {"four_spheres.json", "voronoi7.json", "split_sphere.json"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = example(name, 24);
+    const NodeMesh m = closed_mesh(scene);
+    expect_closed_partition(m, scene.field->num_phases());
+    EXPECT_TRUE(find_self_intersections(m).ok());
+  }
+}
+
+TEST(Close, improvement_keeps_box_nodes_on_their_faces_edges_and_corners) {
+  const Scene scene = example("voronoi7.json", 24);
+  const NodeMesh created = closed_mesh(scene);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  ASSERT_EQ(mesh.outside_phase(), scene.field->num_phases());
+  const std::vector<uint8_t> box_faces = mesh.box_faces();
+  const std::vector<Vec3> before = mesh.positions();
+  const auto field = with_outside_phase(scene.field, scene.grid.domain);
+  RunOptions run;
+  run.iterations = 20;
+  // Without collapses node ids survive, so every node can be followed.
+  Pipeline::parse("smooth,project,clamp,flip:collapse_below=0", builtin_registry()).run(mesh, field.get(), run);
+  const NodeMesh m = mesh.to_node_mesh();
+  expect_closed_partition(m, scene.field->num_phases());
+  EXPECT_TRUE(find_self_intersections(m).ok());
+  ASSERT_EQ(m.num_nodes(), created.num_nodes());
+  size_t moved = 0;
+  for (size_t v = 0; v < m.num_nodes(); ++v) moved += m.points[v] != before[v];
+  EXPECT_GT(moved, m.num_nodes() / 2);
+  for (size_t v = 0; v < m.num_nodes(); ++v)
+      for (int a = 0; a < 3; ++a)
+        if (box_faces[v] >> (2 * a) & 3) EXPECT_EQ(m.points[v][a], before[v][a]) << "node " << v << " axis " << a;
+  // The eight corners are still nodes.
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner(c & 1 ? m.domain.max.x() : m.domain.min.x(), c & 2 ? m.domain.max.y() : m.domain.min.y(),
+                      c & 4 ? m.domain.max.z() : m.domain.min.z());
+    bool found = false;
+    for (const Vec3& p : m.points) found = found || p == corner;
+    EXPECT_TRUE(found) << "corner " << c;
+  }
+}
+
+TEST(Close, the_outside_phase_wins_exactly_outside_the_box) {
+  const Scene scene = example("four_spheres.json", 16);
+  const auto f = with_outside_phase(scene.field, scene.grid.domain);
+  const int out = scene.field->num_phases();
+  EXPECT_EQ(f->num_phases(), out + 1);
+  EXPECT_EQ(f->phase_name(out), kOutsidePhaseName);
+  std::vector<double> v(size_t(out + 1));
+  for (const Vec3& x : {Vec3(0.5, 0.5, 0.5), Vec3(0.01, 0.3, 0.7), Vec3(-0.1, 0.5, 0.5), Vec3(1.2, 1.2, -0.3)}) {
+    f->values(x, v);
+    const bool outside = ((x.array() < 0) || (x.array() > 1)).any();
+    const double best_inner = *std::max_element(v.begin(), v.end() - 1);
+    EXPECT_EQ(v.back() > best_inner, outside) << x.transpose();
+  }
+  // On a face the outside phase ties the winner, and its gradient there differs
+  // from the winner's by the outward normal.
+  const Vec3 on_face(1.0, 0.4, 0.6);
+  f->values(on_face, v);
+  EXPECT_DOUBLE_EQ(v.back(), *std::max_element(v.begin(), v.end() - 1));
+  const int winner = int(std::max_element(v.begin(), v.end() - 1) - v.begin());
+  EXPECT_TRUE((f->gradient(out, on_face) - f->gradient(winner, on_face)).isApprox(Vec3(1, 0, 0)));
+}
+
+} // namespace
