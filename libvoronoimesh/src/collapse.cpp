@@ -22,6 +22,7 @@ bool merged(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out) 
   out.points = m.points;
   out.domain = m.domain;
   out.phase_names = m.phase_names;
+  out.phase_labels = m.phase_labels;
   out.triangles.clear();
   out.pairs.clear();
   for (size_t t = 0; t < m.num_triangles(); ++t) {

@@ -71,6 +71,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   im.pos_ = m.points;
   im.domain_ = m.domain;
   im.names_ = m.phase_names;
+  im.labels_ = m.phase_labels;
 
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
   const detail::EdgeTable et = detail::edge_table(tris, nt);
@@ -214,6 +215,7 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
   m.points = pos_;
   m.domain = domain_;
   m.phase_names = names_;
+  m.phase_labels = labels_;
   m.triangles.reserve(mesh_.n_faces());
   m.pairs.reserve(mesh_.n_faces());
   for (auto fh : mesh_.faces()) {
