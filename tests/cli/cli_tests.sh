@@ -95,5 +95,24 @@ expect_error "unknown parameter" 2 "no parameter 'rest'" -- "$vm" mesh --grid 8 
 expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8 --pipeline smooth:rest_factor=9 -o out.ply
 expect_error "bad history format" 2 "history" -- "$vm" mesh --grid 8 --history h.txt -o out.ply
 
+# Output formats: every extension, chosen by the file name, checked before any work.
+for ext in ply obj msh vtu vtp mesh; do
+  if "$vm" create -q --grid 12 -o "fmt.$ext" && [ -s "fmt.$ext" ]; then pass; else fail "create -o fmt.$ext"; fi
+done
+if "$vm" create -q --grid 12 -o surf.stl --per-phase phases && [ ! -e surf.stl ] && [ "$(ls surf_*.stl | wc -l)" -eq 10 ] &&
+  [ -s surf_0-outside_1-sphere1.stl ] && [ "$(ls phases/phase_*.stl | wc -l)" -eq 5 ]; then pass
+else fail "-o surf.stl: one file per phase pair, --per-phase: one per phase"; fi
+if "$vm" create --grid 12 -o surf2.stl 2>&1 | grep -q "10 STL files, one per phase pair"; then pass; else fail "STL files reported"; fi
+if "$vm" create --help | grep -q "\.vtp" && "$vm" create --help | grep -q "per-phase"; then pass; else fail "--help lists the formats"; fi
+if "$vm" flip -q demo.ply -o fl.msh && grep -q '^\$PhysicalNames' fl.msh; then pass; else fail "flip -o .msh"; fi
+: >blocker
+expect_error "unknown extension" 2 "out\.xyz: unknown output format '\.xyz' \(known: \.ply, \.obj, \.stl, \.msh, \.vtu, \.vtp, \.mesh\)" \
+  -- "$vm" create --grid 4096 -o out.xyz
+expect_error "no extension" 2 "out: no extension" -- "$vm" mesh --grid 4096 -o out
+expect_error "--per-phase in a missing directory" 3 "/nonexistent/dir: cannot write" \
+  -- "$vm" mesh --grid 4096 -o out.ply --per-phase /nonexistent/dir
+expect_error "--per-phase on a file" 3 "blocker: --per-phase: not a directory" -- "$vm" create --grid 4096 -o out.ply --per-phase blocker
+expect_error "smooth to an unknown format" 2 "out\.off: unknown output format" -- "$vm" smooth demo.ply -o out.off
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
