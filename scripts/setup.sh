@@ -6,6 +6,8 @@ packages=(
   cmake g++ make pkg-config
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
+  # independent readers the tests check every output format with
+  python3-meshio python3-vtk9 gmsh tetgen
 )
 missing=()
 for p in "${packages[@]}"; do
