@@ -11,6 +11,7 @@ Exits 77 (ctest's SKIP_RETURN_CODE) when the reader is not installed, 1 on any f
 The mesh is the four-sphere demo at grid 16 (5 phases, 10 surfaces, 10 triple curves,
 5 quadruple points), relabelled to labels 5, 15, 25, 35, 45 so the tests also see that
 files show labels, not phase ids. The reference is the ASCII PLY written by the same run.
+A second mesh, the Voronoi cells of 4 seeds, has triple curves that end on the domain box.
 """
 import collections
 import os
@@ -107,8 +108,15 @@ def signed_volume(triangles):
     return v
 
 
+CELLS = """{"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 16, "phases": [
+  {"name": "a", "kind": "seeds", "points": [[0.3, 0.3, 0.3]]}, {"name": "b", "kind": "seeds", "points": [[0.7, 0.3, 0.35]]},
+  {"name": "c", "kind": "seeds", "points": [[0.5, 0.7, 0.4]]}, {"name": "d", "kind": "seeds", "points": [[0.45, 0.5, 0.75]]}]}
+"""
+
+
 def prepare(vm, work):
-    """Writes the relabelled reference and every format from it; returns the Reference."""
+    """Writes the relabelled reference and every format from it, and the cells as PLY and MSH;
+    returns the References of the spheres and of the cells."""
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     run(vm, "create", "-q", "--grid", "16", "--ascii", "-o", "demo.ply", cwd=work)
@@ -133,7 +141,13 @@ def prepare(vm, work):
     ref = Reference(os.path.join(work, "out.ply"))
     check(sorted({p for pr in ref.pairs for p in pr}) == sorted(LABEL.values()), "the PLY shows the labels")
     check(len(ref.points) > 400 and ref.quadruple_points == 5, "reference mesh: 5 quadruple points")
-    return ref
+    with open(os.path.join(work, "cells.json"), "w") as f:
+        f.write(CELLS)
+    for out in ["cells.ply", "cells.msh"]:
+        run(vm, "create", "-q", "--ascii", "cells.json", "-o", out, cwd=work)
+    cells = Reference(os.path.join(work, "cells.ply"))
+    check(cells.quadruple_points == 1 and cells.junction_edges > 10, "cells: 4 triple curves meeting inside the box")
+    return ref, cells
 
 
 def triangles_of(mesh):
@@ -153,7 +167,7 @@ def compare_pairs(name, mesh, ref, pair_of_cell):
     check(got == want, f"{name}: triangles, orientation or phase pairs differ from the reference")
 
 
-def meshio_checks(work, ref):
+def meshio_checks(work, ref, cells):
     import meshio
     path = lambda f: os.path.join(work, f)
     # MSH: physical surface names -> pairs; junction curves and points.
@@ -168,6 +182,11 @@ def meshio_checks(work, ref):
     check(len(points) == 5 and all(len(labels_of(names[physical[b][0]])) == 4 for b in points),
           "msh: 5 physical points of 4 phases")
     check(f"{token(15)}_{token(25)}" in m.field_data, "msh: a physical surface named after labels and names")
+    # Curves ending on the box: their ends are model points without elements or physical groups.
+    m = meshio.read(path("cells.msh"))
+    names = {tag: name for name, (tag, dim) in m.field_data.items()}
+    compare_pairs("cells.msh", m, cells, lambda b, i: labels_of(names[m.cell_data["gmsh:physical"][b][i]]))
+    check(sum(len(c.data) for c in m.cells if c.type == "vertex") == 1, "cells.msh: one point element")
     # VTU: cell and point data.
     m = meshio.read(path("out.vtu"))
     compare_pairs("vtu", m, ref, lambda b, i: (int(m.cell_data["phase0"][b][i]), int(m.cell_data["phase1"][b][i])))
@@ -210,7 +229,7 @@ def meshio_checks(work, ref):
     compare_pairs("ply", m, ref, lambda b, i: (int(m.cell_data["phase0"][b][i]), int(m.cell_data["phase1"][b][i])))
 
 
-def vtk_checks(work, ref):
+def vtk_checks(work, ref, cells):
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
 
@@ -246,11 +265,12 @@ def vtk_checks(work, ref):
         check(list(order) == ref.order, f"{ext}: junction_order differs")
 
 
-def gmsh_checks(work, ref):
+def gmsh_checks(work, ref, cells):
     gmsh = shutil.which("gmsh")
-    log = run(gmsh, "-check", "out.msh", cwd=work)
-    check(not re.search(r"^(Warning|Error)", log, re.M), f"gmsh -check: warnings or errors:\n{log}")
-    check(f"{len(ref.points)} nodes" in log, f"gmsh read a different node count:\n{log}")
+    for name, mesh in [("out.msh", ref), ("cells.msh", cells)]:
+        log = run(gmsh, "-check", name, cwd=work)
+        check(not re.search(r"^(Warning|Error)", log, re.M), f"gmsh -check {name}: warnings or errors:\n{log}")
+        check(f"{len(mesh.points)} nodes" in log, f"gmsh read a different node count from {name}:\n{log}")
     # Volumes bounded by the physical surfaces: Gmsh tetrahedralises each sphere
     # phase conformally with its neighbours, which needs watertight shared surfaces.
     with open(os.path.join(work, "out.msh")) as f:
@@ -274,7 +294,7 @@ def gmsh_checks(work, ref):
     check(sum(tets) > 1000, f"gmsh made {sum(tets)} tetrahedra in the four spheres:\n{log}")
 
 
-def tetgen_checks(work, ref):
+def tetgen_checks(work, ref, cells):
     tetgen = shutil.which("tetgen")
     phases = os.path.join(work, "phases_ascii")
     closed = []
@@ -324,8 +344,7 @@ def main():
     if why:
         print("SKIP:", why)
         return SKIP
-    ref = prepare(os.path.abspath(vm), work)
-    checks[reader](work, ref)
+    checks[reader](work, *prepare(os.path.abspath(vm), work))
     print(f"{reader}: {len(failures)} failures")
     return 1 if failures else 0
 

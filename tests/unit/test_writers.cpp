@@ -329,6 +329,34 @@ TEST_F(Writers, msh_writes_each_node_once_with_physical_groups) {
   EXPECT_TRUE(triangles == want) << "every triangle once, oriented as in the mesh";
 }
 
+TEST_F(Writers, msh_curve_ends_on_the_box_are_model_points_without_elements) {
+  const NodeMesh m = test::box_t_junction(4);
+  const std::string text = written(m, "m.msh");
+  // Entities: 2 points (no physical group), 1 curve bounded by them, 3 surfaces.
+  std::istringstream in(text.substr(text.find("$Entities\n") + 10));
+  size_t points, curves, surfaces, volumes;
+  in >> points >> curves >> surfaces >> volumes;
+  EXPECT_EQ(points, 2u);
+  EXPECT_EQ(curves, 1u);
+  EXPECT_EQ(surfaces, 3u);
+  for (size_t i = 0; i < points; ++i) {
+    double tag, x, y, z, physicals;
+    in >> tag >> x >> y >> z >> physicals;
+    EXPECT_EQ(physicals, 0) << "a box end is no quadruple point";
+    EXPECT_EQ(z, double(i)) << "at z = 0 and z = 1";
+  }
+  double curve[7];
+  for (double& v : curve) in >> v;
+  size_t physicals, physical, bounding;
+  int from, to;
+  in >> physicals >> physical >> bounding >> from >> to;
+  EXPECT_EQ(bounding, 2u);
+  EXPECT_EQ(std::set<int>({std::abs(from), std::abs(to)}), (std::set<int>{1, 2}));
+  EXPECT_EQ(from * to, -2) << "one end positive, the other negative";
+  EXPECT_NE(text.find("$Elements\n4 "), std::string::npos) << "element blocks: the curve and 3 surfaces, no points";
+  EXPECT_NE(text.find("$Nodes\n6 "), std::string::npos) << "node blocks: 2 points, the curve, 3 surfaces";
+}
+
 TEST_F(Writers, vtu_and_vtp_hold_phase_labels_and_junction_order) {
   const NodeMesh m = relabelled(test::four_spheres());
   const Junctions j = find_junctions(m);

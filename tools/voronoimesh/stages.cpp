@@ -60,14 +60,16 @@ void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh) {
 void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase) {
   cmd->add_option("-o,--output", o.path,
                   "Output mesh; the extension picks the format: .ply, .obj (a group per phase pair), .stl (one "
-                  "binary STL per phase pair, named <stem>_<pair>.stl, e.g. out_0-outside_1-sphere1.stl), .msh "
-                  "(Gmsh 4.1 with physical surfaces, curves and points), .vtu or .vtp (ParaView), .mesh (MEDIT, for "
-                  "MMG and TetGen)")
-      ->required();
+                  "STL per phase pair, named <stem>_<pair>.stl, e.g. out_0-outside_1-sphere1.stl), .msh (Gmsh 4.1 "
+                  "with physical surfaces, curves and points), .vtu or .vtp (ParaView), .mesh (MEDIT, for MMG and "
+                  "TetGen)")
+      ->required()
+      ->type_name("FILE");
   if (per_phase)
     cmd->add_option("--per-phase", o.per_phase,
                     "Also write one STL per phase into DIR (made if missing), named phase_<label>[-<name>].stl: the "
-                    "phase's boundary with outward normals, a closed surface for a phase inside the domain");
+                    "phase's boundary with outward normals, a closed surface for a phase inside the domain")
+        ->type_name("DIR");
 }
 
 void check_outputs(const OutputOptions& o) {

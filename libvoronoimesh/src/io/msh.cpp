@@ -1,7 +1,8 @@
 /// @file io/msh.cpp
 /// Gmsh MSH 4.1 (ASCII). The model Gmsh builds from the file:
-///  - a point entity at each quadruple point and at each end of an open triple
-///    curve (on the domain box), holding that node and a point element;
+///  - a point entity at each quadruple point (holding its node and a point
+///    element) and at each end of an open triple curve on the domain box
+///    (holding its node only: a model vertex, not a physical point);
 ///  - a curve entity per triple curve, holding its inner nodes and its edges as
 ///    line elements, bounded by the point entities at its ends;
 ///  - a surface entity per phase pair, holding the remaining nodes of its
@@ -97,10 +98,14 @@ private:
     for (int32_t n : nodes) {
       Entity e;
       e.dim = 0;
-      if (junctions_.order(size_t(n)) >= 4)
-        e.physical.push_back(first + int32_t(std::lower_bound(sets.begin(), sets.end(), phases_of(n)) - sets.begin()));
       e.nodes = {n};
-      e.elements = {n};
+      // Only quadruple points get a point element (and a physical group): a
+      // curve's end on the box is a model vertex only. (meshio also needs every
+      // element block to carry a physical group once any does.)
+      if (junctions_.order(size_t(n)) >= 4) {
+        e.physical.push_back(first + int32_t(std::lower_bound(sets.begin(), sets.end(), phases_of(n)) - sets.begin()));
+        e.elements = {n};
+      }
       point_tag_.emplace(n, int32_t(points_.size()) + 1);
       points_.push_back(std::move(e));
     }
@@ -178,7 +183,8 @@ private:
     return {s.begin(), s.end()};
   }
 
-  /// The bounding box of the nodes of an entity's elements, as "minx miny minz maxx maxy maxz".
+  /// The bounding box of the nodes of a curve's or surface's elements, as
+  /// "minx miny minz maxx maxy maxz".
   std::string box_of(const Entity& e) const {
     Vec3 lo = m_.points[size_t(e.elements[0])], hi = lo;
     for (int32_t n : e.elements) {
@@ -254,12 +260,13 @@ private:
     size_t count = 0, blocks = 0;
     for_each_entity([&](const Entity& e, size_t) {
       count += e.num_elements();
-      blocks += 1;
+      blocks += e.num_elements() > 0;
     });
     std::string& buf = out.text();
     buf += cat("$Elements\n", blocks, " ", count, " ", count ? 1 : 0, " ", count, "\n");
     size_t next = 1;
     for_each_entity([&](const Entity& e, size_t tag) {
+      if (e.num_elements() == 0) return;
       buf += cat(e.dim, " ", tag, " ", e.element_type, " ", e.num_elements(), "\n");
       for (size_t i = 0; i < e.elements.size(); i += e.element_size()) {
         put_int(buf, (long long)next++);

@@ -42,7 +42,8 @@ void check_output_format(const std::string& path);
 ///    written at `path` itself. Binary STL stores coordinates as float32.
 ///  - .msh: Gmsh MSH 4.1 ASCII: one physical surface per phase pair, one
 ///    physical curve per phase triple (line elements along its triple curves),
-///    one physical point per phase set of quadruple points (point elements);
+///    one physical point per phase set of quadruple points (point elements;
+///    curve ends on the domain box are model points without element or group);
 ///    each node is written once, in the entity of lowest dimension holding it.
 ///  - .vtu / .vtp: VTK XML UnstructuredGrid / PolyData (ASCII) with cell data
 ///    phase0/phase1 (labels) and point data junction_order (2 surface, 3 triple
