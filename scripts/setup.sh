@@ -8,6 +8,8 @@ packages=(
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
   zlib1g-dev libnifti2-dev
+  # independent readers the tests check every output format with
+  python3-meshio python3-vtk9 gmsh tetgen
 )
 missing=()
 for p in "${packages[@]}"; do

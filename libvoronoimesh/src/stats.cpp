@@ -4,6 +4,7 @@
 
 #include "voronoimesh/stats.hpp"
 
+#include "detail/junction_tables.hpp"
 #include "detail/topology.hpp"
 #include "detail/union_find.hpp"
 
@@ -52,27 +53,6 @@ size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<
     }
   }
   return count_classes(uf, m.triangles.size(), [&](size_t t) { return usable[t] != 0; });
-}
-
-/// Triple curves: junction edges (3 or more triangles) joined through nodes
-/// where exactly 3 phases meet, so curves split at quadruple (and higher) points.
-size_t count_triple_curves(const EdgeTable& et, const detail::NodePhases& np) {
-  detail::UnionFind uf(et.size());
-  std::vector<int32_t> first_at(np.off.size() - 1, -1); // a junction edge at each node
-  std::vector<char> junction(et.size(), 0);
-  for (size_t e = 0; e < et.size(); ++e) {
-    if (et.halfedges(e).size() < 3) continue;
-    junction[e] = 1;
-    for (int32_t n : et.nodes[e]) {
-      if (np.count(size_t(n)) != 3) continue;
-      int32_t& first = first_at[size_t(n)];
-      if (first < 0)
-        first = int32_t(e);
-      else
-        uf.unite(first, int32_t(e));
-    }
-  }
-  return count_classes(uf, et.size(), [&](size_t e) { return junction[e] != 0; });
 }
 
 double angle_deg(const Vec3& u, const Vec3& v) {
@@ -153,11 +133,10 @@ MeshStats compute_stats(const NodeMesh& m) {
   const EdgeTable et = detail::edge_table(m.triangles, nt);
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   s.surfaces = count_surfaces(m, et, usable);
-  s.triple_curves = count_triple_curves(et, np);
-  for (size_t n = 0; n < m.points.size(); ++n) {
-    s.quadruple_points += np.count(n) >= 4;
-    s.higher_order_points += np.count(n) >= 5;
-  }
+  const Junctions junctions = detail::junctions_from(m.pairs, et, np);
+  s.triple_curves = junctions.curves.size();
+  s.quadruple_points = junctions.quadruple_points.size();
+  for (int32_t n : junctions.quadruple_points) s.higher_order_points += junctions.order(size_t(n)) >= 5;
   quality_stats(m, usable, s);
   edge_stats(m, et, s);
   return s;

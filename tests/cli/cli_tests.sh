@@ -43,10 +43,10 @@ for scene in "$examples"/*.json; do
 done
 if "$vm" create -q --grid 16 --ascii -o a.ply && head -2 a.ply | grep -q "format ascii"; then pass; else fail "--ascii"; fi
 
-# Closed domains: an extra phase 'outside', a valid mesh that smooth can improve again.
+# Closed domains: an extra phase 'exterior', a valid mesh that smooth can improve again.
 if "$vm" mesh -q "$examples/voronoi7.json" --grid 24 --close --iterations 5 -o closed.ply &&
   "$vm" stats closed.ply >closed.txt && grep -qE "^phases +8" closed.txt && grep -q "topology *valid" closed.txt &&
-  grep -q "comment phase 7 outside" closed.ply; then pass; else fail "mesh --close: $(cat closed.txt)"; fi
+  grep -q "comment phase 7 exterior" closed.ply; then pass; else fail "mesh --close: $(cat closed.txt)"; fi
 if "$vm" smooth -q closed.ply --field "$examples/voronoi7.json" --iterations 3 -o closed2.ply &&
   "$vm" stats closed2.ply | grep -q "topology *valid"; then pass; else fail "smooth of a closed mesh"; fi
 
@@ -167,6 +167,25 @@ expect_error "grid file missing" 3 "grids/missing\.json: phase 1: .*gone\.nrrd: 
 expect_error "grid component" 2 "grids/component\.json: phase 1: 'component' 2 is out of range" -- "$vm" create grids/component.json -o out.ply
 expect_error "grids differ" 2 "grids/other\.json: phase 1: 'short\.nrrd' is not on the grid of 'p0\.nrrd' \(phase 0\): sizes 16x16x8 vs 16x16x16" -- "$vm" create grids/other.json -o out.ply
 expect_error "domain beyond grids" 2 "grids/domain\.json: domain: reaches beyond the voxels of the grid phases along x" -- "$vm" create grids/domain.json -o out.ply
+
+# Output formats: every extension, chosen by the file name, checked before any work.
+for ext in ply obj msh vtu vtp mesh; do
+  if "$vm" create -q --grid 12 -o "fmt.$ext" && [ -s "fmt.$ext" ]; then pass; else fail "create -o fmt.$ext"; fi
+done
+if "$vm" create -q --grid 12 -o surf.stl --per-phase phases && [ ! -e surf.stl ] && [ "$(ls surf_*.stl | wc -l)" -eq 10 ] &&
+  [ -s surf_0-outside_1-sphere1.stl ] && [ "$(ls phases/phase_*.stl | wc -l)" -eq 5 ]; then pass
+else fail "-o surf.stl: one file per phase pair, --per-phase: one per phase"; fi
+if "$vm" create --grid 12 -o surf2.stl 2>&1 | grep -q "10 STL files, one per phase pair"; then pass; else fail "STL files reported"; fi
+if "$vm" create --help | grep -q "\.vtp" && "$vm" create --help | grep -q "per-phase"; then pass; else fail "--help lists the formats"; fi
+if "$vm" flip -q demo.ply -o fl.msh && grep -q '^\$PhysicalNames' fl.msh; then pass; else fail "flip -o .msh"; fi
+: >blocker
+expect_error "unknown extension" 2 "out\.xyz: unknown output format '\.xyz' \(known: \.ply, \.obj, \.stl, \.msh, \.vtu, \.vtp, \.mesh\)" \
+  -- "$vm" create --grid 4096 -o out.xyz
+expect_error "no extension" 2 "out: no extension" -- "$vm" mesh --grid 4096 -o out
+expect_error "--per-phase in a missing directory" 3 "/nonexistent/dir: cannot write" \
+  -- "$vm" mesh --grid 4096 -o out.ply --per-phase /nonexistent/dir
+expect_error "--per-phase on a file" 3 "blocker: --per-phase: not a directory" -- "$vm" create --grid 4096 -o out.ply --per-phase blocker
+expect_error "smooth to an unknown format" 2 "out\.off: unknown output format" -- "$vm" smooth demo.ply -o out.off
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -2,13 +2,17 @@
 /// @file fixtures.hpp
 /// Tiny procedural interface meshes for the unit tests.
 
+#include "voronoimesh/create.hpp"
 #include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/sampled_field.hpp"
+#include "voronoimesh/scene.hpp"
 
 #include <Eigen/Geometry>
 
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 namespace vm::test {
@@ -167,6 +171,20 @@ inline NodeMesh block_grains(int k, int n) {
                  phase(hi[0], hi[1], hi[2]));
         }
   return b.mesh;
+}
+
+/// The paper's four overlapping spheres (examples/four_spheres.json) created at
+/// `grid` cells per axis, with the scene's phase names: 5 phases, 10 surfaces,
+/// 10 triple curves and 5 quadruple points (1226 triangles at grid 16). Every
+/// sphere lies inside the domain, so every phase's boundary is closed.
+inline NodeMesh four_spheres(int grid = 16) {
+  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/four_spheres.json");
+  scene.grid.cells = {grid, grid, grid};
+  const SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  NodeMesh m;
+  create_initial_mesh(field, CreateParams{}, m);
+  for (int p = 0; p < scene.field->num_phases(); ++p) m.phase_names.push_back(scene.field->phase_name(p));
+  return m;
 }
 
 } // namespace vm::test

@@ -1,5 +1,5 @@
 // Tests of closed domains (CreateParams::close, closed_domain.hpp): the box faces
-// become surfaces against an "outside" phase, every phase is a closed volume,
+// become surfaces against an "exterior" phase, every phase is a closed volume,
 // and improvement keeps box nodes on their faces, edges and corners.
 
 #include "voronoimesh/closed_domain.hpp"

@@ -20,6 +20,7 @@ void expect_same(const NodeMesh& a, const NodeMesh& b) {
   EXPECT_EQ(a.triangles, b.triangles);
   EXPECT_EQ(a.pairs, b.pairs);
   EXPECT_EQ(a.phase_names, b.phase_names);
+  EXPECT_EQ(a.phase_labels, b.phase_labels);
   EXPECT_EQ(a.domain.min, b.domain.min);
   EXPECT_EQ(a.domain.max, b.domain.max);
 }
@@ -96,6 +97,7 @@ TEST(InterfaceMesh, quadruple_point_gets_a_copy_per_incident_pair) {
 TEST(InterfaceMesh, round_trip_keeps_node_and_triangle_order) {
   NodeMesh m = test::four_phase_point();
   m.phase_names = {"out", "a", "b", "c", "d"};
+  m.phase_labels = {0, 3, 4, 8, 100};
   // Rotate some triangles' corners and scramble triangle order: both must survive.
   std::mt19937 rng(3);
   for (auto& t : m.triangles) std::rotate(t.begin(), t.begin() + rng() % 3, t.end());

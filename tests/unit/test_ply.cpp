@@ -1,11 +1,10 @@
 #include "fixtures.hpp"
+#include "scratch_dir.hpp"
 
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/ply.hpp"
 
 #include <gtest/gtest.h>
-
-#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -17,27 +16,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A fresh directory per test, removed afterwards.
-class Ply : public ::testing::Test {
+class Ply : public test::ScratchDir {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vm_ply_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
   std::string write_text(const std::string& name, const std::string& content) const {
     std::ofstream(path(name), std::ios::binary) << content;
     return path(name);
-  }
-
-  std::string read_bytes(const std::string& p) const {
-    std::ifstream f(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), {}};
   }
 
   /// The IoError message read_ply gives for `p` ("" if it reads).
@@ -50,7 +33,6 @@ protected:
     return "";
   }
 
-  fs::path dir_;
 };
 
 /// A mesh whose coordinates need all 17 significant digits.
@@ -157,7 +139,9 @@ TEST_F(Ply, other_layouts_are_read) {
   EXPECT_EQ(m.points[1], Vec3(1.5, 0, 0));
   EXPECT_EQ(m.points[2], Vec3(0, 2.25, 0));
   EXPECT_EQ(m.triangles[0], (std::array<int32_t, 3>{0, 1, 2}));
-  EXPECT_EQ(m.pairs[0], (PhasePair{2, 5}));
+  // Labels 2 and 5 become phases 0 and 1.
+  EXPECT_EQ(m.pairs[0], (PhasePair{0, 1}));
+  EXPECT_EQ(m.phase_labels, (std::vector<int32_t>{2, 5}));
 }
 
 TEST_F(Ply, bad_files_give_one_line_errors_naming_the_file) {
@@ -231,4 +215,45 @@ TEST_F(Ply, corrupted_bytes_never_crash) {
     }
   }
   EXPECT_GT(errors, 0u);
+}
+
+TEST_F(Ply, labels_round_trip_and_absent_phases_keep_their_comment) {
+  NodeMesh m = test::two_cubes(1); // phases 0, 1, 2
+  m.phase_labels = {1, 4, 6, 9};   // phase 3 (label 9) has no triangle
+  m.phase_names = {"matrix", "", "grain", "pore"};
+  for (bool ascii : {false, true}) {
+    io::write_ply(m, path("m.ply"), ascii);
+    const std::string text = read_bytes(path("m.ply"));
+    for (const char* line : {"comment phase 1 matrix\n", "comment phase 4 \n", "comment phase 9 pore\n"})
+      EXPECT_NE(text.find(line), std::string::npos) << line;
+    const NodeMesh back = io::read_ply(path("m.ply"));
+    expect_exact(back, m);
+    EXPECT_EQ(back.phase_labels, m.phase_labels);
+  }
+  m.phase_labels.clear();
+  m.phase_names.clear();
+  io::write_ply(m, path("m.ply"));
+  const NodeMesh plain = io::read_ply(path("m.ply"));
+  EXPECT_TRUE(plain.phase_labels.empty()) << "identity labels are not stored";
+  EXPECT_TRUE(plain.phase_names.empty()) << "no names when none were given";
+  EXPECT_NE(read_bytes(path("m.ply")).find("comment phase 2 \n"), std::string::npos);
+}
+
+TEST_F(Ply, labels_without_comments_become_compact_ids) {
+  const std::string p = write_text("m.ply", std::string(kAsciiHeader) +
+                                                "element face 2\nproperty list uchar int vertex_indices\n"
+                                                "property int phase0\nproperty int phase1\nend_header\n"
+                                                "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 2 5\n3 0 2 1 -3 5\n");
+  const NodeMesh m = io::read_ply(p);
+  EXPECT_EQ(m.phase_labels, (std::vector<int32_t>{-3, 2, 5}));
+  EXPECT_EQ(m.pairs, (std::vector<PhasePair>{{1, 2}, {0, 2}}));
+  EXPECT_TRUE(m.phase_names.empty());
+}
+
+TEST_F(Ply, a_phase_described_twice_is_an_error) {
+  const std::string p = write_text("m.ply", "ply\nformat ascii 1.0\ncomment phase 3 a\ncomment phase 3 b\n"
+                                            "element vertex 0\nproperty double x\nproperty double y\n"
+                                            "property double z\nelement face 0\nproperty list uchar int "
+                                            "vertex_indices\nproperty int phase0\nproperty int phase1\nend_header\n");
+  EXPECT_NE(error_of(p).find("phase 3 is described twice"), std::string::npos) << error_of(p);
 }

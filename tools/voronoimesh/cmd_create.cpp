@@ -1,37 +1,37 @@
 #include "commands.hpp"
 
-#include "voronoimesh/io/ply.hpp"
-
 #include <memory>
 
 namespace vmcli {
 
 void add_create_command(CLI::App& app, int& exit_code) {
   struct Options {
-    std::string input, output;
+    std::string input;
+    OutputOptions output;
     CreateOptions create;
     InputCliOptions input_options;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "create", "Create the initial mesh of the Voronoi interface (paper Algorithm 2) and write it as PLY.");
+      "create", "Create the initial mesh of the Voronoi interface (paper Algorithm 2) and write it (PLY, OBJ, STL, "
+                "MSH, VTU, VTP or MEDIT).");
   cmd->add_option("input", o->input,
                   "Input: a scene (.json, docs/scenes.md), a label volume or distance grid (.nrrd, .nhdr), or a "
                   "labelled point cloud (.xyz, .txt, .pts, .csv); see docs/inputs.md. Without it, the built-in demo: "
                   "four overlapping spheres.");
-  cmd->add_option("-o,--output", o->output, "Output mesh (.ply)")->required();
+  add_output_options(cmd, o->output, true);
   add_create_options(cmd, o->create);
   add_input_options(cmd, o->input_options);
   add_common_options(cmd, o->common, true);
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
-      check_writable(o->output);
+      check_outputs(o->output);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
       vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
-      vm::io::write_ply(mesh, o->output, o->common.ascii);
+      write_outputs(mesh, o->output, o->common);
       return kOk;
     });
   });

@@ -1,7 +1,6 @@
 #include "commands.hpp"
 
 #include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/io/ply.hpp"
 
 #include <memory>
 
@@ -9,7 +8,8 @@ namespace vmcli {
 
 void add_mesh_command(CLI::App& app, int& exit_code) {
   struct Options {
-    std::string input, output;
+    std::string input;
+    OutputOptions output;
     CreateOptions create;
     InputCliOptions input_options;
     ImproveOptions improve;
@@ -17,19 +17,20 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it as PLY.");
+      "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it (PLY, OBJ, "
+              "STL, MSH, VTU, VTP or MEDIT).");
   cmd->add_option("input", o->input,
                   "Input: a scene (.json, docs/scenes.md), a label volume or distance grid (.nrrd, .nhdr), or a "
                   "labelled point cloud (.xyz, .txt, .pts, .csv); see docs/inputs.md. Without it, the built-in demo: "
                   "four overlapping spheres.");
-  cmd->add_option("-o,--output", o->output, "Output mesh (.ply)")->required();
+  add_output_options(cmd, o->output, true);
   add_create_options(cmd, o->create);
   add_input_options(cmd, o->input_options);
   add_improve_options(cmd, o->improve, 20);
   add_common_options(cmd, o->common, true);
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
-      check_writable(o->output);
+      check_outputs(o->output);
       check_improve_options(o->improve);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
@@ -38,7 +39,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       // A closed mesh has one more phase, outside the box; the passes need its function too.
       const auto phases = o->create.close ? vm::with_outside_phase(scene.field, scene.grid.domain) : scene.field;
       improve_stage(mesh, phases.get(), o->improve, o->common, progress);
-      vm::io::write_ply(mesh, o->output, o->common.ascii);
+      write_outputs(mesh, o->output, o->common);
       return kOk;
     });
   });

@@ -31,7 +31,8 @@ void check_field_matches(const vm::NodeMesh& mesh, const std::string& mesh_path,
 
 void add_smooth_commands(CLI::App& app, int& exit_code) {
   struct Options {
-    std::string mesh, field, output;
+    std::string mesh, field;
+    OutputOptions output;
     ImproveOptions improve;
     InputCliOptions input;
     int top_k = 4;
@@ -45,12 +46,12 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   smooth->add_option("--top-k", s->top_k, "Phases kept per voxel of a --field volume (as given to create)")
       ->capture_default_str();
   add_input_options(smooth, s->input);
-  smooth->add_option("-o,--output", s->output, "Output mesh (.ply)")->required();
+  add_output_options(smooth, s->output, true);
   add_improve_options(smooth, s->improve, 20);
   add_common_options(smooth, s->common, true);
   smooth->callback([s, &exit_code] {
     exit_code = run_guarded([&] {
-      check_writable(s->output);
+      check_outputs(s->output);
       check_improve_options(s->improve);
       auto limit = thread_limit(s->common);
       Progress progress(!s->common.quiet);
@@ -64,7 +65,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
         check_field_matches(mesh, s->mesh, *scene, s->field);
       }
       improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, s->common, progress);
-      vm::io::write_ply(mesh, s->output, s->common.ascii);
+      write_outputs(mesh, s->output, s->common);
       return kOk;
     });
   });
@@ -72,11 +73,11 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   auto f = std::make_shared<Options>();
   CLI::App* flip = app.add_subcommand("flip", "Flip edges to improve triangle quality (paper Algorithm 5) and write the mesh.");
   flip->add_option("mesh", f->mesh, "Mesh file (.ply written by voronoimesh)")->required();
-  flip->add_option("-o,--output", f->output, "Output mesh (.ply)")->required();
+  add_output_options(flip, f->output, false);
   add_common_options(flip, f->common, true);
   flip->callback([f, &exit_code] {
     exit_code = run_guarded([&] {
-      check_writable(f->output);
+      check_outputs(f->output);
       auto limit = thread_limit(f->common);
       Progress progress(!f->common.quiet);
       vm::NodeMesh mesh = vm::io::read_ply(f->mesh);
@@ -84,7 +85,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
       f->improve.iterations = 1;
       f->improve.pipeline = "flip:max_rounds=1000";
       improve_stage(mesh, nullptr, f->improve, f->common, progress);
-      vm::io::write_ply(mesh, f->output, f->common.ascii);
+      write_outputs(mesh, f->output, f->common);
       return kOk;
     });
   });

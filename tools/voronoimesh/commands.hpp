@@ -41,6 +41,19 @@ struct CommonOptions {
 void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh);
 /// Fails early (IoError) if `path` cannot be written, before any long work.
 void check_writable(const std::string& path);
+
+/// Where a command writes its mesh: -o (format by extension) and --per-phase.
+struct OutputOptions {
+  std::string path;
+  std::string per_phase; ///< directory for one closed STL per phase ("" = none)
+};
+/// Adds -o/--output (required) and, if `per_phase`, --per-phase DIR.
+void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase);
+/// Fails early if the output format is unknown (InvalidInput) or a path cannot
+/// be written (IoError), before any long work.
+void check_outputs(const OutputOptions& o);
+/// Writes the mesh as the options ask; says what was written unless quiet.
+void write_outputs(const vm::NodeMesh& mesh, const OutputOptions& o, const CommonOptions& common);
 /// Limits TBB to --threads while alive.
 std::optional<tbb::global_control> thread_limit(const CommonOptions& o);
 

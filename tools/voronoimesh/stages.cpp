@@ -6,6 +6,7 @@
 #include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/history.hpp"
+#include "voronoimesh/io/write_mesh.hpp"
 #include "voronoimesh/mesh.hpp"
 #include "voronoimesh/sampled_field.hpp"
 #include "voronoimesh/validate.hpp"
@@ -53,7 +54,49 @@ void check_writable(const std::string& path) {
 void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh) {
   cmd->add_option("--threads", o.threads, "Worker threads (default: all cores); results do not depend on it");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
-  if (writes_mesh) cmd->add_flag("--ascii", o.ascii, "Write ASCII PLY instead of binary");
+  if (writes_mesh)
+    cmd->add_flag("--ascii", o.ascii,
+                  "Write ASCII PLY and STL instead of binary (TetGen reads only ASCII STL; other formats are text)");
+}
+
+void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase) {
+  cmd->add_option("-o,--output", o.path,
+                  "Output mesh; the extension picks the format: .ply, .obj (a group per phase pair), .stl (one "
+                  "STL per phase pair, named <stem>_<pair>.stl, e.g. out_0-outside_1-sphere1.stl), .msh (Gmsh 4.1 "
+                  "with physical surfaces, curves and points), .vtu or .vtp (ParaView), .mesh (MEDIT, for MMG and "
+                  "TetGen)")
+      ->required()
+      ->type_name("FILE");
+  if (per_phase)
+    cmd->add_option("--per-phase", o.per_phase,
+                    "Also write one STL per phase into DIR (made if missing), named phase_<label>[-<name>].stl: the "
+                    "phase's boundary with outward normals, a closed surface for a phase inside the domain")
+        ->type_name("DIR");
+}
+
+void check_outputs(const OutputOptions& o) {
+  vm::io::check_output_format(o.path);
+  check_writable(o.path);
+  if (o.per_phase.empty()) return;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(o.per_phase, ec) && !fs::is_directory(o.per_phase, ec))
+    throw vm::IoError(vm::located(o.per_phase, "--per-phase: not a directory"));
+  // An existing directory must be writable; a new one needs a writable parent.
+  check_writable(fs::exists(o.per_phase, ec) ? (fs::path(o.per_phase) / "phase.stl").string() : o.per_phase);
+}
+
+void write_outputs(const vm::NodeMesh& mesh, const OutputOptions& o, const CommonOptions& common) {
+  vm::io::WriteOptions options;
+  options.ascii = common.ascii;
+  const std::vector<std::string> files = vm::io::write_mesh(mesh, o.path, options);
+  if (!common.quiet && files != std::vector<std::string>{o.path})
+    std::fprintf(stderr, "output: %zu STL files, one per phase pair (%s_<pair>.stl)\n", files.size(),
+                 (std::filesystem::path(o.path).parent_path() / std::filesystem::path(o.path).stem()).c_str());
+  if (o.per_phase.empty()) return;
+  const std::vector<std::string> phases = vm::io::write_per_phase_stl(mesh, o.per_phase, options);
+  if (!common.quiet)
+    std::fprintf(stderr, "per-phase: %zu STL files in %s (phase_<label>.stl)\n", phases.size(), o.per_phase.c_str());
 }
 
 std::optional<tbb::global_control> thread_limit(const CommonOptions& o) {
@@ -85,7 +128,7 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
       ->capture_default_str();
   cmd->add_flag("--no-validate", o.skip_validation, "Skip the topological check of the result");
   cmd->add_flag("--close", o.close,
-                "Close the domain: the box faces become surfaces between each phase and an extra phase 'outside', "
+                "Close the domain: the box faces become surfaces between each phase and an extra phase 'exterior', "
                 "so every phase is a closed, watertight volume (for volume meshing)");
 }
 

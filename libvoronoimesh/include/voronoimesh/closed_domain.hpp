@@ -1,7 +1,7 @@
 #pragma once
 /// @file closed_domain.hpp
 /// Closed domains (`CreateParams::close`): the box faces are surfaces between
-/// each phase and one extra phase, "outside", so every phase is a closed volume.
+/// each phase and one extra phase, "exterior" (outside the box), so every phase is a closed volume.
 /// Not in the paper.
 
 #include "voronoimesh/field.hpp"
@@ -13,8 +13,9 @@
 
 namespace vm {
 
-/// Name of the phase outside the box of a closed mesh.
-inline const std::string kOutsidePhaseName = "outside";
+/// Name of the phase outside the box of a closed mesh ("outside" is a common
+/// name of a scene's own background phase).
+inline const std::string kOutsidePhaseName = "exterior";
 
 /// `field` with one more phase, id field->num_phases(), that wins exactly
 /// outside `box`: phi_out(x) = max_i phi_i(x) + sd(x), sd the signed distance to

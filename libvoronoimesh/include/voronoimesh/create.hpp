@@ -22,7 +22,7 @@ struct CreateParams {
   /// found 0.2 h good for distance-like functions (sect. 4.1). 0 turns it off.
   double snap = 0.2;
   /// Close the domain: the box faces become surfaces between each phase and an
-  /// extra phase "outside" (id = the field's phase count), so that every phase is
+  /// extra phase "exterior" (id = the field's phase count), so that every phase is
   /// a closed volume (see with_outside_phase() in closed_domain.hpp for improving
   /// such a mesh). Not in the paper.
   bool close = false;

@@ -107,7 +107,7 @@ private:
   std::vector<uint8_t> box_;
   Box domain_;
   std::vector<std::string> names_;
-  std::vector<int32_t> labels_;
+  std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
 };
 
 template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {

@@ -18,7 +18,7 @@ struct MeshStats {
   size_t triangles = 0;
   size_t phases = 0;            ///< distinct phase ids used by triangles
   size_t surfaces = 0;          ///< connected patches of one phase pair
-  size_t triple_curves = 0;     ///< connected junction curves between higher-order points
+  size_t triple_curves = 0;     ///< junction curves between higher-order points (find_junctions())
   size_t quadruple_points = 0;  ///< nodes where 4 or more phases meet
   size_t higher_order_points = 0; ///< of those, nodes where 5 or more meet
   double min_quality = 0, mean_quality = 0;

@@ -1,64 +1,29 @@
 /// @file io/ply.cpp
-/// write_ply: node-level PLY with double coordinates, written to a temporary
-/// file and renamed into place (io/ply.hpp).
+/// write_ply: node-level PLY with double coordinates and phase labels, written
+/// to a temporary file and renamed into place (io/ply.hpp).
 
 #include "voronoimesh/io/ply.hpp"
 
-#include "detail/atomic_write.hpp"
+#include "detail/output_buffer.hpp"
 #include "detail/text.hpp"
-#include "voronoimesh/errors.hpp"
+#include "io/phase_names.hpp"
+#include "io/writers.hpp"
 
-
-#include <bit>
-#include <charconv>
-#include <cstring>
-#include <limits>
 #include <string>
-#include <vector>
 
 namespace vm::io {
 
 namespace {
 
-using detail::cat;
-
-/// Shortest text that reads back to exactly `v` (std::to_chars guarantees the
-/// round trip, like max_digits10 but without needless digits).
-void put_number(std::string& out, double v) {
-  char buf[32];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
-}
-
-/// Appends `v` in little-endian byte order.
-template <class T>
-void put_le(std::string& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big)
-    for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  out.append(b, sizeof(T));
-}
+using vm::detail::cat;
+using vm::detail::put_le;
+using vm::detail::put_number;
 
 /// A phase name on one header line: control characters would end the line.
 std::string header_safe(std::string name) {
   for (char& c : name)
     if (static_cast<unsigned char>(c) < 0x20) c = '_';
   return name;
-}
-
-void check_mesh(const NodeMesh& m, const std::string& path) {
-  if (m.pairs.size() != m.triangles.size())
-    throw IoError(
-        located(path, cat("cannot write: ", m.triangles.size(), " triangles but ", m.pairs.size(), " phase pairs")));
-  if (m.points.size() > size_t(std::numeric_limits<int32_t>::max()) ||
-      m.triangles.size() > size_t(std::numeric_limits<int32_t>::max()))
-    throw IoError(located(path, "cannot write: too many nodes or triangles for 32-bit PLY indices"));
-  for (size_t t = 0; t < m.triangles.size(); ++t)
-    for (int32_t v : m.triangles[t])
-      if (v < 0 || size_t(v) >= m.points.size())
-        throw IoError(located(
-            path, cat("cannot write: triangle ", t, " has node ", v, " out of range (", m.points.size(), " nodes)")));
 }
 
 std::string header(const NodeMesh& m, bool ascii) {
@@ -72,8 +37,10 @@ std::string header(const NodeMesh& m, bool ascii) {
       put_number(h, (*p)[a]);
     }
   h += '\n';
-  for (size_t i = 0; i < m.phase_names.size(); ++i)
-    h += cat("comment phase ", i, " ", header_safe(m.phase_names[i]), "\n");
+  // Every phase, present or not, so a reader recovers the whole label set.
+  for (size_t p = 0; p < detail::phase_count(m); ++p)
+    h += cat("comment phase ", detail::phase_label(m, int32_t(p)), " ", header_safe(detail::phase_name(m, int32_t(p))),
+             "\n");
   h += cat("element vertex ", m.points.size(), "\n");
   h += "property double x\nproperty double y\nproperty double z\n";
   h += cat("element face ", m.triangles.size(), "\n");
@@ -81,51 +48,40 @@ std::string header(const NodeMesh& m, bool ascii) {
   return h;
 }
 
-/// Writes the body in chunks so memory stays small for large meshes.
-void write_body(std::ostream& f, const NodeMesh& m, bool ascii) {
-  constexpr size_t kChunk = 1 << 20;
-  std::string buf;
-  auto flush = [&](bool force) {
-    if (buf.size() >= kChunk || force) {
-      f.write(buf.data(), std::streamsize(buf.size()));
-      buf.clear();
-    }
-  };
+/// The vertices, then the faces with their phase labels.
+void write_body(vm::detail::ChunkedOutput& out, const NodeMesh& m, bool ascii) {
+  std::string& buf = out.text();
   for (const Vec3& p : m.points) {
-    for (int a = 0; a < 3; ++a) {
-      if (ascii) {
-        put_number(buf, p[a]);
-        buf += a < 2 ? ' ' : '\n';
-      } else {
-        put_le(buf, p[a]);
-      }
+    if (ascii) {
+      vm::detail::put_point(buf, p);
+      buf += '\n';
+    } else {
+      for (int a = 0; a < 3; ++a) put_le(buf, p[a]);
     }
-    flush(false);
+    out.maybe_flush();
   }
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
-    const auto& pr = m.pairs[t];
+    const int32_t p0 = detail::phase_label(m, m.pairs[t][0]), p1 = detail::phase_label(m, m.pairs[t][1]);
     if (ascii) {
-      buf += cat("3 ", tri[0], " ", tri[1], " ", tri[2], " ", pr[0], " ", pr[1], "\n");
+      buf += cat("3 ", tri[0], " ", tri[1], " ", tri[2], " ", p0, " ", p1, "\n");
     } else {
       buf += char(3);
       for (int32_t v : tri) put_le(buf, v);
-      put_le(buf, pr[0]);
-      put_le(buf, pr[1]);
+      put_le(buf, p0);
+      put_le(buf, p1);
     }
-    flush(false);
+    out.maybe_flush();
   }
-  flush(true);
 }
 
 } // namespace
 
 void write_ply(const NodeMesh& m, const std::string& path, bool ascii) {
-  check_mesh(m, path);
-  detail::write_atomically(path, [&](std::ostream& f) {
-    const std::string h = header(m, ascii);
-    f.write(h.data(), std::streamsize(h.size()));
-    write_body(f, m, ascii);
+  detail::check_output_mesh(m, path);
+  vm::detail::write_in_chunks(path, [&](vm::detail::ChunkedOutput& out) {
+    out.text() += header(m, ascii);
+    write_body(out, m, ascii);
   });
 }
 

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -73,7 +74,7 @@ struct Header {
   Format format = Format::ascii;
   std::vector<Element> elements;
   std::optional<Box> domain;
-  std::vector<std::string> phase_names;
+  std::map<int32_t, std::string> phase_names; ///< by label, from "comment phase <label> <name>"
   size_t body = 0; ///< offset of the first byte after end_header
 };
 
@@ -115,7 +116,7 @@ public:
       for (int32_t v : m.triangles[t])
         if (v < 0 || size_t(v) >= m.points.size())
           fail(cat("face ", t, ": vertex index ", v, " out of range (", m.points.size(), " vertices)"));
-    m.phase_names = header_.phase_names;
+    compact_phases(m);
     m.domain = header_.domain ? *header_.domain : bounding_box(m.points);
     return m;
   }
@@ -197,7 +198,7 @@ private:
     return p;
   }
 
-  /// "comment domain x0 y0 z0 x1 y1 z1" and "comment phase <id> <name>", as
+  /// "comment domain x0 y0 z0 x1 y1 z1" and "comment phase <label> <name>", as
   /// write_ply stores them; any other comment is ignored.
   void parse_comment(std::string_view line, const std::vector<std::string_view>& w, Header& h) {
     if (w.size() == 8 && w[1] == "domain") {
@@ -206,14 +207,11 @@ private:
         if (!parse_number(w[i + 2], v[i]) || !std::isfinite(v[i])) fail(cat("bad domain comment '", line, "'"));
       h.domain = Box{Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5])};
     } else if (w.size() >= 3 && w[1] == "phase") {
-      size_t id = 0;
-      // Phase ids fit int16 everywhere (PhaseSet), which also keeps a hostile id from forcing a huge allocation.
-      if (!parse_number(w[2], id) || id > size_t(std::numeric_limits<int16_t>::max()))
-        fail(cat("bad phase comment '", line, "'"));
+      int32_t label = 0;
+      if (!parse_number(w[2], label)) fail(cat("bad phase comment '", line, "'"));
       const size_t name_at = size_t(w[2].data() + w[2].size() - line.data());
       std::string_view name = line.substr(std::min(line.size(), name_at + 1));
-      if (h.phase_names.size() <= id) h.phase_names.resize(id + 1);
-      h.phase_names[id] = std::string(name);
+      if (!h.phase_names.emplace(label, std::string(name)).second) fail(cat("phase ", label, " is described twice"));
     }
   }
 
@@ -384,6 +382,37 @@ private:
         }
       }
     }
+  }
+
+  /// Turns the labels in the file (from the phase comments and the faces) into
+  /// phase ids 0..N-1 in increasing order, keeping the labels in phase_labels
+  /// when they are not 0..N-1 themselves, so writing the mesh again gives the
+  /// same labels.
+  void compact_phases(NodeMesh& m) const {
+    std::vector<int32_t> labels;
+    for (const auto& [label, name] : header_.phase_names) labels.push_back(label);
+    for (const PhasePair& p : m.pairs) labels.insert(labels.end(), p.begin(), p.end());
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    // Phase ids fit int16 everywhere (PhaseSet).
+    if (labels.size() > size_t(std::numeric_limits<int16_t>::max()))
+      fail(cat(labels.size(), " distinct phases (at most ", std::numeric_limits<int16_t>::max(), ")"));
+    for (PhasePair& p : m.pairs)
+      for (int32_t& phase : p) phase = int32_t(std::lower_bound(labels.begin(), labels.end(), phase) - labels.begin());
+    const bool named = std::any_of(header_.phase_names.begin(), header_.phase_names.end(),
+                                   [](const auto& entry) { return !entry.second.empty(); });
+    if (named) {
+      m.phase_names.resize(labels.size());
+      for (size_t i = 0; i < labels.size(); ++i) {
+        const auto it = header_.phase_names.find(labels[i]);
+        if (it != header_.phase_names.end()) m.phase_names[i] = it->second;
+      }
+    }
+    for (size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] != int32_t(i)) {
+        m.phase_labels = labels;
+        break;
+      }
   }
 
   void check_end() {

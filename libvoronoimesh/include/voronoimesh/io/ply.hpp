@@ -1,9 +1,10 @@
 #pragma once
 /// @file io/ply.hpp
 /// Node-level PLY: one vertex per node (x, y, z as double), faces as
-/// `vertex_indices`, int face properties `phase0` and `phase1`. OpenMesh's own
-/// PLY writer is not used: it stores float32 and splits junction copies
-/// (openmesh-probe.md, Q4).
+/// `vertex_indices`, int face properties `phase0` and `phase1` holding the
+/// phases' labels (NodeMesh::phase_labels), and a `comment phase <label> <name>`
+/// line for every phase. OpenMesh's own PLY writer is not used: it stores
+/// float32 and splits junction copies (openmesh-probe.md, Q4).
 
 #include "voronoimesh/node_mesh.hpp"
 
@@ -16,9 +17,13 @@ namespace vm::io {
 void write_ply(const NodeMesh& m, const std::string& path, bool ascii = false);
 
 /// Reads a PLY written by write_ply (ascii or binary, either endianness; vertex
-/// coordinates float or double; face list index types any integer type). Throws
-/// IoError naming the file and the problem if it is not a PLY, is truncated, or
-/// lacks the phase0/phase1 face properties.
+/// coordinates float or double; face list index types any integer type). The
+/// labels found (in the phase comments and the faces) become phase ids 0..N-1 in
+/// increasing order; phase_labels keeps them unless they are 0..N-1 already, and
+/// phase_names comes from the comments (empty if no phase has a name), so
+/// writing the mesh again gives the same file. Throws IoError naming the file and
+/// the problem if it is not a PLY, is truncated, lacks the phase0/phase1 face
+/// properties or describes a phase twice.
 NodeMesh read_ply(const std::string& path);
 
 } // namespace vm::io

@@ -1,0 +1,89 @@
+/// @file io/vtk_xml.cpp
+/// VTK XML datasets for ParaView and VTK: .vtu (UnstructuredGrid of triangles)
+/// and .vtp (PolyData with polys), ASCII, with the phase pair of each triangle
+/// as cell data and the junction order of each node as point data.
+
+#include "detail/output_buffer.hpp"
+#include "detail/text.hpp"
+#include "io/phase_names.hpp"
+#include "io/writers.hpp"
+#include "voronoimesh/junctions.hpp"
+
+namespace vm::io::detail {
+
+namespace {
+
+using vm::detail::cat;
+using vm::detail::ChunkedOutput;
+using vm::detail::put_int;
+
+/// `text` made safe inside an XML comment, which may not hold "--" or end in "-".
+std::string xml_comment_safe(const std::string& text) {
+  std::string s;
+  for (char c : text) {
+    if (c == '-' && !s.empty() && s.back() == '-') s += ' ';
+    s += c;
+  }
+  if (!s.empty() && s.back() == '-') s += ' ';
+  return s;
+}
+
+/// One ASCII DataArray of integers, `value(i)` for i in [0, n), 12 per line.
+template <class Value>
+void int_array(ChunkedOutput& out, const char* type, const char* name, size_t n, Value value) {
+  std::string& buf = out.text();
+  buf += cat("        <DataArray type=\"", type, "\" Name=\"", name, "\" format=\"ascii\">\n");
+  for (size_t i = 0; i < n; ++i) {
+    buf.append(i % 12 == 0 ? 10 : 1, ' ');
+    put_int(buf, value(i));
+    if (i % 12 == 11 || i + 1 == n) buf += '\n';
+    out.maybe_flush();
+  }
+  buf += "        </DataArray>\n";
+}
+
+} // namespace
+
+void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset dataset) {
+  const Junctions junctions = find_junctions(m);
+  const bool grid = dataset == VtkDataset::unstructured_grid;
+  const char* const type = grid ? "UnstructuredGrid" : "PolyData";
+  const char* const cells = grid ? "Cells" : "Polys";
+  const size_t nt = m.triangles.size();
+  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) {
+    std::string& buf = out.text();
+    buf += "<?xml version=\"1.0\"?>\n<!-- voronoimesh interface mesh. Cell data phase0, phase1: the phase labels of"
+           " each triangle, its normal pointing from phase0 into phase1. Point data junction_order: the number of"
+           " phases meeting at the node (2 surface, 3 triple curve, 4 or more quadruple point). Phases:";
+    for (size_t p = 0; p < phase_count(m); ++p) buf += ' ' + xml_comment_safe(phase_token(m, int32_t(p)));
+    buf += " -->\n";
+    buf += cat("<VTKFile type=\"", type, "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+    buf += cat("  <", type, ">\n");
+    buf += grid ? cat("    <Piece NumberOfPoints=\"", m.points.size(), "\" NumberOfCells=\"", nt, "\">\n")
+                : cat("    <Piece NumberOfPoints=\"", m.points.size(),
+                      "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"", nt, "\">\n");
+    buf += "      <PointData Scalars=\"junction_order\">\n";
+    int_array(out, "Int32", "junction_order", m.points.size(), [&](size_t n) { return junctions.order(n); });
+    buf += "      </PointData>\n      <CellData Scalars=\"phase0\">\n";
+    for (int k = 0; k < 2; ++k)
+      int_array(out, "Int32", k == 0 ? "phase0" : "phase1", nt,
+                [&](size_t t) { return phase_label(m, m.pairs[t][size_t(k)]); });
+    buf += "      </CellData>\n      <Points>\n"
+           "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const Vec3& p : m.points) {
+      buf += "          ";
+      vm::detail::put_point(buf, p);
+      buf += '\n';
+      out.maybe_flush();
+    }
+    buf += "        </DataArray>\n      </Points>\n";
+    buf += cat("      <", cells, ">\n");
+    int_array(out, "Int64", "connectivity", 3 * nt, [&](size_t i) { return m.triangles[i / 3][i % 3]; });
+    int_array(out, "Int64", "offsets", nt, [](size_t t) { return 3 * (int64_t(t) + 1); });
+    if (grid) int_array(out, "UInt8", "types", nt, [](size_t) { return 5; }); // VTK_TRIANGLE
+    buf += cat("      </", cells, ">\n");
+    buf += cat("    </Piece>\n  </", type, ">\n</VTKFile>\n");
+  });
+}
+
+} // namespace vm::io::detail

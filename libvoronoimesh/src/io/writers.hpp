@@ -1,0 +1,39 @@
+#pragma once
+/// @file io/writers.hpp
+/// The writer of each format behind write_mesh() (io/write_mesh.hpp), one
+/// source file per format. Each assumes check_output_mesh() has passed.
+
+#include "voronoimesh/node_mesh.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vm::io::detail {
+
+/// Throws IoError "<path>: cannot write: ..." when `m` cannot be written as it
+/// is: pair and triangle counts differ, a node id is out of range, a pair is not
+/// two phase ids 0 <= a < b < 2^15, or there are more than 2^31 - 1 nodes or
+/// triangles (32-bit indices in PLY and STL).
+void check_output_mesh(const NodeMesh& m, const std::string& path);
+
+/// Wavefront OBJ, one group per phase pair (obj.cpp).
+void write_obj(const NodeMesh& m, const std::string& path);
+
+/// One STL per phase pair, `<stem>_<pair>.stl` beside `path`, binary unless
+/// `ascii` (stl.cpp).
+std::vector<std::string> write_stl_per_pair(const NodeMesh& m, const std::string& path, bool ascii);
+
+/// Gmsh MSH 4.1 ASCII with physical groups for surfaces, triple curves and
+/// quadruple points (msh.cpp).
+void write_msh(const NodeMesh& m, const std::string& path);
+
+/// The two VTK XML datasets write_vtk_xml() can write.
+enum class VtkDataset { unstructured_grid, poly_data };
+
+/// VTK XML .vtu or .vtp with phase cell data and junction-order point data (vtk_xml.cpp).
+void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset dataset);
+
+/// MEDIT .mesh with references per phase pair and triple curve (medit.cpp).
+void write_medit(const NodeMesh& m, const std::string& path);
+
+} // namespace vm::io::detail
