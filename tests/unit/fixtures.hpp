@@ -173,18 +173,28 @@ inline NodeMesh block_grains(int k, int n) {
   return b.mesh;
 }
 
+/// A shipped scene (examples/NAME) at `grid` cells per axis.
+inline Scene example_scene(const std::string& name, int grid) {
+  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
+  scene.grid.cells = {grid, grid, grid};
+  return scene;
+}
+
+/// The initial mesh of `scene` on the bcc lattice, with `phases`' names (the
+/// scene's by default).
+inline NodeMesh created_mesh(const Scene& scene, const CreateParams& params = {}, const PhaseField* phases = nullptr) {
+  const SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  NodeMesh m;
+  create_initial_mesh(field, params, m);
+  if (!phases) phases = scene.field.get();
+  for (int p = 0; p < phases->num_phases(); ++p) m.phase_names.push_back(phases->phase_name(p));
+  return m;
+}
+
 /// The paper's four overlapping spheres (examples/four_spheres.json) created at
 /// `grid` cells per axis, with the scene's phase names: 5 phases, 10 surfaces,
 /// 10 triple curves and 5 quadruple points (1226 triangles at grid 16). Every
 /// sphere lies inside the domain, so every phase's boundary is closed.
-inline NodeMesh four_spheres(int grid = 16) {
-  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/four_spheres.json");
-  scene.grid.cells = {grid, grid, grid};
-  const SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
-  NodeMesh m;
-  create_initial_mesh(field, CreateParams{}, m);
-  for (int p = 0; p < scene.field->num_phases(); ++p) m.phase_names.push_back(scene.field->phase_name(p));
-  return m;
-}
+inline NodeMesh four_spheres(int grid = 16) { return created_mesh(example_scene("four_spheres.json", grid)); }
 
 } // namespace vm::test

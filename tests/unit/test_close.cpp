@@ -10,6 +10,8 @@
 #include "voronoimesh/scene.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "fixtures.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,21 +21,12 @@ namespace {
 
 using namespace vm;
 
-Scene example(const std::string& name, int grid) {
-  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
-  s.grid.cells = {grid, grid, grid};
-  return s;
-}
+Scene example(const std::string& name, int grid) { return test::example_scene(name, grid); }
 
 NodeMesh closed_mesh(const Scene& scene) {
-  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
   CreateParams params;
   params.close = true;
-  NodeMesh m;
-  create_initial_mesh(field, params, m);
-  const auto phases = with_outside_phase(scene.field, scene.grid.domain);
-  for (int p = 0; p < phases->num_phases(); ++p) m.phase_names.push_back(phases->phase_name(p));
-  return m;
+  return test::created_mesh(scene, params, with_outside_phase(scene.field, scene.grid.domain).get());
 }
 
 /// Volume enclosed by each phase (divergence theorem over its triangles, with the

@@ -9,24 +9,15 @@
 #include "voronoimesh/scene.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "fixtures.hpp"
+
 #include <gtest/gtest.h>
 
 namespace {
 
 using namespace vm;
 
-InterfaceMesh initial_mesh(const Scene& scene) {
-  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
-  NodeMesh m;
-  create_initial_mesh(field, {}, m);
-  return InterfaceMesh::from_node_mesh(m);
-}
-
-Scene four_spheres(int grid) {
-  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/four_spheres.json");
-  s.grid.cells = {grid, grid, grid};
-  return s;
-}
+InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(test::created_mesh(scene)); }
 
 /// A node of `m` on surface `a`-`b` only, and one on a different surface.
 std::pair<int32_t, int32_t> nodes_on_two_surfaces(const InterfaceMesh& m) {
@@ -41,7 +32,7 @@ std::pair<int32_t, int32_t> nodes_on_two_surfaces(const InterfaceMesh& m) {
 }
 
 TEST(Guard, undoes_exactly_the_move_that_would_cross_and_keeps_the_others) {
-  InterfaceMesh mesh = initial_mesh(four_spheres(16));
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
   ASSERT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
   const auto [v, w] = nodes_on_two_surfaces(mesh);
   ASSERT_GE(v, 0);

@@ -13,6 +13,8 @@
 #include "voronoimesh/stats.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "fixtures.hpp"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -25,18 +27,9 @@ namespace {
 
 using namespace vm;
 
-Scene example(const std::string& name, int grid) {
-  Scene s = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
-  s.grid.cells = {grid, grid, grid};
-  return s;
-}
+Scene example(const std::string& name, int grid) { return test::example_scene(name, grid); }
 
-InterfaceMesh initial_mesh(const Scene& scene) {
-  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
-  NodeMesh m;
-  create_initial_mesh(field, {}, m);
-  return InterfaceMesh::from_node_mesh(m);
-}
+InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(test::created_mesh(scene)); }
 
 /// Triangles whose normal does not point from their first phase into their second
 /// (grad (phi_q - phi_p) at the centroid), among those where that direction is clear.
