@@ -11,9 +11,10 @@
 #include "voronoimesh/sampled_field.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "nrrd_file.hpp"
+
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -26,20 +27,8 @@ namespace {
 
 using namespace vm;
 
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("vm_test_input_" + name)).string();
-}
-
-/// Writes an attached raw NRRD: `header` holds the type/dimension/sizes lines and
-/// any geometry, `data` the samples.
-template <class T>
-std::string write_nrrd(const std::string& name, const std::string& header, const std::vector<T>& data) {
-  const std::string path = temp_path(name);
-  std::ofstream out(path, std::ios::binary);
-  out << "NRRD0004\n" << header << "encoding: raw\nendian: little\n\n";
-  out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(T)));
-  return path;
-}
+using test::temp_path;
+using test::write_nrrd;
 
 constexpr int n = 32;                     // voxels per axis
 constexpr double voxel = 0.5;             // spacing
@@ -191,19 +180,17 @@ TEST(LabelVolume, no_background_fills_gaps_between_grains) {
   for (const Vec3& p : mesh.points) EXPECT_NEAR((p.x() - origin.x()) / voxel, 15.5, 0.05);
 }
 
-// A few hundred labels: the field keeps K per voxel, so this stays fast.
+// A few hundred labels: the field keeps K per voxel whatever the label count
+// (time and memory are measured in bench/, not here).
 TEST(LabelVolume, many_labels_stay_cheap) {
   std::vector<uint16_t> v;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) v.push_back(uint16_t(1 + i / 4 + 8 * (j / 4) + 64 * (k / 8))); // 8x8x4 = 256 blocks
-  const auto t0 = std::chrono::steady_clock::now();
   const Scene scene = load_input(write_nrrd("blocks.nrrd", sphere_header, v));
   EXPECT_EQ(scene.field->num_phases(), 256);
   const NodeMesh mesh = create(scene);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_TRUE(validate(mesh).ok());
-  EXPECT_LT(seconds, 5.0);
 }
 
 TEST(LabelVolume, axis_flips_are_honoured_and_oblique_directions_refused) {

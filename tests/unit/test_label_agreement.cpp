@@ -1,0 +1,147 @@
+// The acceptance test of label volumes: a synthetic volume of overlapping
+// ellipsoids (labels 3, 7 and 200 in background 0) is meshed with a closed
+// domain and improved; then every voxel centre is located in the mesh by
+// casting rays along x, and the phase around it must be its voxel's label
+// wherever the voxel is more than a voxel away from any other label.
+
+#include "voronoimesh/closed_domain.hpp"
+#include "voronoimesh/input.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include "fixtures.hpp"
+#include "nrrd_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+using namespace vm;
+
+constexpr int kSize = 40; // voxels per axis, spacing 1, voxel (0,0,0) at the origin
+const Eigen::Vector2d kRayOffset(7.31e-4, 5.17e-4);
+
+/// Label of voxel (i, j, k): three overlapping ellipsoids, later ones on top.
+uint8_t ellipsoid_label(int i, int j, int k) {
+  struct Ellipsoid {
+    Vec3 centre, radii;
+    uint8_t label;
+  };
+  const Ellipsoid shapes[] = {{{14, 18, 20}, {10, 7, 13}, 3}, {{25, 20, 18}, {9, 13, 8}, 7}, {{20, 12, 27}, {6, 6, 9}, 200}};
+  uint8_t label = 0;
+  for (const Ellipsoid& e : shapes)
+    if ((Vec3(i, j, k) - e.centre).cwiseQuotient(e.radii).squaredNorm() < 1) label = e.label;
+  return label;
+}
+
+/// Phase ids of the mesh at every voxel centre strictly inside the box (-1 where
+/// a ray could not decide), found by walking along x through the crossings of
+/// the closed mesh: a triangle of pair (a, b) whose normal points along +x is
+/// crossed from a into b. The rays pass a hair beside the voxel centres, as mesh
+/// nodes on the box sit on lattice points, which have integer coordinates here.
+std::vector<int> locate_voxel_centres(const NodeMesh& m, int exterior) {
+  struct Crossing {
+    double x;
+    int from, to;
+  };
+  std::vector<std::vector<Crossing>> rows(size_t(kSize * kSize));
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const Vec3& a = m.points[size_t(m.triangles[t][0])];
+    const Vec3& b = m.points[size_t(m.triangles[t][1])];
+    const Vec3& c = m.points[size_t(m.triangles[t][2])];
+    const Vec3 n = (b - a).cross(c - a);
+    if (n.x() == 0) continue; // parallel to the rays
+    const Vec3 shift(0, kRayOffset.x(), kRayOffset.y()); // rows whose ray meets the box
+    const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - shift, hi = a.cwiseMax(b).cwiseMax(c) - shift;
+    for (int k = std::max(1, int(std::ceil(lo.z()))); k <= std::min(kSize - 2, int(std::floor(hi.z()))); ++k)
+      for (int j = std::max(1, int(std::ceil(lo.y()))); j <= std::min(kSize - 2, int(std::floor(hi.y()))); ++j) {
+        // Barycentric coordinates of (j, k) in the triangle's projection on the yz plane.
+        auto cross2 = [](const Vec3& p, const Vec3& q, double y, double z) {
+          return (q.y() - p.y()) * (z - p.z()) - (q.z() - p.z()) * (y - p.y());
+        };
+        const double y = j + kRayOffset.x(), z = k + kRayOffset.y();
+        const double wa = cross2(b, c, y, z), wb = cross2(c, a, y, z), wc = cross2(a, b, y, z);
+        const bool inside = (wa >= 0 && wb >= 0 && wc >= 0) || (wa <= 0 && wb <= 0 && wc <= 0);
+        if (!inside) continue;
+        auto& row = rows[size_t(j + kSize * k)];
+        if (wa == 0 || wb == 0 || wc == 0) { // through an edge or corner: this ray cannot decide
+          row.push_back({-INFINITY, -1, -1});
+          continue;
+        }
+        const double x = (wa * a.x() + wb * b.x() + wc * c.x()) / (wa + wb + wc);
+        const bool forward = n.x() > 0;
+        row.push_back({x, forward ? m.pairs[t][0] : m.pairs[t][1], forward ? m.pairs[t][1] : m.pairs[t][0]});
+      }
+  }
+  std::vector<int> phase(size_t(kSize * kSize * kSize), -1);
+  for (int k = 1; k < kSize - 1; ++k)
+    for (int j = 1; j < kSize - 1; ++j) {
+      auto& row = rows[size_t(j + kSize * k)];
+      std::sort(row.begin(), row.end(), [](const Crossing& p, const Crossing& q) { return p.x < q.x; });
+      if (!row.empty() && row.front().from < 0) continue;
+      int current = exterior;
+      size_t next = 0;
+      bool consistent = true;
+      for (int i = 1; i < kSize - 1 && consistent; ++i) {
+        for (; next < row.size() && row[next].x < i; ++next) {
+          consistent = consistent && row[next].from == current;
+          current = row[next].to;
+        }
+        if (consistent) phase[size_t(i + kSize * (j + kSize * k))] = current;
+      }
+    }
+  return phase;
+}
+
+TEST(LabelVolume, mesh_phases_agree_with_the_voxel_labels) {
+  std::vector<uint8_t> voxels;
+  for (int k = 0; k < kSize; ++k)
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i) voxels.push_back(ellipsoid_label(i, j, k));
+  const std::string path = test::write_nrrd("ellipsoids.nrrd", "type: uchar\ndimension: 3\nsizes: 40 40 40\n", voxels);
+  const Scene scene = load_input(path);
+  ASSERT_EQ(scene.field->num_phases(), 4);
+  CreateParams close;
+  close.close = true;
+  const auto phases = with_outside_phase(scene.field, scene.grid.domain);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene, close, phases.get()));
+  RunOptions run;
+  run.iterations = 20;
+  Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, phases.get(), run);
+  const NodeMesh m = mesh.to_node_mesh();
+  ASSERT_TRUE(validate(m).ok()) << validate(m).summary();
+
+  const std::vector<int> located = locate_voxel_centres(m, scene.field->num_phases());
+  size_t far = 0, far_agree = 0, all = 0, all_agree = 0, undecided = 0;
+  for (int k = 1; k < kSize - 1; ++k)
+    for (int j = 1; j < kSize - 1; ++j)
+      for (int i = 1; i < kSize - 1; ++i) {
+        const size_t v = size_t(i + kSize * (j + kSize * k));
+        if (located[v] < 0) {
+          ++undecided;
+          continue;
+        }
+        const int label = voxels[v];
+        const bool agree = scene.field->phase_label(located[v]) == label;
+        bool uniform = true; // all 26 neighbours share the label: over a voxel from any interface
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di)
+              uniform = uniform && voxels[size_t(i + di + kSize * (j + dj + kSize * (k + dk)))] == label;
+        ++all, all_agree += agree;
+        if (uniform) ++far, far_agree += agree;
+      }
+  std::printf("voxel centres: %zu of %zu far from interfaces agree, %zu of %zu overall (%.2f%%), %zu undecided\n",
+              far_agree, far, all_agree, all, 100.0 * double(all_agree) / double(all), undecided);
+  EXPECT_EQ(far_agree, far);
+  EXPECT_GT(double(all_agree), 0.97 * double(all));
+  EXPECT_LT(undecided, all / 100);
+}
+
+} // namespace
