@@ -5,6 +5,7 @@
 
 #include "detail/axis_align.hpp"
 #include "detail/label_field.hpp"
+#include "detail/memory.hpp"
 #include "detail/point_cloud.hpp"
 #include "detail/text.hpp"
 #include "detail/voxel_grid.hpp"
@@ -63,9 +64,18 @@ std::vector<int32_t> label_targets(const std::vector<int32_t>& present, const In
   return target;
 }
 
+/// Refuses, before building them, phase functions that cannot fit in memory:
+/// per voxel a phase id, K ids and values, a floor and the working copies of the
+/// label field's passes (about as much again).
+void refuse_huge_field(const io::Volume& v, const InputOptions& o, const std::string& path) {
+  detail::refuse_beyond_memory(double(v.voxel_count()) * (13.0 + 8.0 * o.top_k) * 2, path,
+                               cat("building the phase functions of ", double(v.voxel_count()), " voxels"));
+}
+
 Scene label_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
   if (v.components != 1)
     throw InvalidInput(located(path, cat("has ", v.components, " integer components per voxel; a label volume has one")));
+  refuse_huge_field(v, o, path);
   const std::vector<int32_t> present = distinct(v.labels);
   const std::vector<int32_t> target = label_targets(present, o, path);
   detail::PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
@@ -100,6 +110,7 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
                                      "or one file per phase through a scene's \"grid\" phases"));
   if (size_t(v.components) > max_phases)
     throw InvalidInput(located(path, cat("has ", v.components, " components; at most ", max_phases)));
+  refuse_huge_field(v, o, path);
   const GridSpec grid = detail::voxel_grid(v.size, v.spacing, v.origin, path, "a distance grid");
   std::vector<std::string> names;
   for (int i = 0; i < v.components; ++i) names.push_back(cat("phase", i));

@@ -130,6 +130,16 @@ expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create lab
 expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1+x -o out.ply
 expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
 expect_error "empty NIfTI" 2 "later\.nii\.gz: not a NIfTI file" -- "$vm" create later.nii.gz -o out.ply
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 10 10 10\nencoding: raw\n\n'; head -c 500 /dev/zero; } >truncated.nrrd
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'; head -c 64 /dev/zero; } >single.nrrd
+printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n\n' >huge.nrrd
+printf 'NRRD0004\ntype: float\ndimension: 4\nsizes: 2 2 2 2\nkinds: vector domain domain domain\nencoding: ascii\n\n0 0 0 0 0 nan 0 0 0 0 0 0 0 0 0 0\n' >nan.nrrd
+sed 's/nan/inf/' nan.nrrd >inf.nrrd
+expect_error "truncated volume" 2 "truncated\.nrrd: .*got only 500" -- "$vm" create truncated.nrrd -o out.ply
+expect_error "one label" 2 "single\.nrrd: has 1 phase\(s\)" -- "$vm" create single.nrrd -o out.ply
+expect_error "volume beyond memory" 2 "huge\.nrrd: reading 1e\+15 samples needs about .* GiB, this machine has" -- "$vm" create huge.nrrd -o out.ply
+expect_error "NaN in a distance grid" 2 "nan\.nrrd: value nan at sample 5" -- "$vm" create nan.nrrd -o out.ply
+expect_error "inf in a distance grid" 2 "inf\.nrrd: value inf at sample 5" -- "$vm" create inf.nrrd -o out.ply
 expect_error "unknown input" 2 "unknown input type" -- "$vm" create labels.vtk -o out.ply
 
 # Scene "grid" phases: one ASCII float NRRD per phase (two spheres on 16^3 voxels), beside the scene in a

@@ -6,6 +6,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
+#include "detail/memory.hpp"
 #include "detail/text.hpp"
 
 #include <teem/nrrd.h>
@@ -124,6 +125,18 @@ Volume read_nrrd(const std::string& path) {
   if (!std::filesystem::exists(path, ec))
     throw IoError(located(path, "cannot open (No such file or directory)"));
   NrrdPtr n(nrrdNew());
+  {
+    // The header first: a corrupt or absurd size is refused before Teem allocates it.
+    std::unique_ptr<NrrdIoState, NrrdIoState* (*)(NrrdIoState*)> header_only(nrrdIoStateNew(), nrrdIoStateNix);
+    header_only->skipData = 1;
+    if (nrrdLoad(n.get(), path.c_str(), header_only.get()) != 0)
+      throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
+    double elements = 1;
+    for (unsigned a = 0; a < n->dim; ++a) elements *= double(n->axis[a].size);
+    // Teem's copy and ours (4 bytes per sample) live together while converting.
+    detail::refuse_beyond_memory(elements * double(nrrdTypeSize[n->type] + 4), path,
+                                 cat("reading ", elements, " samples"));
+  }
   if (nrrdLoad(n.get(), path.c_str(), nullptr) != 0)
     throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
 

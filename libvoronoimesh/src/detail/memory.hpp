@@ -1,0 +1,34 @@
+#pragma once
+/// @file detail/memory.hpp
+/// Refusing work that cannot fit in this machine's memory before allocating it,
+/// with the estimate in the message (a corrupt header or a typo in --grid should
+/// fail at once, not after minutes of swapping or in an allocator).
+
+#include "detail/text.hpp"
+#include "voronoimesh/errors.hpp"
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <string>
+
+namespace vm::detail {
+
+/// Physical memory of this machine, in bytes.
+inline uint64_t physical_memory() {
+  return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+}
+
+/// Throws InvalidInput "<source>: <what> needs about X GiB, this machine has Y GiB"
+/// when `bytes` exceeds 80% of the physical memory.
+inline void refuse_beyond_memory(double bytes, const std::string& source, const std::string& what) {
+  const double physical = double(physical_memory());
+  if (bytes > 0.8 * physical) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "%s needs about %.1f GiB, this machine has %.1f GiB", what.c_str(),
+                  bytes / double(1ull << 30), physical / double(1ull << 30));
+    throw InvalidInput(located(source, msg));
+  }
+}
+
+} // namespace vm::detail
