@@ -17,9 +17,9 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
 }
 
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
-/// triangles that lose a corner disappear. Returns false (leaving `out`
-/// unspecified) if a remaining triangle would turn over.
-bool merged(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out) {
+/// triangles that lose a corner disappear. Appends to `turned` the corners of
+/// remaining triangles that would turn over.
+void merge(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned) {
   out.points = m.points;
   out.domain = m.domain;
   out.phase_names = m.phase_names;
@@ -32,11 +32,10 @@ bool merged(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out) 
     for (int32_t& v : tri)
       if (into[size_t(v)] >= 0) v = into[size_t(v)], moved = true;
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-    if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) return false;
+    if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
     out.triangles.push_back(tri);
     out.pairs.push_back(m.pairs[t]);
   }
-  return true;
 }
 
 /// Drops nodes no triangle uses and renumbers the rest in order.
@@ -55,10 +54,15 @@ void drop_unused_nodes(NodeMesh& m) {
   m.points = std::move(points);
 }
 
-/// `trial` (m after merging by `into`) is a valid mesh and, if asked, none of
-/// its triangles at a merge target crosses a triangle of another surface.
-bool acceptable(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings) {
-  if (!validate(trial).ok()) return false;
+/// Where `trial` (m after merging by `into`) fails: appends the nodes of
+/// validation problems and, if asked, the corners of triangles at a merge target
+/// that cross a triangle of another surface. Returns false if it fails somewhere
+/// no node names (then nothing in the batch can be trusted).
+bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
+                   std::vector<int32_t>& nodes) {
+  const ValidationReport report = validate(trial);
+  nodes.insert(nodes.end(), report.nodes.begin(), report.nodes.end());
+  if (!report.ok() && report.nodes.empty()) return false;
   if (!guard_crossings) return true;
   std::vector<uint8_t> target(trial.num_nodes(), 0);
   for (int32_t a : into)
@@ -66,7 +70,11 @@ bool acceptable(const NodeMesh& trial, const std::vector<int32_t>& into, bool gu
   std::vector<uint8_t> involved(trial.num_triangles(), 0);
   for (size_t t = 0; t < trial.num_triangles(); ++t)
     for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
-  return find_self_intersections(trial, 0, involved, true).ok();
+  const IntersectionReport crossings =
+      find_self_intersections(trial, std::numeric_limits<size_t>::max(), involved, true);
+  for (const auto& pair : crossings.pairs)
+    for (int32_t t : pair) nodes.insert(nodes.end(), trial.triangles[size_t(t)].begin(), trial.triangles[size_t(t)].end());
+  return true;
 }
 
 } // namespace
@@ -95,7 +103,8 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
     int32_t a, b;
   };
   std::vector<Collapse> chosen;
-  std::vector<char> touched(m.num_nodes(), 0);
+  // The collapse that claimed each node (its two nodes and their rings), or -1.
+  std::vector<int32_t> owner(m.num_nodes(), -1);
   for (const auto& [q, t] : slivers) {
     if (int(chosen.size()) >= params.max_collapses) break;
     const auto& corners = m.triangles[t];
@@ -107,37 +116,43 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
       else if (len < best.first && mesh.constraints_within(u, w)) best = {len, {w, u}};
     }
     const Collapse c = best.second;
-    if (c.a < 0 || touched[size_t(c.a)] || touched[size_t(c.b)]) continue;
+    if (c.a < 0 || owner[size_t(c.a)] >= 0 || owner[size_t(c.b)] >= 0) continue;
     // Collapses in one batch must not share a triangle: claim both rings.
     bool clear = true;
     for (int32_t n : {c.a, c.b})
-      for (int32_t w : mesh.neighbours(n)) clear = clear && !touched[size_t(w)];
+      for (int32_t w : mesh.neighbours(n)) clear = clear && owner[size_t(w)] < 0;
     if (!clear) continue;
     for (int32_t n : {c.a, c.b}) {
-      touched[size_t(n)] = 1;
-      for (int32_t w : mesh.neighbours(n)) touched[size_t(w)] = 1;
+      owner[size_t(n)] = int32_t(chosen.size());
+      for (int32_t w : mesh.neighbours(n)) owner[size_t(w)] = int32_t(chosen.size());
     }
     chosen.push_back(c);
   }
 
-  // All at once, validated once; if that fails, one by one.
-  std::vector<int32_t> into(m.num_nodes(), -1);
-  for (const Collapse& c : chosen) into[size_t(c.b)] = c.a;
+  // All at once, checked once. Collapses in a batch share no triangle, so each
+  // failing node belongs to one collapse's rings: those collapses are dropped
+  // and the rest checked again (one or two whole-mesh checks, not one per collapse).
+  std::vector<char> active(chosen.size(), 1);
+  std::vector<int32_t> into(m.num_nodes(), -1), failed;
   NodeMesh trial;
   size_t done = 0;
-  if (!chosen.empty() && merged(m, into, trial) && acceptable(trial, into, params.guard_crossings)) {
-    m = std::move(trial);
-    done = chosen.size();
-  } else {
+  for (size_t left = chosen.size(); left > 0;) {
     std::fill(into.begin(), into.end(), -1);
-    for (const Collapse& c : chosen) {
-      into[size_t(c.b)] = c.a;
-      if (merged(m, into, trial) && acceptable(trial, into, params.guard_crossings)) {
-        m = trial;
-        ++done;
-      }
-      into[size_t(c.b)] = -1;
+    for (size_t i = 0; i < chosen.size(); ++i)
+      if (active[i]) into[size_t(chosen[i].b)] = chosen[i].a;
+    failed.clear();
+    merge(m, into, trial, failed);
+    const bool blamed = !failed.empty() || find_failures(trial, into, params.guard_crossings, failed);
+    if (blamed && failed.empty()) {
+      m = std::move(trial);
+      done = left;
+      break;
     }
+    size_t dropped = 0;
+    for (int32_t n : failed)
+      if (owner[size_t(n)] >= 0 && active[size_t(owner[size_t(n)])]) active[size_t(owner[size_t(n)])] = 0, ++dropped;
+    if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
+    left -= dropped;
   }
   if (done) {
     drop_unused_nodes(m);

@@ -272,6 +272,16 @@ TEST(Intersections, grid_agrees_with_all_pairs_on_a_random_soup) {
   // The same on one thread.
   tbb::task_arena one(1);
   one.execute([&] { EXPECT_EQ(find_self_intersections(m, 4).pairs, few.pairs); });
+  // Flagging a few triangles: exactly the pairs with a flagged one (found on the
+  // triangles near the flagged ones only), and with every triangle flagged, all.
+  std::vector<uint8_t> flags(t.size(), 0);
+  for (size_t i = 0; i < t.size(); i += 9) flags[i] = 1;
+  std::vector<Pair> flagged;
+  for (const Pair& q : expected)
+    if (flags[size_t(q[0])] || flags[size_t(q[1])]) flagged.push_back(q);
+  ASSERT_GT(flagged.size(), 2u);
+  EXPECT_EQ(find_self_intersections(m, expected.size(), flags).pairs, flagged);
+  EXPECT_EQ(find_self_intersections(m, expected.size(), std::vector<uint8_t>(t.size(), 1)).pairs, expected);
 }
 
 TEST(Intersections, bad_node_ids_are_rejected) {

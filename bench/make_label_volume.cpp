@@ -1,0 +1,79 @@
+// Writes a synthetic label volume as a raw NRRD, for the label-volume benchmark.
+//
+//   make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]
+//
+// ellipsoids: LABELS-1 random overlapping ellipsoids (labels 1..) in background 0,
+//             like a segmentation of a few organs;
+// grains:     a Voronoi polycrystal of LABELS grains (labels 1..LABELS) filling
+//             the volume, like a grain map.
+// Voxels are uint16 (labels up to 65535), spacing 1, origin 0.
+
+#include <nanoflann.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Seeds {
+  std::vector<Eigen::Vector3d> p;
+  size_t kdtree_get_point_count() const { return p.size(); }
+  double kdtree_get_pt(size_t i, size_t d) const { return p[i][int(d)]; }
+  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
+};
+using SeedTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Seeds>, Seeds, 3>;
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 5) {
+    std::fprintf(stderr, "usage: make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]\n");
+    return 2;
+  }
+  const std::string kind = argv[1];
+  const int n = std::atoi(argv[2]), labels = std::atoi(argv[3]);
+  if ((kind != "ellipsoids" && kind != "grains") || n < 2 || labels < 2 || labels > 65535) {
+    std::fprintf(stderr, "make_label_volume: bad arguments\n");
+    return 2;
+  }
+  std::mt19937_64 rng(argc > 5 ? std::strtoull(argv[5], nullptr, 10) : 1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<uint16_t> v(size_t(n) * size_t(n) * size_t(n), 0);
+  if (kind == "ellipsoids") {
+    for (int l = 1; l < labels; ++l) {
+      const Eigen::Vector3d c(n * (0.25 + 0.5 * unit(rng)), n * (0.25 + 0.5 * unit(rng)), n * (0.25 + 0.5 * unit(rng)));
+      const Eigen::Vector3d r(n * (0.1 + 0.2 * unit(rng)), n * (0.1 + 0.2 * unit(rng)), n * (0.1 + 0.2 * unit(rng)));
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i)
+            if ((Eigen::Vector3d(i, j, k) - c).cwiseQuotient(r).squaredNorm() < 1)
+              v[size_t(i) + size_t(n) * (size_t(j) + size_t(n) * size_t(k))] = uint16_t(l);
+    }
+  } else {
+    Seeds seeds;
+    for (int l = 0; l < labels; ++l) seeds.p.emplace_back(n * unit(rng), n * unit(rng), n * unit(rng));
+    SeedTree tree(3, seeds);
+    tree.buildIndex();
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const double q[3] = {double(i), double(j), double(k)};
+          unsigned nearest = 0;
+          double d2 = 0;
+          tree.knnSearch(q, 1, &nearest, &d2);
+          v[size_t(i) + size_t(n) * (size_t(j) + size_t(n) * size_t(k))] = uint16_t(nearest + 1);
+        }
+  }
+  std::ofstream out(argv[4], std::ios::binary);
+  out << "NRRD0004\ntype: ushort\ndimension: 3\nsizes: " << n << " " << n << " " << n
+      << "\nspacings: 1 1 1\nencoding: raw\nendian: little\n\n";
+  out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(uint16_t)));
+  return out ? 0 : 1;
+}
