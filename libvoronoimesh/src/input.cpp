@@ -21,9 +21,6 @@ using detail::lower;
 
 using detail::cat;
 
-/// Phase ids are kept in 16 bits in meshes (mesh.hpp).
-constexpr size_t max_phases = 32767;
-
 void check_options(const InputOptions& o) {
   if (!(o.smoothing > 0 && o.smoothing <= 8)) throw InvalidInput(cat("--smoothing: must be in (0, 8] voxels, got ", o.smoothing));
   if (!(o.band >= 1 && o.band <= 64)) throw InvalidInput(cat("--band: must be in [1, 64] voxels, got ", o.band));
@@ -84,8 +81,8 @@ Scene label_scene(const io::Volume& v, const InputOptions& o, const std::string&
   pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
   if (pv.labels.size() < 2)
     throw InvalidInput(located(path, cat("has ", pv.labels.size(), " phase(s) after the label options; meshing needs 2 or more")));
-  if (pv.labels.size() > max_phases)
-    throw InvalidInput(located(path, cat("has ", pv.labels.size(), " labels; at most ", max_phases)));
+  if (pv.labels.size() > kMaxPhases)
+    throw InvalidInput(located(path, cat("has ", pv.labels.size(), " labels; at most ", kMaxPhases)));
   for (int32_t l : pv.labels) pv.names.push_back(l == o.background ? std::string("background") : cat("label", l));
   // Label value -> phase id, through the position of the label among `present`.
   std::vector<int32_t> phase_of(present.size());
@@ -108,8 +105,8 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
   if (v.components < 2)
     throw InvalidInput(located(path, "has one real component per voxel; a distance grid needs one per phase (2 or more), "
                                      "or one file per phase through a scene's \"grid\" phases"));
-  if (size_t(v.components) > max_phases)
-    throw InvalidInput(located(path, cat("has ", v.components, " components; at most ", max_phases)));
+  if (size_t(v.components) > kMaxPhases)
+    throw InvalidInput(located(path, cat("has ", v.components, " components; at most ", kMaxPhases)));
   refuse_huge_field(v, o, path);
   const GridSpec grid = detail::voxel_grid(v.size, v.spacing, v.origin, path, "a distance grid");
   std::vector<std::string> names;

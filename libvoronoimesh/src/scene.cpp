@@ -19,10 +19,8 @@ using detail::brief;
 using detail::JsonObject;
 using nlohmann::json;
 
-/// Largest grid and number of phases a scene may ask for: 4096^3 nodes is already
-/// far beyond memory, and mesh nodes keep phase ids in 16 bits (mesh.hpp).
+/// Largest grid a scene may ask for: 4096^3 nodes is already far beyond memory.
 constexpr int max_grid_cells = 4096;
-constexpr size_t max_phases = 32767;
 
 /// "malformed JSON at line L, column C: <reason>" from nlohmann's message, which
 /// reads "[json.exception.parse_error.101] parse error at line L, column C: <reason>"
@@ -80,9 +78,9 @@ std::shared_ptr<const PhaseField> read_phases(const JsonObject& scene, const det
   if (!list.is_array()) scene.fail("'phases' must be an array of phase objects, got " + brief(list));
   if (list.size() < 2)
     scene.fail("a scene needs at least two phases, got " + std::to_string(list.size()));
-  if (list.size() > max_phases)
+  if (list.size() > kMaxPhases)
     scene.fail("too many phases (" + std::to_string(list.size()) + "; at most " +
-               std::to_string(max_phases) + ")");
+               std::to_string(kMaxPhases) + ")");
   auto field = std::make_shared<detail::CompositeField>();
   std::map<std::string, size_t> used; // names are how outputs tell phases apart
   for (size_t i = 0; i < list.size(); ++i) {

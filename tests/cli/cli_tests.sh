@@ -129,6 +129,31 @@ expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$v
 expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
 expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1+x -o out.ply
 expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
+# Point clouds as PLY (any vertex element with x, y, z and label), and bad point input.
+# stats exits non-zero on the four-region mesh: smoothing and projection onto the
+# jagged Voronoi interfaces fold some triangles of one surface onto each other,
+# which the crossing guard (across surfaces only) does not prevent.
+{ printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nproperty int label\nend_header\n'
+  grep -v '^#' cloud.xyz; } >cloud.ply
+if "$vm" create -q cloud.ply -o cp.ply && "$vm" stats cp.ply | grep -qE "^phases +3" && cmp -s c.ply cp.ply; then pass; else fail "create on a PLY point cloud (same mesh as its .xyz)"; fi
+if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply; then pass; else fail "smooth --field on a PLY point cloud"; fi
+if python3 "$examples/../scripts/make_point_cloud.py" --count 2000 four.ply 2>/dev/null \
+  && "$vm" mesh -q four.ply --grid 32 --iterations 20 -o four_mesh.ply && { "$vm" stats four_mesh.ply >four.txt; true; } \
+  && grep -qE "^phases +4" four.txt && grep -qE "^quadruple points +[1-9]" four.txt; then pass; else fail "four-region point cloud: $(cat four.txt)"; fi
+printf 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 1 1\n' >nolabel.ply
+: >empty.xyz
+printf '0 0 0 1\n1 1 1 1\n' >onelabel.xyz
+printf '0 0 0 1\n1 1 1 99999999999\n' >biglabel.xyz
+printf '0 0 0 1\n1 nan 1 2\n' >nan.xyz
+sed 's/^1 1 1 2$/1 inf 1 2/' cloud.ply >inf.ply
+awk 'BEGIN { for (i = 0; i <= 32767; ++i) print i, 0, 0, i }' >manylabels.xyz
+expect_error "PLY cloud without labels" 2 "nolabel\.ply: no vertex property 'label' \(a labelled point cloud needs one\)" -- "$vm" create nolabel.ply -o out.ply
+expect_error "empty point file" 2 "empty\.xyz: has no points" -- "$vm" create empty.xyz -o out.ply
+expect_error "one label" 2 "onelabel\.xyz: has 1 label\(s\); a labelled point cloud needs 2 or more" -- "$vm" create onelabel.xyz -o out.ply
+expect_error "label beyond int32" 2 "biglabel\.xyz: line 2: label 99999999999 is not a 32-bit integer" -- "$vm" create biglabel.xyz -o out.ply
+expect_error "too many labels" 2 "manylabels\.xyz: has 32768 distinct labels; at most 32767" -- "$vm" create manylabels.xyz -o out.ply
+expect_error "nan coordinate" 2 "nan\.xyz: line 2: coordinates must be finite" -- "$vm" create nan.xyz -o out.ply
+expect_error "inf coordinate in PLY" 2 "inf\.ply: vertex 3: coordinates must be finite" -- "$vm" mesh inf.ply -o out.ply
 expect_error "empty NIfTI" 2 "later\.nii\.gz: not a NIfTI file" -- "$vm" create later.nii.gz -o out.ply
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 10 10 10\nencoding: raw\n\n'; head -c 500 /dev/zero; } >truncated.nrrd
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'; head -c 64 /dev/zero; } >single.nrrd

@@ -6,9 +6,13 @@
 #include <Eigen/Geometry> // cross products on Vec3
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace vm {
+
+/// Most phases any input may have: meshes keep phase ids as int16 (PhaseSet, mesh.hpp).
+inline constexpr size_t kMaxPhases = 32767;
 
 /// A point or vector in 3-space, double precision.
 using Vec3 = Eigen::Vector3d;
