@@ -71,7 +71,7 @@ bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool
   for (size_t t = 0; t < trial.num_triangles(); ++t)
     for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
   const IntersectionReport crossings =
-      find_self_intersections(trial, std::numeric_limits<size_t>::max(), involved, true);
+      find_self_intersections(trial, std::numeric_limits<size_t>::max(), involved, false);
   for (const auto& pair : crossings.pairs)
     for (int32_t t : pair) nodes.insert(nodes.end(), trial.triangles[size_t(t)].begin(), trial.triangles[size_t(t)].end());
   return true;

@@ -149,7 +149,7 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
       involved[f] = 1;
     }
   const IntersectionReport found =
-      find_self_intersections(mesh.to_node_mesh(), std::numeric_limits<size_t>::max(), involved, true);
+      find_self_intersections(mesh.to_node_mesh(), std::numeric_limits<size_t>::max(), involved, false);
   std::vector<int32_t> culprits;
   for (const auto& pair : found.pairs)
     for (int32_t f : pair)

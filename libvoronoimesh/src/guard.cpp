@@ -23,7 +23,7 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     });
     ++report.rounds;
     const IntersectionReport crossings =
-        find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, true);
+        find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
     if (crossings.ok()) break;
     std::vector<int32_t> undo;
     for (const auto& pair : crossings.pairs)

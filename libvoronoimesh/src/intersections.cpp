@@ -451,6 +451,20 @@ private:
   /// the other triangle's cone at v, or the opposite edge meets the other triangle.
   static bool shared_vertex(const Vec3& v, const Vec3& a1, const Vec3& a2, int ax, const Vec3& b1, const Vec3& b2,
                             int bx) {
+    // Seen along a's projection axis (one to one on a), a common point x != v
+    // would show as a common point x' != v' of both shadows, so a line through
+    // v' along one of the four edges at v with one shadow strictly on each side
+    // rules it out. Exact 2D tests, cheap where the 3D ones below are not (fans
+    // in one plane).
+    if (ax >= 0) {
+      const struct {
+        const Vec3 &edge, &own, &x, &y;
+      } lines[4] = {{a1, a2, b1, b2}, {a2, a1, b1, b2}, {b1, b2, a1, a2}, {b2, b1, a1, a2}};
+      for (const auto& l : lines) {
+        const int own = orient2d(v, l.edge, l.own, ax);
+        if (own != 0 && orient2d(v, l.edge, l.x, ax) == -own && orient2d(v, l.edge, l.y, ax) == -own) return false;
+      }
+    }
     // Strictly on one side of the other's plane but for v: nothing else in common.
     const int oa1 = side(v, b1, b2, bx, a1), oa2 = side(v, b1, b2, bx, a2);
     if (same_strict_sign(oa1, oa2)) return false;
@@ -481,8 +495,10 @@ private:
       return shared_vertex(p(u), p(au[0]), p(au[1]), ax, p(bu[0]), p(bu[1]), bx);
     const Vec3& a = p(au[0] == w ? au[1] : au[0]);
     const Vec3& b = p(bu[0] == w ? bu[1] : bu[0]);
-    if (ax >= 0 && bx >= 0) // folded onto each other: one plane, same side of uw
-      return orient3d(p(u), p(w), a, b) == 0 && orient2d(p(u), p(w), a, ax) == orient2d(p(u), p(w), b, ax);
+    // Folded onto each other: one plane, same side of uw. The 2D test first: on
+    // flat surfaces the 3D one is near zero and needs exact arithmetic.
+    if (ax >= 0 && bx >= 0)
+      return orient2d(p(u), p(w), a, ax) == orient2d(p(u), p(w), b, ax) && orient3d(p(u), p(w), a, b) == 0;
     // A collinear triangle reaches off uw only along its line, beyond u or w.
     return (strictly_between(p(u), p(w), a) && strictly_between(p(u), p(w), b)) ||
            (strictly_between(p(w), p(u), a) && strictly_between(p(w), p(u), b));

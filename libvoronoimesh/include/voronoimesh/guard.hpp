@@ -3,9 +3,10 @@
 /// Committing node moves without letting surfaces cross.
 ///
 /// Clamping (Alg. 3) keeps each triangle from inverting within its own fan, but
-/// it cannot see a *different* surface: where a phase is thinner than an edge
-/// (clusters of quadruple points, triple curves meeting at shallow angles),
-/// projection and smoothing can push a triangle through a neighbouring surface.
+/// it cannot see a *different* surface, nor a distant part of its own: where a
+/// phase is thinner than an edge (clusters of quadruple points, triple curves
+/// meeting at shallow angles) or an interface is rough at the grid scale (point
+/// clouds), projection and smoothing can push a triangle through another one.
 /// The guard undoes exactly the moves that would do that (not in the paper).
 
 #include "voronoimesh/mesh.hpp"
