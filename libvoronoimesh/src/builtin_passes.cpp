@@ -61,7 +61,7 @@ void register_builtin_passes(PassRegistry& registry) {
         "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
       false, false, [](PassContext& c, const ParamValues& p) {
         c.flips += flip_edges(c.mesh, FlipParams{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below"),
-                                                 c.guard_crossings})
+                                                 c.guard_crossings, c.field})
                        .flips;
       }));
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (stats.hpp)", {},

@@ -4,6 +4,7 @@
 #include "voronoimesh/intersections.hpp"
 #include "voronoimesh/stats.hpp"
 
+#include "detail/field_orientation.hpp"
 #include "detail/parallel.hpp"
 
 #include <algorithm>
@@ -136,9 +137,10 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
   return stats;
 }
 
-/// The flipped edges whose faces now cross a triangle of another surface; each
-/// crossing is charged to the last flip that made either of its faces.
-std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log) {
+/// The flipped edges whose faces now cross another triangle, or (with a field)
+/// face against their phase pair's direction at a junction; each is charged to
+/// the last flip that made the face.
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const PhaseField* field) {
   const OMesh& om = mesh.omesh();
   std::vector<int32_t> last_flip(om.n_faces(), -1);
   std::vector<uint8_t> involved(om.n_faces(), 0);
@@ -148,12 +150,16 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
       last_flip[f] = int32_t(i);
       involved[f] = 1;
     }
-  const IntersectionReport found =
-      find_self_intersections(mesh.to_node_mesh(), std::numeric_limits<size_t>::max(), involved, false);
+  const NodeMesh m = mesh.to_node_mesh();
+  const IntersectionReport found = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
   std::vector<int32_t> culprits;
   for (const auto& pair : found.pairs)
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
+  if (field)
+    for (size_t f = 0; f < last_flip.size(); ++f)
+      if (last_flip[f] >= 0 && detail::touches_junction(mesh, m, f) && !detail::agrees_with_field(m, f, *field))
+        culprits.push_back(log[size_t(last_flip[f])]);
   return culprits;
 }
 
@@ -178,7 +184,7 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
     std::vector<int32_t> log;
     stats = flip_rounds(mesh, params, banned, log);
     if (log.empty() || !params.guard_crossings) break;
-    const std::vector<int32_t> culprits = crossing_flips(mesh, log);
+    const std::vector<int32_t> culprits = crossing_flips(mesh, log, params.field);
     if (culprits.empty()) break;
     undo_flips(mesh, log);
     stats = {};

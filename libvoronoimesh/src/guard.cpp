@@ -2,37 +2,58 @@
 
 #include "voronoimesh/intersections.hpp"
 
+#include "detail/field_orientation.hpp"
 #include "detail/parallel.hpp"
 
 #include <limits>
 
 namespace vm {
 
-GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta) {
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field) {
   GuardReport report;
   const std::vector<Vec3> before = mesh.positions();
-  mesh.move_nodes(delta);
   NodeMesh m = mesh.to_node_mesh();
-  std::vector<uint8_t> moved(mesh.num_nodes());
-  detail::parallel_for_each_index(moved.size(), [&](size_t n) { moved[n] = !delta[n].isZero(0); });
-  std::vector<uint8_t> involved(m.triangles.size());
+  std::vector<int32_t> watched;
+  std::vector<uint8_t> agreed;
+  if (field) {
+    for (size_t t = 0; t < m.num_triangles(); ++t)
+      if (detail::touches_junction(mesh, m, t)) watched.push_back(int32_t(t));
+    agreed.resize(watched.size());
+    detail::parallel_for_each_index(watched.size(), [&](size_t i) {
+      agreed[i] = detail::agrees_with_field(m, size_t(watched[i]), *field);
+    });
+  }
+  mesh.move_nodes(delta);
+  m.points = mesh.positions();
+  std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
+  detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
+  std::vector<uint8_t> involved(m.triangles.size()), turned(watched.size());
   while (true) {
+    // Only triangles changed since the last check can have started to cross.
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
       const auto& tri = m.triangles[t];
-      involved[t] = moved[size_t(tri[0])] | moved[size_t(tri[1])] | moved[size_t(tri[2])];
+      involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
+    });
+    detail::parallel_for_each_index(watched.size(), [&](size_t i) {
+      turned[i] = agreed[i] && !detail::agrees_with_field(m, size_t(watched[i]), *field);
     });
     ++report.rounds;
     const IntersectionReport crossings =
         find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
-    if (crossings.ok()) break;
+    std::vector<int32_t> culprits;
+    for (const auto& pair : crossings.pairs) culprits.insert(culprits.end(), pair.begin(), pair.end());
+    for (size_t i = 0; i < watched.size(); ++i)
+      if (turned[i]) culprits.push_back(watched[i]);
+    std::fill(changed.begin(), changed.end(), 0);
     std::vector<int32_t> undo;
-    for (const auto& pair : crossings.pairs)
-      for (int32_t t : pair)
-        for (int32_t n : m.triangles[size_t(t)])
-          if (moved[size_t(n)]) {
-            moved[size_t(n)] = 0;
-            undo.push_back(n);
-          }
+    for (int32_t t : culprits)
+      for (int32_t n : m.triangles[size_t(t)])
+        if (moved[size_t(n)]) {
+          moved[size_t(n)] = 0;
+          changed[size_t(n)] = 1;
+          undo.push_back(n);
+        }
+    if (undo.empty()) break; // clean, or only what the mesh had before the move
     std::vector<Vec3> back(undo.size());
     for (size_t i = 0; i < undo.size(); ++i) {
       back[i] = before[size_t(undo[i])];

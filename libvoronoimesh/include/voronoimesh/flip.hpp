@@ -2,6 +2,7 @@
 /// @file flip.hpp
 /// Edge flipping (paper sect. 4.3, Algorithm 5).
 
+#include "voronoimesh/field.hpp"
 #include "voronoimesh/mesh.hpp"
 
 namespace vm {
@@ -16,6 +17,9 @@ struct FlipParams {
   double collapse_below = 0.05;
   /// Refuse flips and collapses that would make two surfaces cross (guard.hpp).
   bool guard_crossings = true;
+  /// With guard_crossings: the phase functions, to also refuse flips that make a
+  /// junction triangle face against its phase pair (null: not checked).
+  const PhaseField* field = nullptr;
 };
 
 /// Times flip_edges() bans the flips that made surfaces cross and tries again

@@ -9,6 +9,7 @@
 /// clouds), projection and smoothing can push a triangle through another one.
 /// The guard undoes exactly the moves that would do that (not in the paper).
 
+#include "voronoimesh/field.hpp"
 #include "voronoimesh/mesh.hpp"
 
 #include <cstddef>
@@ -30,6 +31,12 @@ struct GuardReport {
 /// them stays free. Undoing moves never inverts a triangle that clamping made
 /// safe: any subset of clamped moves is safe (eq. 5's factor 1/2). `delta` is
 /// set to the moves actually made. Deterministic for any thread count.
-GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta);
+/// With `field`, the moves that turn a triangle with a corner on a junction
+/// against the direction from its first phase into its second
+/// (grad phi_second - grad phi_first at its centroid, where that is clear) are
+/// undone too: clamping cannot see that, and near close quadruple points such
+/// triangles could stand across their surface for a few iterations.
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
+                                     const PhaseField* field = nullptr);
 
 } // namespace vm
