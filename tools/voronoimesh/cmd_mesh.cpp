@@ -20,9 +20,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it (PLY, OBJ, "
               "STL, MSH, VTU, VTP or MEDIT).");
   cmd->add_option("input", o->input,
-                  "Input: a scene (.json, docs/scenes.md), a label volume or distance grid (.nrrd, .nhdr), or a "
-                  "labelled point cloud (.xyz, .txt, .pts, .csv); see docs/inputs.md. Without it, the built-in demo: "
-                  "four overlapping spheres.");
+                  std::string(kInputHelp) + " Without it, the built-in demo: four overlapping spheres.");
   add_output_options(cmd, o->output, true);
   add_create_options(cmd, o->create);
   add_input_options(cmd, o->input_options);

@@ -42,7 +42,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   CLI::App* smooth = app.add_subcommand(
       "smooth", "Improve a mesh with a pipeline of passes (default: smooth, project, clamp, flip) and write it.");
   smooth->add_option("mesh", s->mesh, "Mesh file (.ply written by voronoimesh)")->required();
-  smooth->add_option("--field", s->field, "The input the mesh was made from (scene, volume or point cloud, as for create)");
+  smooth->add_option("--field", s->field, std::string("The input the mesh was made from. ") + kInputHelp);
   smooth->add_option("--top-k", s->top_k, "Phases kept per voxel of a --field volume (as given to create)")
       ->capture_default_str();
   add_input_options(smooth, s->input);

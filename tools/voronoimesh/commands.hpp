@@ -32,6 +32,12 @@ enum ExitCode : int {
 /// returning the matching exit code.
 int run_guarded(const std::function<int()>& body);
 
+/// What INPUT (create, mesh) and --field (smooth) accept.
+inline constexpr const char* kInputHelp =
+    "Input: a scene (.json, docs/scenes.md); a label volume or distance grid (.nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, "
+    ".mhd, .inr, .inr.gz); or a labelled point cloud (.xyz, .txt, .pts, .csv, or .ply with a vertex 'label'); see "
+    "docs/inputs.md.";
+
 /// Options every command that computes has.
 struct CommonOptions {
   int threads = 0;
