@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include "voronoimesh/errors.hpp"
+#include "voronoimesh/install_dirs.hpp"
 
 #include <iostream>
 
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
                "Every interface between N phases becomes one triangle mesh whose surfaces meet\n"
                "along triple curves and at quadruple points by sharing edges (after R. I. Saye)."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "voronoimesh 0.1.0");
+  app.set_version_flag("--version", "voronoimesh " + vm::library_version());
   int exit_code = 0;
   vmcli::add_mesh_command(app, exit_code);
   vmcli::add_create_command(app, exit_code);
