@@ -65,4 +65,9 @@ uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice);
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params,
                                 NodeMesh& out);
 
+/// Sets mesh.phase_names and mesh.phase_labels from `field` (left empty when
+/// every label is the phase id), so writers show them. For a closed mesh pass
+/// with_outside_phase(field, box) (closed_domain.hpp), which has the extra phase.
+void name_phases(NodeMesh& mesh, const PhaseField& field);
+
 } // namespace vm

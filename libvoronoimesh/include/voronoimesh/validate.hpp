@@ -34,6 +34,11 @@ struct ValidationReport {
 ///    distinct pairs (each incident phase on exactly two of its triangles).
 ValidationReport validate(const NodeMesh& m);
 
+/// Throws TopologyError "<what> failed validation (N problems; please report
+/// this with the input), first: <problem>" unless validate(m) finds nothing;
+/// `what` names the mesh ("the created mesh").
+void require_valid(const NodeMesh& m, const std::string& what);
+
 /// validate() on the node-level mesh, plus the patch-split invariants: every
 /// OpenMesh vertex manifold; an OpenMesh edge is boundary exactly when its
 /// node-edge is a junction or domain-boundary edge; point() mirrors the node position.
