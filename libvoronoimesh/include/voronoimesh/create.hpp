@@ -15,6 +15,7 @@ enum class Lattice {
   cube6 ///< every grid cell split into six tetrahedra (paper Fig. 2 left)
 };
 
+/// Parameters of create_initial_mesh().
 struct CreateParams {
   Lattice lattice = Lattice::bcc;
   /// Snapping threshold eps in units of the grid spacing h: phase values closer

@@ -18,6 +18,7 @@ struct ValidationReport {
   std::vector<std::string> problems; ///< one line each, at most 20 kept
   size_t problem_count = 0;          ///< all problems found, kept or not
   std::vector<int32_t> nodes;        ///< nodes involved in any problem, sorted, no repeats
+  /// True when validate() found nothing.
   bool ok() const { return problem_count == 0; }
   /// Problems joined into one multi-line text, for test output.
   std::string summary() const;
