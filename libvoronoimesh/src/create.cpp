@@ -284,3 +284,17 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
 }
 
 } // namespace vm
+
+namespace vm {
+
+void name_phases(NodeMesh& mesh, const PhaseField& field) {
+  mesh.phase_names.clear();
+  mesh.phase_labels.clear();
+  for (int p = 0; p < field.num_phases(); ++p) {
+    mesh.phase_names.push_back(field.phase_name(p));
+    if (field.phase_label(p) != p) mesh.phase_labels.resize(size_t(field.num_phases()));
+  }
+  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = field.phase_label(int(p));
+}
+
+} // namespace vm

@@ -8,6 +8,7 @@
 /// mesh create() makes, so it is worth being quick).
 
 #include "voronoimesh/validate.hpp"
+#include "voronoimesh/errors.hpp"
 
 #include "detail/problem_log.hpp"
 #include "detail/topology.hpp"
@@ -415,6 +416,13 @@ ValidationReport validate(const NodeMesh& m) {
     check_node_mesh(m, log);
   }
   return report;
+}
+
+void require_valid(const NodeMesh& m, const std::string& what) {
+  const ValidationReport report = validate(m);
+  if (!report.ok())
+    throw TopologyError(what + " failed validation (" + std::to_string(report.problem_count) +
+                        " problems; please report this with the input), first: " + report.problems.front());
 }
 
 } // namespace vm

@@ -9,6 +9,7 @@
 #include "voronoimesh/node_mesh.hpp"
 #include "voronoimesh/pipeline.hpp"
 #include "voronoimesh/scene.hpp"
+#include "voronoimesh/validate.hpp" // vm::require_valid, which every command uses
 
 #include <CLI/CLI.hpp>
 
@@ -114,9 +115,6 @@ void check_improve_options(const ImproveOptions& o);
 /// line per iteration on a terminal and a summary unless quiet.
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
                    const CommonOptions& common, Progress& progress);
-
-/// Throws TopologyError if `mesh` fails validation; `what` says which mesh.
-void require_valid(const vm::NodeMesh& mesh, const std::string& what);
 
 void add_create_command(CLI::App& app, int& exit_code);
 void add_mesh_command(CLI::App& app, int& exit_code);

@@ -158,14 +158,9 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
   progress.stage("creating the mesh...");
   vm::NodeMesh mesh;
   vm::CreateStats cs = vm::create_initial_mesh(field, params, mesh);
-  const auto phases = o.close ? vm::with_outside_phase(scene.field, grid.domain) : scene.field;
-  for (int p = 0; p < phases->num_phases(); ++p) {
-    mesh.phase_names.push_back(phases->phase_name(p));
-    if (phases->phase_label(p) != p) mesh.phase_labels.resize(size_t(phases->num_phases()));
-  }
-  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = phases->phase_label(int(p));
+  vm::name_phases(mesh, *(o.close ? vm::with_outside_phase(scene.field, grid.domain) : scene.field));
   progress.done();
-  if (!o.skip_validation) require_valid(mesh, "the created mesh");
+  if (!o.skip_validation) vm::require_valid(mesh, "the created mesh");
   if (!common.quiet)
     std::fprintf(stderr,
                  "create: grid %dx%dx%d (%s), %zu vertices, %zu triangles; sampling %.3f s, create %.3f s "
@@ -272,20 +267,13 @@ void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const Improv
   const int done = pipeline.run(im, field, run);
   progress.done();
   mesh = im.to_node_mesh();
-  require_valid(mesh, "the improved mesh");
+  vm::require_valid(mesh, "the improved mesh");
   if (!o.history.empty()) history.write(o.history);
   if (!common.quiet) {
     const auto [min_q, mean_q] = vm::quality_summary(im);
     std::fprintf(stderr, "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f\n", done,
                  o.pipeline.c_str(), total, first_min, min_q, first_mean, mean_q);
   }
-}
-
-void require_valid(const vm::NodeMesh& mesh, const std::string& what) {
-  vm::ValidationReport report = vm::validate(mesh);
-  if (!report.ok())
-    throw vm::TopologyError(what + " failed validation (" + std::to_string(report.problem_count) +
-                            " problems; please report this with the input), first: " + report.problems.front());
 }
 
 } // namespace vmcli

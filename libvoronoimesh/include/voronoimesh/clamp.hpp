@@ -8,6 +8,7 @@
 
 namespace vm {
 
+/// Parameters of clamp(); defaults are the paper's.
 struct ClampParams {
   /// Fraction of the largest safe step a node may take (eq. 5): 1/2, so that no
   /// triangle can invert whatever its other nodes do.

@@ -10,6 +10,7 @@
 
 namespace vm {
 
+/// Parameters of the collapse pass.
 struct CollapseParams {
   /// Triangles below this quality whose three corners all lie on junctions (or
   /// the box) are collapsed. 0 turns collapsing off.

@@ -15,6 +15,7 @@ enum class Lattice {
   cube6 ///< every grid cell split into six tetrahedra (paper Fig. 2 left)
 };
 
+/// Parameters of create_initial_mesh().
 struct CreateParams {
   Lattice lattice = Lattice::bcc;
   /// Snapping threshold eps in units of the grid spacing h: phase values closer
@@ -64,5 +65,10 @@ uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice);
 /// InvalidInput for a snap outside [0, 0.5] or an odd grid with bcc.
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params,
                                 NodeMesh& out);
+
+/// Sets mesh.phase_names and mesh.phase_labels from `field` (left empty when
+/// every label is the phase id), so writers show them. For a closed mesh pass
+/// with_outside_phase(field, box) (closed_domain.hpp), which has the extra phase.
+void name_phases(NodeMesh& mesh, const PhaseField& field);
 
 } // namespace vm

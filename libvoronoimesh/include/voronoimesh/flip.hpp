@@ -7,6 +7,7 @@
 
 namespace vm {
 
+/// Parameters of flip(); defaults are the paper's.
 struct FlipParams {
   /// Pairs of triangles already this good are left alone (Algorithm 5, line 7).
   double skip_quality = 0.9;
@@ -26,6 +27,7 @@ struct FlipParams {
 /// before giving up on flipping for that call.
 constexpr int kMaxFlipAttempts = 3;
 
+/// What one flip() call did.
 struct FlipStats {
   size_t flips = 0;
   int rounds = 0;

@@ -28,6 +28,7 @@ struct MeasureBins {
   const char* unit;  ///< axis label, e.g. "x RMS edge length (initial)"
   std::vector<double> lo, hi;
 
+  /// Number of bins.
   size_t size() const { return lo.size(); }
   /// The bin holding `value` (in axis units). Values below the range go to the
   /// first bin, above it (and non-finite ones) to the last; a value within a
@@ -76,11 +77,12 @@ public:
 
   /// The text write_csv / write_json / write_svg would write.
   std::string csv() const;
-  std::string json() const;
-  std::string svg() const;
+  std::string json() const; ///< as csv(), JSON
+  std::string svg() const;  ///< as csv(), the SVG picture
 
   /// Number of recorded iterations.
   size_t size() const { return iterations_.size(); }
+  /// True before the first record().
   bool empty() const { return iterations_.empty(); }
   /// The recorded iteration numbers, in order.
   const std::vector<int>& iterations() const { return iterations_; }

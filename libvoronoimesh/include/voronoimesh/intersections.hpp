@@ -19,6 +19,7 @@ struct IntersectionReport {
   /// The smallest (at most max_reported) of those pairs, each as {t, s} with
   /// t < s, sorted lexicographically.
   std::vector<std::array<int32_t, 2>> pairs;
+  /// True when no two triangles intersect.
   bool ok() const { return count == 0; }
 };
 

@@ -42,6 +42,7 @@ struct Junctions {
   /// Nodes where four or more phases meet, ascending.
   std::vector<int32_t> quadruple_points;
 
+  /// The phases meeting at `node`, ascending.
   std::span<const int32_t> phases_at(size_t node) const {
     return {phase_ids.data() + phase_offsets[node], size_t(phase_offsets[node + 1] - phase_offsets[node])};
   }

@@ -30,6 +30,7 @@ using PhaseSet = std::array<int16_t, 8>;
 /// Number of phases in a PhaseSet.
 int phase_count(const PhaseSet& s);
 
+/// The mesh the improvement passes work on (see the file comment); NodeMesh in, NodeMesh out.
 class InterfaceMesh {
 public:
   /// Builds the patch-split mesh. Throws TopologyError if OpenMesh refuses a face
@@ -38,9 +39,10 @@ public:
   /// The node-level mesh back (node order and triangle order preserved).
   NodeMesh to_node_mesh() const;
 
-  size_t num_nodes() const { return pos_.size(); }
-  size_t num_triangles() const { return mesh_.n_faces(); }
+  size_t num_nodes() const { return pos_.size(); }         ///< nodes (geometric points)
+  size_t num_triangles() const { return mesh_.n_faces(); } ///< triangles of every patch
 
+  /// The patch-split OpenMesh mesh, read-only.
   const OMesh& omesh() const { return mesh_; }
   /// Node of an OpenMesh vertex (copy).
   int32_t node(OMesh::VertexHandle v) const { return mesh_.property(node_, v); }
@@ -51,6 +53,7 @@ public:
     return {copy_v_.data() + copy_off_[n], size_t(copy_off_[n + 1] - copy_off_[n])};
   }
 
+  /// Node positions (authoritative; OpenMesh points mirror them).
   const std::vector<Vec3>& positions() const { return pos_; }
 
   // --- For the improvement passes ---------------------------------------------
@@ -85,9 +88,9 @@ public:
   /// Calls f(a, b) for every triangle at node n, with (n, a, b) in the
   /// triangle's orientation order.
   template <class F> void for_each_triangle_at(int32_t n, F&& f) const;
-  const std::vector<PhaseSet>& phases() const { return phases_; }
-  const Box& domain() const { return domain_; }
-  const std::vector<std::string>& phase_names() const { return names_; }
+  const std::vector<PhaseSet>& phases() const { return phases_; }          ///< phases meeting at each node
+  const Box& domain() const { return domain_; }                            ///< the domain box
+  const std::vector<std::string>& phase_names() const { return names_; } ///< as NodeMesh::phase_names
   /// The phase outside the box of a closed mesh (closed_domain.hpp), or -1.
   int32_t outside_phase() const;
   /// True when phase p is among node n's phases.

@@ -15,6 +15,7 @@ namespace vm {
 
 /// Triangles of every interface, sharing vertices at junctions.
 struct NodeMesh {
+  /// Node positions.
   std::vector<Vec3> points;
   /// Node ids of each triangle, oriented so that the right-hand normal points
   /// from pairs[t][0] into pairs[t][1].
@@ -30,8 +31,8 @@ struct NodeMesh {
   /// The domain box; edges lying on it may bound a single triangle.
   Box domain;
 
-  size_t num_nodes() const { return points.size(); }
-  size_t num_triangles() const { return triangles.size(); }
+  size_t num_nodes() const { return points.size(); }         ///< points.size()
+  size_t num_triangles() const { return triangles.size(); } ///< triangles.size()
 };
 
 } // namespace vm

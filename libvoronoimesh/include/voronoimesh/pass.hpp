@@ -53,9 +53,11 @@ struct PassContext {
   void commit();
 };
 
+/// One configured pass, made by PassInfo::make from its parameters.
 class Pass {
 public:
   virtual ~Pass() = default;
+  /// Does the pass's work on context.mesh for one iteration.
   virtual void run(PassContext& context) = 0;
 };
 

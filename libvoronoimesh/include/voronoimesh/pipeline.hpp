@@ -29,6 +29,7 @@ struct IterationReport {
   std::vector<double> pass_seconds;
 };
 
+/// How Pipeline::run() iterates.
 struct RunOptions {
   int iterations = 20;
   /// Stop early once neither the minimum nor the mean quality has improved by
@@ -43,6 +44,7 @@ struct RunOptions {
   std::function<void(const IterationReport&, const InterfaceMesh&)> observer;
 };
 
+/// Configured passes in order, parsed from a spec string and run for some iterations.
 class Pipeline {
 public:
   struct Step {
@@ -54,7 +56,9 @@ public:
   /// InvalidInput naming the bad pass or parameter.
   static Pipeline parse(const std::string& spec, const PassRegistry& registry);
 
+  /// The configured passes, in order.
   const std::vector<Step>& steps() const { return steps_; }
+  /// True when some pass evaluates the phase functions (run() then needs a field).
   bool needs_field() const;
   /// "smooth(rest_factor=1.2), project(...), ..." with every parameter.
   std::string describe() const;

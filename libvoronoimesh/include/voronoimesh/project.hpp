@@ -11,6 +11,7 @@
 
 namespace vm {
 
+/// Parameters of project(); defaults are the paper's.
 struct ProjectParams {
   /// Pairs whose gradients differ by less than this (|grad phi_i - grad phi_j|)
   /// are skipped: the step would divide by almost zero (the paper's "special

@@ -9,6 +9,7 @@
 
 namespace vm {
 
+/// The pass types a pipeline may name: the built-ins, and whatever a program or plugin adds.
 class PassRegistry {
 public:
   /// Adds a pass type. Throws InvalidInput if the name is taken or malformed, or

@@ -21,8 +21,8 @@ public:
   /// [1, 16] (more is never needed: few phases compete at any one point).
   static SampledField sample(const PhaseField& field, const GridSpec& grid, int k = 4);
 
-  const GridSpec& grid() const { return grid_; }
-  int num_phases() const { return num_phases_; }
+  const GridSpec& grid() const { return grid_; }  ///< the grid sampled
+  int num_phases() const { return num_phases_; } ///< N, all phases of the field
   /// Slots per node (min(k, N)).
   int k() const { return k_; }
 

@@ -13,8 +13,8 @@ namespace vm {
 
 /// A closed-form scene: the domain and background grid, and the phase functions.
 struct Scene {
-  GridSpec grid;
-  std::shared_ptr<const PhaseField> field;
+  GridSpec grid;                           ///< the domain and the default background grid
+  std::shared_ptr<const PhaseField> field; ///< the phase functions (shared: scenes are cheap to copy)
 };
 
 /// Parses a scene from JSON text. `source` names the text in error messages

@@ -9,6 +9,7 @@
 
 namespace vm {
 
+/// Parameters of smooth(); defaults are the paper's.
 struct SmoothParams {
   /// Rest length l0 = rest_factor x RMS edge length (eq. 3). 1.2 is the paper's
   /// (and DistMesh's) empirical factor: slightly long springs spread the nodes.

@@ -13,6 +13,7 @@ namespace vm {
 /// equilateral triangle, 0 for a degenerate one (paper sect. 4.3).
 double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Counts and quality measures of a mesh (compute_stats()).
 struct MeshStats {
   size_t vertices = 0;
   size_t triangles = 0;
@@ -32,6 +33,7 @@ struct MeshStats {
   std::optional<size_t> self_intersections;
 };
 
+/// Measures `m`: counts, junctions (find_junctions()) and triangle quality. Linear in the mesh size.
 MeshStats compute_stats(const NodeMesh& m);
 
 /// Human-readable multi-line summary.

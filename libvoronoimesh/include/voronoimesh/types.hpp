@@ -35,6 +35,7 @@ struct GridSpec {
   }
   /// Nodes per axis.
   std::array<int64_t, 3> nodes() const { return {cells[0] + 1, cells[1] + 1, cells[2] + 1}; }
+  /// Nodes in all.
   int64_t node_count() const {
     auto n = nodes();
     return n[0] * n[1] * n[2];

@@ -18,6 +18,7 @@ struct ValidationReport {
   std::vector<std::string> problems; ///< one line each, at most 20 kept
   size_t problem_count = 0;          ///< all problems found, kept or not
   std::vector<int32_t> nodes;        ///< nodes involved in any problem, sorted, no repeats
+  /// True when validate() found nothing.
   bool ok() const { return problem_count == 0; }
   /// Problems joined into one multi-line text, for test output.
   std::string summary() const;
@@ -33,6 +34,11 @@ struct ValidationReport {
 ///  - every junction edge (3 or more triangles) is carried by one cycle of
 ///    distinct pairs (each incident phase on exactly two of its triangles).
 ValidationReport validate(const NodeMesh& m);
+
+/// Throws TopologyError "<what> failed validation (N problems; please report
+/// this with the input), first: <problem>" unless validate(m) finds nothing;
+/// `what` names the mesh ("the created mesh").
+void require_valid(const NodeMesh& m, const std::string& what);
 
 /// validate() on the node-level mesh, plus the patch-split invariants: every
 /// OpenMesh vertex manifold; an OpenMesh edge is boundary exactly when its

@@ -157,7 +157,15 @@ LabelledPoints read_text_points(const std::string& path) {
 } // namespace
 
 Scene point_cloud_scene(const std::string& path, const InputOptions&) {
-  auto [points, point_labels] = lower(path).ends_with(".ply") ? read_ply_points(path) : read_text_points(path);
+  return point_cloud_scene(lower(path).ends_with(".ply") ? read_ply_points(path) : read_text_points(path), path);
+}
+
+Scene point_cloud_scene(LabelledPoints cloud, const std::string& path) {
+  auto& [points, point_labels] = cloud;
+  if (points.size() != point_labels.size())
+    throw InvalidInput(located(path, cat(points.size(), " points but ", point_labels.size(), " labels")));
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite()) throw InvalidInput(located(path, cat("point ", i, ": coordinates must be finite")));
   if (points.empty()) throw InvalidInput(located(path, "has no points"));
   std::vector<int32_t> labels = point_labels;
   std::sort(labels.begin(), labels.end());

@@ -38,4 +38,9 @@ LabelledPoints read_ply_points(const std::string& path);
 /// or a non-finite coordinate.
 Scene point_cloud_scene(const std::string& path, const InputOptions& options);
 
+/// The scene of points already in memory, as point_cloud_scene(path) builds it;
+/// `source` names them in errors. Also throws InvalidInput when the points and
+/// labels differ in number, or a coordinate is not finite (naming the point).
+Scene point_cloud_scene(LabelledPoints cloud, const std::string& source);
+
 } // namespace vm::detail

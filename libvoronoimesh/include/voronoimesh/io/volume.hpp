@@ -31,6 +31,7 @@ struct Volume {
   std::vector<int32_t> labels;
   std::vector<float> values;
 
+  /// Voxels in all, the product of `size`.
   int64_t voxel_count() const { return size[0] * size[1] * size[2]; }
 };
 
