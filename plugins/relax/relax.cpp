@@ -41,7 +41,8 @@ int run(void*, const vm_mesh_view* view, const double* params, char* error, size
     for (size_t i = 0; i < n; ++i) {
       if (!movable[i]) continue;
       const V3 z = y[i] + m.constrain(int32_t(i), m.laplacian(int32_t(i), y), along_curves) * mu;
-      vm::plugin::add_displacement(*view, int32_t(i), m.constrain(int32_t(i), z - x[i], along_curves));
+      // Both steps are constrained with the current mesh's tangents, so z - x is too.
+      vm::plugin::add_displacement(*view, int32_t(i), z - x[i]);
     }
   });
 }
