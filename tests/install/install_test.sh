@@ -102,7 +102,23 @@ if ./pc_consumer pc.ply >pc.txt 2>&1; then pass; else fail "pkg-config consumer:
 check_output "pkg-config consumer" pc.ply
 if cmp -s cmake.ply pc.ply; then pass; else fail "the two consumers wrote different meshes"; fi
 
-# 3. The installed tree still works after the prefix is moved: the CLI finds its
+# 3. The plugin host example and the "Use it from C++" example, built against the
+# installed package with find_package only: the host loads an installed plugin.
+examples=$(realpath "$consumer/../../../examples")
+for example in host cpp; do
+  ok "configure examples/$example" -- cmake -S "$examples/$example" -B "example_$example" -DCMAKE_PREFIX_PATH="$prefix" \
+    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON || finish
+  ok "build examples/$example" -- cmake --build "example_$example" || finish
+done
+if [ -f "$libdir/voronoimesh/plugins/cvt.so" ] && [ -f "$libdir/voronoimesh/plugins/relax.so" ]; then pass
+else fail "plugins not installed in $libdir/voronoimesh/plugins"; fi
+if "$prefix/bin/voronoimesh" plugins | grep -q "cvt"; then pass; else fail "the installed CLI does not list the installed cvt plugin"; fi
+if ./example_host/voronoimesh_host "$libdir/voronoimesh/plugins/cvt.so" cvt,project,clamp,flip host.ply >host.txt 2>&1; then pass
+else fail "host: $(cat host.txt)"; fi
+check_output "plugin host" host.ply
+if (cd example_cpp && ./grains >grains.txt 2>&1); then pass; else fail "examples/cpp: $(cat example_cpp/grains.txt)"; fi
+
+# 4. The installed tree still works after the prefix is moved: the CLI finds its
 # library relative to itself, and the library its plugin folder beside itself.
 mv "$prefix" "$work/moved" && libdir=${libdir/#$prefix/$work/moved} && prefix=$work/moved
 loads_installed "the moved CLI" "$prefix/bin/voronoimesh"

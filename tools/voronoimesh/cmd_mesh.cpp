@@ -29,14 +29,15 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       check_outputs(o->output);
-      check_improve_options(o->improve);
+      const vm::PassRegistry registry = pass_registry(o->improve.plugins, o->common.quiet);
+      check_improve_options(o->improve, registry);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
       vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
       // A closed mesh has one more phase, outside the box; the passes need its function too.
       const auto phases = o->create.close ? vm::with_outside_phase(scene.field, scene.grid.domain) : scene.field;
-      improve_stage(mesh, phases.get(), o->improve, o->common, progress);
+      improve_stage(mesh, phases.get(), o->improve, registry, o->common, progress);
       write_outputs(mesh, o->output, o->common);
       return kOk;
     });

@@ -52,7 +52,8 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
   smooth->callback([s, &exit_code] {
     exit_code = run_guarded([&] {
       check_outputs(s->output);
-      check_improve_options(s->improve);
+      const vm::PassRegistry registry = pass_registry(s->improve.plugins, s->common.quiet);
+      check_improve_options(s->improve, registry);
       auto limit = thread_limit(s->common);
       Progress progress(!s->common.quiet);
       vm::NodeMesh mesh = vm::io::read_ply(s->mesh);
@@ -64,7 +65,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
           scene->field = vm::with_outside_phase(scene->field, scene->grid.domain);
         check_field_matches(mesh, s->mesh, *scene, s->field);
       }
-      improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, s->common, progress);
+      improve_stage(mesh, scene ? scene->field.get() : nullptr, s->improve, registry, s->common, progress);
       write_outputs(mesh, s->output, s->common);
       return kOk;
     });
@@ -84,7 +85,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
       require_valid(mesh, f->mesh);
       f->improve.iterations = 1;
       f->improve.pipeline = "flip:max_rounds=1000";
-      improve_stage(mesh, nullptr, f->improve, f->common, progress);
+      improve_stage(mesh, nullptr, f->improve, vm::builtin_registry(), f->common, progress);
       write_outputs(mesh, f->output, f->common);
       return kOk;
     });

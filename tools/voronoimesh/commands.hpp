@@ -8,6 +8,7 @@
 #include "voronoimesh/input.hpp"
 #include "voronoimesh/node_mesh.hpp"
 #include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/plugins.hpp"
 #include "voronoimesh/scene.hpp"
 #include "voronoimesh/validate.hpp" // vm::require_valid, which every command uses
 
@@ -99,27 +100,40 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o);
 /// Reads `path` with vm::load_input (the built-in demo if empty), `top_k` phases kept per voxel.
 vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress);
 
+/// Adds --plugin FILE (repeatable) to `cmd`.
+void add_plugin_option(CLI::App* cmd, std::vector<std::string>& files);
+/// The built-in passes plus those of every plugin: `files` (--plugin; a file that
+/// fails to load throws) and the plugin folders (a file that fails is named on
+/// stderr with its reason, unless quiet, and skipped).
+/// What happened to every plugin goes to `records` if given.
+vm::PassRegistry pass_registry(const std::vector<std::string>& files, bool quiet,
+                               std::vector<vm::PluginRecord>* records = nullptr);
+
 /// Options of the improvement stage (mesh, smooth).
 struct ImproveOptions {
   int iterations = 20;
+  std::vector<std::string> plugins; ///< --plugin files
   std::string pipeline = vm::kDefaultPipeline;
   bool stop_when_converged = false;
   bool unguarded = false; ///< skip the crossing guard (guard.hpp)
   std::string history; ///< where to write per-iteration histograms (.csv, .json, .svg)
 };
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations);
-/// Checks the improvement options (pipeline, iterations, history file) before any
-/// work, so a typo fails at once rather than after a long create.
-void check_improve_options(const ImproveOptions& o);
-/// Runs the pipeline on `mesh` (validated before and after); prints a progress
-/// line per iteration on a terminal and a summary unless quiet.
+/// Checks the improvement options (pipeline against `registry`, iterations,
+/// history file) before any work, so a typo fails at once rather than after a
+/// long create.
+void check_improve_options(const ImproveOptions& o, const vm::PassRegistry& registry);
+/// Runs the pipeline (passes from `registry`) on `mesh` (validated before and
+/// after); prints a progress line per iteration on a terminal and a summary
+/// unless quiet.
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
-                   const CommonOptions& common, Progress& progress);
+                   const vm::PassRegistry& registry, const CommonOptions& common, Progress& progress);
 
 void add_create_command(CLI::App& app, int& exit_code);
 void add_mesh_command(CLI::App& app, int& exit_code);
 void add_smooth_commands(CLI::App& app, int& exit_code);
 void add_passes_command(CLI::App& app, int& exit_code);
 void add_stats_command(CLI::App& app, int& exit_code);
+void add_plugins_command(CLI::App& app, int& exit_code);
 
 } // namespace vmcli

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   vmcli::add_smooth_commands(app, exit_code);
   vmcli::add_passes_command(app, exit_code);
   vmcli::add_stats_command(app, exit_code);
+  vmcli::add_plugins_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -223,6 +223,7 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
   cmd->add_option("--pipeline", o.pipeline,
                   "Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh passes')")
       ->capture_default_str();
+  add_plugin_option(cmd, o.plugins);
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
   cmd->add_flag("--no-crossing-guard", o.unguarded,
@@ -232,9 +233,9 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                   "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
 }
 
-void check_improve_options(const ImproveOptions& o) {
+void check_improve_options(const ImproveOptions& o, const vm::PassRegistry& registry) {
   if (o.iterations < 0) throw vm::InvalidInput("--iterations: must be 0 or more");
-  vm::Pipeline::parse(o.pipeline, vm::builtin_registry());
+  vm::Pipeline::parse(o.pipeline, registry);
   if (!o.history.empty()) {
     vm::QualityHistory::check_format(o.history);
     check_writable(o.history);
@@ -242,9 +243,8 @@ void check_improve_options(const ImproveOptions& o) {
 }
 
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
-                   const CommonOptions& common, Progress& progress) {
-  check_improve_options(o);
-  const vm::PassRegistry registry = vm::builtin_registry();
+                   const vm::PassRegistry& registry, const CommonOptions& common, Progress& progress) {
+  check_improve_options(o, registry);
   const vm::Pipeline pipeline = vm::Pipeline::parse(o.pipeline, registry);
   if (pipeline.needs_field() && !field)
     throw vm::InvalidInput("--pipeline: '" + o.pipeline + "' needs the phase functions: give --field SCENE.json");

@@ -1,0 +1,49 @@
+#pragma once
+/// @file plugins.hpp
+/// Loading pass plugins (shared libraries speaking plugin_abi.h) into a
+/// PassRegistry, and finding them: files named by the user, the folders of
+/// VORONOIMESH_PLUGIN_PATH, and the installed plugin folder. A loaded plugin's
+/// passes are ordinary PassInfo entries: `passes` lists them, pipelines use them
+/// by name, and the library stays loaded as long as any copy of them exists.
+
+#include "voronoimesh/install_dirs.hpp" // installed_plugin_dir()
+#include "voronoimesh/registry.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// What happened to one plugin file.
+struct PluginRecord {
+  std::string file;                ///< the path as found
+  std::string found_by;            ///< "--plugin", "VORONOIMESH_PLUGIN_PATH" or "installed folder"
+  std::string name, version;       ///< as the plugin names itself (empty if refused early)
+  std::vector<std::string> passes; ///< the passes it added
+  /// Empty when loaded; otherwise the one-line reason it was not ("path: problem").
+  std::string refused;
+  /// True when it was skipped because a plugin of the same name was loaded before
+  /// (the same plugin found twice, e.g. in the build tree and installed).
+  bool shadowed = false;
+};
+
+/// Loads the plugin at `path` and adds its passes to `registry`, all or none.
+/// Throws InvalidInput, with a one-line message naming the file, if it is not a
+/// shared library, has no voronoimesh_plugin_v1 entry point, was built for
+/// another plugin ABI version (plugin_abi.h), fails to register, or adds a pass
+/// whose name is taken; IoError if the file cannot be read.
+PluginRecord load_plugin(const std::string& path, PassRegistry& registry);
+
+/// The folders searched for plugins, in order: each entry of the colon-separated
+/// VORONOIMESH_PLUGIN_PATH, then installed_plugin_dir().
+std::vector<std::string> plugin_search_path();
+
+/// Loads every file in `files` (a failure throws, as load_plugin), then, if
+/// `search`, every shared library (*.so) in plugin_search_path(), in name order
+/// per folder. A discovered file that fails is recorded with its reason, not
+/// thrown; one whose plugin name was already loaded is recorded as shadowed.
+/// Missing folders are skipped.
+std::vector<PluginRecord> load_plugins(PassRegistry& registry, const std::vector<std::string>& files,
+                                       bool search = true);
+
+} // namespace vm

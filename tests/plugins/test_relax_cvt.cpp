@@ -1,0 +1,118 @@
+// The two shipped plugins on the paper's four spheres: their moves respect the
+// constraints of every node, and in a pipeline they leave a valid mesh without
+// crossings and better triangles (cvt: more even areas).
+
+#include "fixtures.hpp"
+#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/plugins.hpp"
+#include "voronoimesh/smooth.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+vm::PassRegistry with_plugins() {
+  vm::PassRegistry registry = vm::builtin_registry();
+  vm::load_plugin(std::string(VM_PLUGIN_BUILD_DIR) + "/relax.so", registry);
+  vm::load_plugin(std::string(VM_PLUGIN_BUILD_DIR) + "/cvt.so", registry);
+  return registry;
+}
+
+/// The pending displacement one run of the pass `spec` ("name:key=value") adds.
+std::vector<vm::Vec3> moves_of(const std::string& spec, vm::InterfaceMesh& mesh) {
+  const vm::Pipeline p = vm::Pipeline::parse(spec, with_plugins());
+  vm::PassContext context(mesh);
+  context.iteration = 1;
+  p.steps()[0].info.make(p.steps()[0].params)->run(context);
+  return context.pending ? context.delta : std::vector<vm::Vec3>(mesh.num_nodes(), vm::Vec3::Zero());
+}
+
+/// Area-weighted normal of surface node n.
+vm::Vec3 node_normal(const vm::InterfaceMesh& m, int32_t n) {
+  vm::Vec3 sum = vm::Vec3::Zero();
+  const auto& x = m.positions();
+  m.for_each_triangle_at(n, [&](int32_t a, int32_t b) { sum += (x[size_t(a)] - x[size_t(n)]).cross(x[size_t(b)] - x[size_t(n)]); });
+  return sum.normalized();
+}
+
+/// Standard deviation over mean of the triangle areas.
+double area_variation(const vm::NodeMesh& m) {
+  std::vector<double> a;
+  for (const auto& t : m.triangles)
+    a.push_back(0.5 * (m.points[size_t(t[1])] - m.points[size_t(t[0])]).cross(m.points[size_t(t[2])] - m.points[size_t(t[0])]).norm());
+  double mean = 0, var = 0;
+  for (double v : a) mean += v / double(a.size());
+  for (double v : a) var += (v - mean) * (v - mean) / double(a.size());
+  return std::sqrt(var) / mean;
+}
+
+class PluginPasses : public ::testing::TestWithParam<std::string> {};
+
+} // namespace
+
+TEST_P(PluginPasses, surface_moves_are_tangential_and_points_stay) {
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(vm::test::four_spheres(16));
+  const auto d = moves_of(GetParam(), mesh);
+  size_t surface_moved = 0, curve_moved = 0;
+  for (int32_t n = 0; n < int32_t(mesh.num_nodes()); ++n) {
+    const int order = vm::junction_order(mesh, n);
+    const vm::Vec3& m = d[size_t(n)];
+    if (order >= 4) EXPECT_EQ(m.norm(), 0.0) << "point " << n << " moved";
+    if (order == 3) curve_moved += m.norm() > 0;
+    if (order == 2 && m.norm() > 0) {
+      ++surface_moved;
+      EXPECT_LT(std::abs(m.dot(node_normal(mesh, n))), 1e-9 * (1 + m.norm())) << "surface node " << n;
+    }
+  }
+  EXPECT_GT(surface_moved, mesh.num_nodes() / 4);
+  EXPECT_GT(curve_moved, 0u);
+}
+
+TEST_P(PluginPasses, junctions_0_keeps_curves_fixed) {
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(vm::test::four_spheres(16));
+  const auto d = moves_of(GetParam() + ":junctions=0", mesh);
+  for (int32_t n = 0; n < int32_t(mesh.num_nodes()); ++n)
+    if (vm::junction_order(mesh, n) >= 3) EXPECT_EQ(d[size_t(n)].norm(), 0.0) << "node " << n;
+}
+
+TEST_P(PluginPasses, pipeline_keeps_the_mesh_valid_uncrossed_and_improves_it) {
+  const vm::Scene scene = vm::test::example_scene("four_spheres.json", 16);
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(vm::test::four_spheres(16));
+  const auto [min0, mean0] = vm::quality_summary(mesh);
+  vm::RunOptions run;
+  run.iterations = 8;
+  vm::Pipeline::parse(GetParam() + ",project,clamp,flip", with_plugins()).run(mesh, scene.field.get(), run);
+  const vm::NodeMesh out = mesh.to_node_mesh();
+  EXPECT_TRUE(vm::validate(out).ok());
+  EXPECT_EQ(vm::find_self_intersections(out).count, 0u);
+  const auto [min1, mean1] = vm::quality_summary(mesh);
+  EXPECT_GT(mean1, mean0 + 0.02) << "mean quality " << mean0 << " -> " << mean1;
+  EXPECT_GT(min1, min0) << "min quality " << min0 << " -> " << min1;
+}
+
+INSTANTIATE_TEST_SUITE_P(Plugins, PluginPasses, ::testing::Values("relax", "cvt"));
+
+TEST(Cvt, evens_out_triangle_areas) {
+  const vm::Scene scene = vm::test::example_scene("four_spheres.json", 16);
+  const vm::NodeMesh start = vm::test::four_spheres(16);
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(start);
+  vm::RunOptions run;
+  run.iterations = 8;
+  vm::Pipeline::parse("cvt:step=1,project,clamp", with_plugins()).run(mesh, scene.field.get(), run);
+  const double before = area_variation(start), after = area_variation(mesh.to_node_mesh());
+  EXPECT_LT(after, 0.8 * before) << "area variation " << before << " -> " << after;
+}
+
+TEST(Relax, works_without_the_phase_functions) {
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(vm::test::four_spheres(16));
+  const auto [min0, mean0] = vm::quality_summary(mesh);
+  vm::RunOptions run;
+  run.iterations = 5;
+  vm::Pipeline::parse("relax,clamp,flip", with_plugins()).run(mesh, nullptr, run);
+  EXPECT_TRUE(vm::validate(mesh.to_node_mesh()).ok());
+  EXPECT_GT(vm::quality_summary(mesh).second, mean0);
+}
