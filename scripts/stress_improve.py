@@ -4,7 +4,7 @@ and seed scenes at coarse grids, meshed with `voronoimesh mesh`, then checked by
 `voronoimesh stats` (topology and self-intersections). Prints each failing scene
 and a summary; exits 1 if any failed.
 
-  scripts/stress_improve.py [--scenes 40] [--seed 5] [--iterations 20] [--keep DIR] [--guard on|off]
+  scripts/stress_improve.py [--scenes 40] [--seed 5] [--iterations 20] [--keep DIR] [--guard on|off] [--close]
 """
 import argparse
 import json
@@ -36,6 +36,7 @@ def main():
     ap.add_argument("--iterations", type=int, default=20)
     ap.add_argument("--keep", help="write the scenes and meshes here instead of a temporary folder")
     ap.add_argument("--guard", choices=["on", "off"], default="on", help="the crossing guard (guard.hpp)")
+    ap.add_argument("--close", action="store_true", help="close the domain (--close): box faces become surfaces")
     args = ap.parse_args()
     rng = random.Random(args.seed)
     work = args.keep or tempfile.mkdtemp(prefix="vm-stress-")
@@ -49,6 +50,8 @@ def main():
         command = [VM, "mesh", "-q", scene, "--iterations", str(args.iterations), "-o", mesh]
         if args.guard == "off":
             command.append("--no-crossing-guard")
+        if args.close:
+            command.append("--close")
         run = subprocess.run(command, capture_output=True, text=True)
         if run.returncode == 0:
             run = subprocess.run([VM, "stats", "--json", mesh], capture_output=True, text=True)
