@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Installs everything voronoimesh needs to build and test, from Debian 12 packages.
+# Installs everything voronoimesh needs to build, from Debian 12 packages; with
+# --test-readers also the independent readers the tests check every output format
+# with (meshio, VTK, Gmsh, TetGen: large, and only the tests need them).
 # Safe to run again: apt-get skips what is already there. Needs root (or sudo).
+# Usage: scripts/setup.sh [--test-readers]
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
@@ -8,9 +11,12 @@ packages=(
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
   zlib1g-dev libnifti2-dev
-  # independent readers the tests check every output format with
-  python3-meshio python3-vtk9 gmsh tetgen
 )
+case "${1:-}" in
+  --test-readers) packages+=(python3-meshio python3-vtk9 gmsh tetgen) ;;
+  "") ;;
+  *) echo "usage: scripts/setup.sh [--test-readers]" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
