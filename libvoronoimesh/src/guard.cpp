@@ -11,8 +11,7 @@ namespace vm {
 
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field) {
   GuardReport report;
-  const std::vector<Vec3> before = mesh.positions();
-  NodeMesh m = mesh.to_node_mesh();
+  NodeMesh m = mesh.to_node_mesh(); // positions before the move, until they are swapped out below
   std::vector<int32_t> watched;
   std::vector<uint8_t> agreed;
   if (field) {
@@ -23,6 +22,7 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
       agreed[i] = detail::agrees_with_field(m, size_t(watched[i]), *field);
     });
   }
+  const std::vector<Vec3> before = std::move(m.points);
   mesh.move_nodes(delta);
   m.points = mesh.positions();
   std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());

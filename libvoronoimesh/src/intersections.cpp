@@ -647,7 +647,10 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
   size_t count = 0;
   double cell = 0;
   for (size_t t = 0; t < flagged.size(); ++t)
-    if (flagged[t]) ++count, cell = std::max(cell, (box_of(t).hi - box_of(t).lo).maxCoeff());
+    if (flagged[t]) {
+      const Bounds b = box_of(t);
+      ++count, cell = std::max(cell, (b.hi - b.lo).maxCoeff());
+    }
   if (flagged.empty() || 3 * count >= nt) {
     all.resize(nt);
     for (size_t t = 0; t < nt; ++t) all[t] = int32_t(t);
