@@ -1,0 +1,32 @@
+#pragma once
+/// @file detail/box_pairs.hpp
+/// Candidate pairs for intersection tests: every pair of overlapping
+/// axis-aligned boxes, found through a multi-level uniform grid in time linear
+/// in the boxes and the pairs (boxes of very different sizes included).
+
+#include "voronoimesh/types.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+/// A closed axis-aligned box.
+struct Bounds {
+  Vec3 lo, hi;
+  bool overlaps(const Bounds& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+/// Indices {i, j}, i < j, of two boxes.
+using BoxPair = std::array<int32_t, 2>;
+
+/// Every pair of boxes that overlap (touching included), each once, in an order
+/// that depends on the thread count (callers must not depend on it). Boxes
+/// must be finite.
+std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes);
+
+} // namespace vm::detail
