@@ -136,21 +136,39 @@ void convolve_axis(const std::vector<float>& in, const Box& from, std::vector<fl
   Box dst = from;
   dst.lo[a] = to.lo[a], dst.hi[a] = to.hi[a];
   const Index3 s = from.size(), d = dst.size();
-  const Index3 in_stride{1, s[0], s[0] * s[1]}, out_stride{1, d[0], d[0] * d[1]};
-  const size_t b = (a + 1) % 3, c = (a + 2) % 3;
   const int64_t r = int64_t(w.size()) - 1;
   out.assign(size_t(dst.count()), 0.f);
-  for (int64_t ic = 0; ic < s[c]; ++ic)
-    for (int64_t ib = 0; ib < s[b]; ++ib) {
-      const float* line = in.data() + ib * in_stride[b] + ic * in_stride[c];
-      float* result = out.data() + ib * out_stride[b] + ic * out_stride[c];
-      for (int64_t q = dst.lo[a]; q < dst.hi[a]; ++q) {
+  // The input index along the axis of output q + t, edge voxels repeating.
+  auto source = [&](int64_t q, int64_t t) { return std::clamp<int64_t>(q + t, 0, volume[a] - 1) - from.lo[a]; };
+  if (a == 0) {
+    for (int64_t line = 0; line < s[1] * s[2]; ++line) {
+      const float* src = in.data() + line * s[0];
+      float* dst_line = out.data() + line * d[0];
+      for (int64_t q = dst.lo[0]; q < dst.hi[0]; ++q) {
         float sum = 0;
-        for (int64_t t = -r; t <= r; ++t)
-          sum += w[size_t(std::abs(t))] * line[(std::clamp<int64_t>(q + t, 0, volume[a] - 1) - from.lo[a]) * in_stride[a]];
-        result[(q - dst.lo[a]) * out_stride[a]] = sum;
+        for (int64_t t = -r; t <= r; ++t) sum += w[size_t(std::abs(t))] * src[source(q, t)];
+        dst_line[q - dst.lo[0]] = sum;
       }
     }
+    return;
+  }
+  // Along y or z: whole rows along x at a time, contiguous (vectorised).
+  const int64_t row = s[0];
+  const int64_t outer = a == 1 ? s[2] : 1;                     // z slices (for y), or one pass (for z)
+  const int64_t rows_between = a == 1 ? 1 : s[1];              // rows from one step along the axis to the next
+  const int64_t in_step = a == 1 ? s[0] : s[0] * s[1];         // values per step along the axis, input
+  const int64_t out_step = a == 1 ? d[0] : d[0] * d[1];        // and output
+  const int64_t in_outer = a == 1 ? s[0] * s[1] : 0, out_outer = a == 1 ? d[0] * d[1] : 0;
+  for (int64_t o = 0; o < outer; ++o)
+    for (int64_t q = dst.lo[a]; q < dst.hi[a]; ++q)
+      for (int64_t m = 0; m < rows_between; ++m) {
+        float* dst_row = out.data() + o * out_outer + (q - dst.lo[a]) * out_step + m * row;
+        for (int64_t t = -r; t <= r; ++t) {
+          const float weight = w[size_t(std::abs(t))];
+          const float* src = in.data() + o * in_outer + source(q, t) * in_step + m * row;
+          for (int64_t x = 0; x < row; ++x) dst_row[x] += weight * src[x];
+        }
+      }
 }
 
 /// The Gaussian-smoothed indicator of the voxels `is_in` selects, over box `to`.

@@ -1,5 +1,6 @@
 #include "detail/top_k_grid_field.hpp"
 
+#include "detail/parallel.hpp"
 #include "detail/top_k.hpp"
 
 #include <algorithm>
@@ -87,25 +88,27 @@ void TopKGridField::offer(int64_t i, int64_t j, int64_t k, int32_t id, float val
 int64_t TopKGridField::finish(float far) {
   const size_t k = size_t(k_);
   const double h = grid_.h();
-  int64_t empty = -1;
   const auto nodes = grid_.nodes();
-  for (int64_t bk = 0, b = 0; bk < bricks_[2]; ++bk)
-    for (int64_t bj = 0; bj < bricks_[1]; ++bj)
-      for (int64_t bi = 0; bi < bricks_[0]; ++bi, ++b) {
-        if (brick_[size_t(b)] < 0) continue;
-        for (int64_t k3 = bk * kBrick; k3 < std::min(nodes[2], (bk + 1) * kBrick); ++k3)
-          for (int64_t j3 = bj * kBrick; j3 < std::min(nodes[1], (bj + 1) * kBrick); ++j3)
-            for (int64_t i3 = bi * kBrick; i3 < std::min(nodes[0], (bi + 1) * kBrick); ++i3) {
-              const size_t s = slot(i3, j3, k3);
-              const int64_t n = grid_.node_index(i3, j3, k3);
-              if (filled_[s] == 0 && (empty < 0 || n < empty)) empty = n;
-              int16_t* ids = &ids_[s * k];
-              float* vals = &values_[s * k];
-              pad_ids(ids, filled_[s], k);
-              std::fill(vals + filled_[s], vals + k, far);
-              floor_[s] = node_floor(vals[0], vals[k - 1], h);
-            }
-      }
+  // The lowest node offered nothing: a minimum, whichever thread finds which.
+  std::atomic<int64_t> empty{std::numeric_limits<int64_t>::max()};
+  parallel_for_each_index(brick_.size(), [&](size_t b) {
+    if (brick_[b] < 0) return;
+    const int64_t bi = int64_t(b) % bricks_[0], bj = int64_t(b) / bricks_[0] % bricks_[1], bk = int64_t(b) / (bricks_[0] * bricks_[1]);
+    for (int64_t k3 = bk * kBrick; k3 < std::min(nodes[2], (bk + 1) * kBrick); ++k3)
+      for (int64_t j3 = bj * kBrick; j3 < std::min(nodes[1], (bj + 1) * kBrick); ++j3)
+        for (int64_t i3 = bi * kBrick; i3 < std::min(nodes[0], (bi + 1) * kBrick); ++i3) {
+          const size_t s = slot(i3, j3, k3);
+          if (filled_[s] == 0) {
+            const int64_t n = grid_.node_index(i3, j3, k3);
+            for (int64_t seen = empty.load(); n < seen && !empty.compare_exchange_weak(seen, n);) {}
+          }
+          int16_t* ids = &ids_[s * k];
+          float* vals = &values_[s * k];
+          pad_ids(ids, filled_[s], k);
+          std::fill(vals + filled_[s], vals + k, far);
+          floor_[s] = node_floor(vals[0], vals[k - 1], h);
+        }
+  }, 64);
   filled_.clear();
   filled_.shrink_to_fit();
   uniform_ids_.assign(size_t(num_phases()) * k, 0);
@@ -116,7 +119,7 @@ int64_t TopKGridField::finish(float far) {
     pad_ids(&uniform_ids_[p * k], 1, k);
   }
   uniform_floor_ = node_floor(top_, k > 1 ? far : top_, h);
-  return empty;
+  return empty == std::numeric_limits<int64_t>::max() ? -1 : empty.load();
 }
 
 TopKGridField::Node TopKGridField::node(int64_t i, int64_t j, int64_t k, int32_t& b) const {

@@ -92,8 +92,14 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
     phase_of[i] = target[i] < 0 ? -1
                                 : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), target[i]) - pv.labels.begin());
   pv.phase.resize(v.labels.size());
+  // Label value -> phase id: a table over the labels' range when it is small (8- and 16-bit files).
+  const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;
+  std::vector<int16_t> table(span <= (1 << 20) ? size_t(span) : 0);
+  for (size_t i = 0; i < present.size() && !table.empty(); ++i) table[size_t(present[i] - first)] = int16_t(phase_of[i]);
   parallel_for_each_index(v.labels.size(), [&](size_t n) {
-    pv.phase[n] = int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) - present.begin())]);
+    pv.phase[n] = !table.empty() ? table[size_t(v.labels[n] - first)]
+                                 : int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) -
+                                                           present.begin())]);
   }, 1 << 16);
   v.labels = {}; // the phases replace the labels: free them before the field grows
   LabelFieldParams params;
