@@ -122,45 +122,47 @@ int64_t TopKGridField::finish(float far) {
   return empty == std::numeric_limits<int64_t>::max() ? -1 : empty.load();
 }
 
-TopKGridField::Node TopKGridField::node(int64_t i, int64_t j, int64_t k, int32_t& b) const {
-  b = brick_[size_t(i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick)))];
-  if (b < 0) return {&uniform_ids_[size_t(-1 - b) * size_t(k_)], uniform_values_.data(), uniform_floor_};
-  const size_t s = size_t(int64_t(b) * kBrickNodes + i % kBrick + kBrick * (j % kBrick + kBrick * (k % kBrick)));
-  return {&ids_[s * size_t(k_)], &values_[s * size_t(k_)], floor_[s]};
-}
-
 const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
   thread_local struct {
     uint64_t serial = 0;
     Vec3 x;
     Cell cell;
   } last;
-  if (last.serial == serial_ && last.x == x) return last.cell;
-  last.serial = serial_, last.x = x;
-  Cell& c = last.cell;
+  if (last.serial != serial_ || last.x != x) fill_cell(x, last.cell), last.serial = serial_, last.x = x;
+  return last.cell;
+}
+
+void TopKGridField::fill_cell(const Vec3& x, Cell& c) const {
   const Vec3 h = grid_.spacing();
-  std::array<int64_t, 3> i0{};
   Vec3 f, dfd; // fraction in the cell, and its derivative along the axis (0 outside the domain)
+  // Per axis, for the cell's lower and upper node: the brick and the place in it.
+  uint64_t brick[3][2], local[3][2];
   for (int a = 0; a < 3; ++a) {
     const double t = (x[a] - grid_.domain.min[a]) / h[a];
     const double clamped = std::clamp(t, 0.0, double(grid_.cells[a]));
-    i0[size_t(a)] = std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1);
-    f[a] = clamped - double(i0[size_t(a)]);
+    const uint64_t i0 = uint64_t(std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1));
+    f[a] = clamped - double(i0);
     dfd[a] = t == clamped ? 1.0 / h[a] : 0.0;
+    for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick, local[a][side] = (i0 + side) % kBrick;
   }
+  const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
   for (int corner = 0; corner < 8; ++corner) {
     const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
     const double wx = bx ? f.x() : 1 - f.x(), wy = by ? f.y() : 1 - f.y(), wz = bz ? f.z() : 1 - f.z();
     const double sx = bx ? dfd.x() : -dfd.x(), sy = by ? dfd.y() : -dfd.y(), sz = bz ? dfd.z() : -dfd.z();
-    int32_t brick;
-    c.node[corner] = node(i0[0] + bx, i0[1] + by, i0[2] + bz, brick);
+    const int32_t b = brick_[brick[0][bx] + nb0 * (brick[1][by] + nb1 * brick[2][bz])];
+    if (b < 0) {
+      c.node[corner] = {&uniform_ids_[size_t(-1 - b) * size_t(k_)], uniform_values_.data(), uniform_floor_};
+    } else {
+      const size_t s = size_t(uint64_t(b) * kBrickNodes + local[0][bx] + kBrick * (local[1][by] + kBrick * local[2][bz]));
+      c.node[corner] = {&ids_[s * size_t(k_)], &values_[s * size_t(k_)], floor_[s]};
+    }
     c.w[corner] = wx * wy * wz;
     c.dw[corner] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
     // Corners all in uniform bricks of one phase hold the same values.
-    if (corner == 0) c.uniform = brick < 0 ? -1 - brick : -1;
-    else if (brick != -1 - c.uniform) c.uniform = -1;
+    if (corner == 0) c.uniform = b < 0 ? -1 - b : -1;
+    else if (b != -1 - c.uniform) c.uniform = -1;
   }
-  return c;
 }
 
 float TopKGridField::node_value(const Node& n, int32_t phase) const {
@@ -202,7 +204,8 @@ void TopKGridField::values(const Vec3& x, std::span<double> out) const {
 }
 
 void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
-  const Cell& c = cell(x);
+  Cell c; // not cell(): sampling asks once per point
+  fill_cell(x, c);
   // The phases stored at some corner (plain arrays: this runs once per grid
   // node when sampling); every other phase is at the interpolated floor, below them all.
   int32_t seen_id[8 * 16];

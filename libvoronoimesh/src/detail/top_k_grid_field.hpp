@@ -75,8 +75,7 @@ private:
   /// a vertex one by one at the same point, so the last cell each thread
   /// computed is kept and returned again for the same field and point.
   const Cell& cell(const Vec3& x) const;
-  /// Node (i, j, k), and the code of its brick in `brick` (brick_).
-  Node node(int64_t i, int64_t j, int64_t k, int32_t& brick) const;
+  void fill_cell(const Vec3& x, Cell& c) const;
   /// Slot of node (i, j, k) in the dense arrays; precondition: its brick is not uniform.
   size_t slot(int64_t i, int64_t j, int64_t k) const;
   float node_value(const Node& n, int32_t phase) const;
