@@ -48,44 +48,47 @@ int16_t phase_at(const PhaseVoxels& v, int64_t i, int64_t j, int64_t k) {
   return v.phase[size_t(i + v.size[0] * (j + v.size[1] * k))];
 }
 
+/// The smallest and largest phase along axis a within `r` voxels of each brick:
+/// `dims` (x fastest) becomes the brick count along a; `lo(n)` and `hi(n)` give
+/// the input at index n.
+template <class Lo, class Hi>
+void reduce_to_bricks(Lo lo, Hi hi, Index3& dims, size_t a, int64_t r, std::vector<int16_t>& out_lo,
+                      std::vector<int16_t>& out_hi) {
+  Index3 out = dims;
+  out[a] = (dims[a] + kBrick - 1) / kBrick;
+  const Index3 in_stride{1, dims[0], dims[0] * dims[1]}, out_stride{1, out[0], out[0] * out[1]};
+  const size_t b = (a + 1) % 3, c = (a + 2) % 3;
+  out_lo.resize(size_t(out[0] * out[1] * out[2]));
+  out_hi.resize(out_lo.size());
+  parallel_for_each_index(size_t(dims[b] * dims[c]), [&](size_t line) {
+    const int64_t ib = int64_t(line) % dims[b], ic = int64_t(line) / dims[b];
+    const int64_t in_base = ib * in_stride[b] + ic * in_stride[c], out_base = ib * out_stride[b] + ic * out_stride[c];
+    for (int64_t brick = 0; brick < out[a]; ++brick) {
+      int16_t mn = std::numeric_limits<int16_t>::max(), mx = std::numeric_limits<int16_t>::min();
+      for (int64_t t = std::max<int64_t>(0, brick * kBrick - r); t < std::min(dims[a], (brick + 1) * kBrick + r); ++t) {
+        const int64_t n = in_base + t * in_stride[a];
+        mn = std::min(mn, lo(n)), mx = std::max(mx, hi(n));
+      }
+      out_lo[size_t(out_base + brick * out_stride[a])] = mn, out_hi[size_t(out_base + brick * out_stride[a])] = mx;
+    }
+  }, 16);
+  dims = out;
+}
+
 /// Per brick of the voxel grid (x fastest): the one phase of every voxel within
 /// `reach` voxels of the brick, or -2 when they differ (the brick needs its values computed).
 std::vector<int32_t> uniform_bricks(const PhaseVoxels& v, const Index3& reach) {
-  Index3 nb{};
-  for (size_t a = 0; a < 3; ++a) nb[a] = (v.size[a] + kBrick - 1) / kBrick;
-  const size_t count = size_t(nb[0] * nb[1] * nb[2]);
-  // The smallest and largest phase in each brick.
-  std::vector<int16_t> lo(count), hi(count);
-  parallel_for_each_index(size_t(nb[1] * nb[2]), [&](size_t row) {
-    const int64_t bj = int64_t(row) % nb[1], bk = int64_t(row) / nb[1];
-    for (int64_t bi = 0; bi < nb[0]; ++bi) {
-      int16_t mn = std::numeric_limits<int16_t>::max(), mx = std::numeric_limits<int16_t>::min();
-      const Box b{{bi * kBrick, bj * kBrick, bk * kBrick}, {(bi + 1) * kBrick, (bj + 1) * kBrick, (bk + 1) * kBrick}};
-      b.clipped({{0, 0, 0}, v.size}).for_each([&](int64_t i, int64_t j, int64_t k) {
-        const int16_t p = phase_at(v, i, j, k);
-        mn = std::min(mn, p), mx = std::max(mx, p);
-      });
-      lo[row * size_t(nb[0]) + size_t(bi)] = mn, hi[row * size_t(nb[0]) + size_t(bi)] = mx;
-    }
-  }, 4);
-  // Spread them over the bricks within reach, one axis at a time.
-  for (size_t a = 0; a < 3; ++a) {
-    const int64_t r = (reach[a] + kBrick - 1) / kBrick;
-    const Index3 stride{1, nb[0], nb[0] * nb[1]};
-    std::vector<int16_t> lo2(count), hi2(count);
-    parallel_for_each_index(count, [&](size_t b) {
-      const int64_t at = int64_t(b) / stride[a] % nb[a];
-      int16_t mn = lo[b], mx = hi[b];
-      for (int64_t t = std::max<int64_t>(0, at - r); t <= std::min(nb[a] - 1, at + r); ++t) {
-        const size_t o = size_t(int64_t(b) + (t - at) * stride[a]);
-        mn = std::min(mn, lo[o]), mx = std::max(mx, hi[o]);
-      }
-      lo2[b] = mn, hi2[b] = mx;
-    }, 4096);
+  Index3 dims = v.size;
+  std::vector<int16_t> lo, hi, lo2, hi2;
+  const auto phase = [&](int64_t n) { return v.phase[size_t(n)]; };
+  reduce_to_bricks(phase, phase, dims, 0, reach[0], lo, hi);
+  for (size_t a = 1; a < 3; ++a) {
+    reduce_to_bricks([&](int64_t n) { return lo[size_t(n)]; }, [&](int64_t n) { return hi[size_t(n)]; }, dims, a, reach[a],
+                     lo2, hi2);
     lo.swap(lo2), hi.swap(hi2);
   }
-  std::vector<int32_t> uniform(count);
-  for (size_t b = 0; b < count; ++b) uniform[b] = lo[b] == hi[b] ? lo[b] : -2;
+  std::vector<int32_t> uniform(lo.size());
+  for (size_t b = 0; b < uniform.size(); ++b) uniform[b] = lo[b] == hi[b] ? lo[b] : -2;
   return uniform;
 }
 
