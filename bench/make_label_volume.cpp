@@ -1,17 +1,27 @@
 // Writes a synthetic label volume as a raw NRRD, for the label-volume benchmark.
 //
 //   make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]
+//   make_label_volume ct OUT.nrrd [SEED]
 //
 // ellipsoids: LABELS-1 random overlapping ellipsoids (labels 1..) in background 0,
 //             like a segmentation of a few organs;
 // grains:     a Voronoi polycrystal of LABELS grains (labels 1..LABELS) filling
 //             the volume, like a grain map.
-// Voxels are uint16 (labels up to 65535), spacing 1, origin 0.
+// These are uint16 (labels up to 65535), spacing 1, origin 0.
+// ct:         a CT-like abdominal/thoracic segmentation, 512 x 512 x 96 voxels
+//             (25.2M) of 0.8 mm (isotropic), uint8: 0 air, 1 soft tissue (the
+//             body, cut by the first and last slice), 2 bone (spine with discs
+//             between vertebrae, ribs as tubes about 6 voxels thick, a sternum),
+//             3 an organ (a liver-like lobed blob with a thin lobe), all with
+//             smooth random wobbles (ct_volume.hpp).
+
+#include "ct_volume.hpp"
 
 #include <nanoflann.hpp>
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -30,11 +40,25 @@ struct Seeds {
 };
 using SeedTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Seeds>, Seeds, 3>;
 
+/// Writes `v` (sizes n, x fastest) as a raw little-endian NRRD of `type` ("uchar", "ushort").
+template <class T>
+int write_nrrd(const char* path, const std::vector<T>& v, const std::array<int, 3>& n, const char* type, double spacing) {
+  std::ofstream out(path, std::ios::binary);
+  out << "NRRD0004\ntype: " << type << "\ndimension: 3\nsizes: " << n[0] << " " << n[1] << " " << n[2]
+      << "\nspacings: " << spacing << " " << spacing << " " << spacing << "\nencoding: raw\nendian: little\n\n";
+  out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(T)));
+  return out ? 0 : 1;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 3 && std::string(argv[1]) == "ct")
+    return write_nrrd(argv[2], ct::volume(argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1), {ct::nx, ct::ny, ct::nz},
+                      "uchar", 0.8);
   if (argc < 5) {
-    std::fprintf(stderr, "usage: make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]\n");
+    std::fprintf(stderr, "usage: make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]\n"
+                         "       make_label_volume ct OUT.nrrd [SEED]\n");
     return 2;
   }
   const std::string kind = argv[1];
@@ -71,9 +95,5 @@ int main(int argc, char** argv) {
           v[size_t(i) + size_t(n) * (size_t(j) + size_t(n) * size_t(k))] = uint16_t(nearest + 1);
         }
   }
-  std::ofstream out(argv[4], std::ios::binary);
-  out << "NRRD0004\ntype: ushort\ndimension: 3\nsizes: " << n << " " << n << " " << n
-      << "\nspacings: 1 1 1\nencoding: raw\nendian: little\n\n";
-  out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(uint16_t)));
-  return out ? 0 : 1;
+  return write_nrrd(argv[4], v, {n, n, n}, "ushort", 1);
 }

@@ -73,7 +73,7 @@ Scene scene_from_labels(const GridSpec& grid, std::span<const int32_t> labels, c
   v.origin = grid.domain.min;
   v.integer = true;
   v.labels.assign(labels.begin(), labels.end());
-  return detail::label_volume_scene(v, options, source);
+  return detail::label_volume_scene(std::move(v), options, source);
 }
 
 Scene scene_from_points(std::span<const Vec3> points, std::span<const int32_t> labels, const std::string& source) {

@@ -27,7 +27,9 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
   const auto fill = [&](int64_t n, std::span<float> out) {
     std::copy_n(v.values.begin() + ptrdiff_t(size_t(n) * c), c, out.begin());
   };
-  return detail::phase_values_scene(grid, v.components, fill, {}, {}, o.top_k, path);
+  Scene scene = detail::phase_values_scene(grid, v.components, fill, {}, {}, o.top_k, path);
+  scene.grid = detail::volume_scene_grid(grid, o.voxels_per_cell, path);
+  return scene;
 }
 
 } // namespace
@@ -38,7 +40,7 @@ Scene load_input(const std::string& path, const InputOptions& options) {
   if (io::is_volume_file(path)) {
     io::Volume v = io::read_volume(path);
     detail::axis_align(v, path, options.ignore_direction);
-    return v.integer ? detail::label_volume_scene(v, options, path) : distance_scene(v, options, path);
+    return v.integer ? detail::label_volume_scene(std::move(v), options, path) : distance_scene(v, options, path);
   }
   if (detail::is_point_file(path)) return detail::point_cloud_scene(path, options);
   throw InvalidInput(located(path, "unknown input type: expected a scene (.json), a volume (.nrrd, .nhdr, .nii, .nii.gz, "

@@ -14,8 +14,11 @@
 #include "nrrd_file.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -191,6 +194,81 @@ TEST(LabelVolume, many_labels_stay_cheap) {
   EXPECT_EQ(scene.field->num_phases(), 256);
   const NodeMesh mesh = create(scene);
   EXPECT_TRUE(validate(mesh).ok());
+}
+
+// Values are computed only near label changes; a node whose voxels within the
+// smoothing radius all share its label holds that label at the same value
+// whether it was computed or is implicit (deep inside), so the field has no seam.
+TEST(LabelVolume, nodes_deep_inside_hold_one_value_computed_or_not) {
+  for (const bool signed_distance : {false, true}) {
+    InputOptions o;
+    if (signed_distance) o.label_function = LabelFunction::signed_distance;
+    const std::vector<uint16_t> labels = sphere_labels(7);
+    const Scene scene = load_input(write_nrrd("deep.nrrd", sphere_header, labels), o);
+    const int reach = signed_distance ? 4 : 3; // 3 sigma, or the band plus one voxel
+    double lo = INFINITY, hi = -INFINITY;
+    size_t deep = 0;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const uint16_t label = labels[size_t(i + n * (j + n * k))];
+          bool alone = true;
+          for (int dk = -reach; dk <= reach && alone; ++dk)
+            for (int dj = -reach; dj <= reach && alone; ++dj)
+              for (int di = -reach; di <= reach && alone; ++di) {
+                const int x = std::clamp(i + di, 0, n - 1), y = std::clamp(j + dj, 0, n - 1), z = std::clamp(k + dk, 0, n - 1);
+                alone = labels[size_t(x + n * (y + n * z))] == label;
+              }
+          if (!alone) continue;
+          const double v = scene.field->value(label ? 1 : 0, world(Vec3(i, j, k)));
+          lo = std::min(lo, v), hi = std::max(hi, v), ++deep;
+        }
+    EXPECT_GT(deep, 1000u);
+    EXPECT_NEAR(lo, hi, 1e-6 * std::abs(hi)) << (signed_distance ? "signed distance" : "smoothed indicator");
+  }
+}
+
+// The phase functions are computed in parallel blocks: any thread count gives the same values.
+TEST(LabelVolume, phase_functions_do_not_depend_on_the_thread_count) {
+  const std::string path = write_nrrd("threads.nrrd", sphere_header, sphere_labels(3, [](int i, int j, int k) {
+    return (Vec3(i, j, k) - centre_vox).norm() < radius_vox && i > 15 ? 9 : (i + j) % 11 == 0 ? 5 : -1;
+  }));
+  auto sample = [&](int threads, bool signed_distance) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    InputOptions o;
+    if (signed_distance) o.label_function = LabelFunction::signed_distance;
+    const Scene scene = load_input(path, o);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, n);
+    std::vector<double> out;
+    for (int t = 0; t < 2000; ++t) {
+      const Vec3 x = world(Vec3(u(rng), u(rng), u(rng)));
+      for (int p = 0; p < scene.field->num_phases(); ++p) {
+        out.push_back(scene.field->value(p, x));
+        const Vec3 g = scene.field->gradient(p, x);
+        out.insert(out.end(), {g.x(), g.y(), g.z()});
+      }
+    }
+    return out;
+  };
+  for (const bool sd : {false, true}) EXPECT_EQ(sample(1, sd), sample(2, sd)) << (sd ? "signed distance" : "indicator");
+}
+
+// --voxels-per-cell: the same box in nearly cubic cells of about F voxels, an even count per axis.
+TEST(LabelVolume, voxels_per_cell_sets_a_coarser_grid) {
+  const std::string path = write_nrrd("coarse.nrrd", sphere_header, sphere_labels(7));
+  const Scene fine = load_input(path);
+  InputOptions o;
+  o.voxels_per_cell = 2;
+  const Scene coarse = load_input(path, o);
+  EXPECT_EQ(coarse.grid.cells, (std::array<int, 3>{16, 16, 16})); // 31 voxel steps / 2, rounded to even
+  EXPECT_EQ(coarse.grid.domain.min, fine.grid.domain.min);
+  EXPECT_NEAR(coarse.grid.domain.max.x(), origin.x() + 31 * voxel, 1e-12);
+  const NodeMesh mesh = create(coarse);
+  EXPECT_TRUE(validate(mesh).ok());
+  EXPECT_LT(mesh.num_triangles(), create(fine).num_triangles() / 3);
+  o.voxels_per_cell = 0.5;
+  EXPECT_THROW(load_input(path, o), InvalidInput);
 }
 
 TEST(LabelVolume, axis_flips_are_honoured_and_oblique_directions_refused) {

@@ -27,7 +27,7 @@ void add_create_command(CLI::App& app, int& exit_code) {
       check_outputs(o->output);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
-      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
+      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress, o->common.quiet);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
       write_outputs(mesh, o->output, o->common);
       return kOk;

@@ -33,7 +33,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       check_improve_options(o->improve, registry);
       auto limit = thread_limit(o->common);
       Progress progress(!o->common.quiet);
-      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress);
+      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress, o->common.quiet);
       vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
       // A closed mesh has one more phase, outside the box; the passes need its function too.
       const auto phases = o->create.close ? vm::with_outside_phase(scene.field, scene.grid.domain) : scene.field;

@@ -60,7 +60,7 @@ void add_smooth_commands(CLI::App& app, int& exit_code) {
       require_valid(mesh, s->mesh);
       std::optional<vm::Scene> scene;
       if (!s->field.empty()) {
-        scene = read_input(s->field, s->input, s->top_k, progress);
+        scene = read_input(s->field, s->input, s->top_k, progress, true); // quiet: a field that does not fit the mesh is reported on one line
         if (vm::is_closed_mesh(mesh, scene->field->num_phases()))
           scene->field = vm::with_outside_phase(scene->field, scene->grid.domain);
         check_field_matches(mesh, s->mesh, *scene, s->field);

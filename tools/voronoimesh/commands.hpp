@@ -97,8 +97,9 @@ struct InputCliOptions {
   bool signed_distance = false;
 };
 void add_input_options(CLI::App* cmd, InputCliOptions& o);
-/// Reads `path` with vm::load_input (the built-in demo if empty), `top_k` phases kept per voxel.
-vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress);
+/// Reads `path` with vm::load_input (the built-in demo if empty), `top_k` phases
+/// kept per voxel; unless quiet, says how long reading and the phase functions took.
+vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress, bool quiet);
 
 /// Adds --plugin FILE (repeatable) to `cmd`.
 void add_plugin_option(CLI::App* cmd, std::vector<std::string>& files);

@@ -190,12 +190,16 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->capture_default_str()->group(labels);
   cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
       ->capture_default_str()->group(labels);
+  cmd->add_option("--voxels-per-cell", o.input.voxels_per_cell,
+                  "Mesh a volume on cells of about F voxels per axis (2: about a quarter of the triangles of the voxel "
+                  "grid); --grid overrides it")
+      ->capture_default_str()->group(labels);
   cmd->add_flag("--ignore-direction", o.input.ignore_direction,
                 "Use the voxel axes as they are when the volume's direction matrix is oblique")
       ->group(labels);
 }
 
-vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress) {
+vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress, bool quiet) {
   if (path.empty()) return vm::demo_scene();
   for (const std::string& group : o.merge) {
     std::vector<int32_t> labels;
@@ -214,7 +218,13 @@ vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Prog
   o.input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
   o.input.top_k = top_k;
   progress.stage("reading " + path + "...");
-  return vm::load_input(path, o.input);
+  const auto t0 = std::chrono::steady_clock::now();
+  vm::Scene scene = vm::load_input(path, o.input);
+  progress.done();
+  if (!quiet)
+    std::fprintf(stderr, "input: %d phases, grid %dx%dx%d; read and phase functions %.3f s\n", scene.field->num_phases(),
+                 scene.grid.cells[0], scene.grid.cells[1], scene.grid.cells[2], seconds_since(t0));
+  return scene;
 }
 
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {

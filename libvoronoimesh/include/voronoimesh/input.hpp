@@ -29,6 +29,13 @@ struct InputOptions {
   double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
   bool ignore_direction = false; ///< take an oblique direction matrix as the identity
   int top_k = 4;                 ///< phases kept per voxel, in [1, 16]
+  // Volumes (labels and distance grids).
+  /// The scene's grid: cells of about this many voxels (of the smallest
+  /// spacing) along each axis, in [1, 64]; 1 = the voxel grid itself. A
+  /// coarser grid gives a coarser mesh (2: about a quarter of the triangles)
+  /// of the same phase functions, still evaluated at voxel resolution by the
+  /// improvement's projection.
+  double voxels_per_cell = 1;
 };
 
 /// Reads `path` as whatever it is, by extension: .json a scene (load_scene);
@@ -36,7 +43,8 @@ struct InputOptions {
 /// label ordered by label value, reals a signed-distance grid with one component
 /// per phase (larger = inside). The scene's grid is the voxel grid, nodes at
 /// voxel centres (one voxel more along an axis with an odd number of cells, so
-/// the bcc lattice keeps them). Throws InvalidInput (bad content or option,
+/// the bcc lattice keeps them), or with `voxels_per_cell` > 1 a grid of
+/// coarser, nearly cubic cells over the same box. Throws InvalidInput (bad content or option,
 /// unknown extension) or IoError (unreadable), one line naming the file.
 Scene load_input(const std::string& path, const InputOptions& options = {});
 

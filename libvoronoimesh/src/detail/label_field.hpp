@@ -26,12 +26,15 @@ struct PhaseVoxels {
   std::array<int64_t, 3> size{};
   Vec3 spacing = Vec3::Ones();
   Vec3 origin = Vec3::Zero();
-  std::vector<int32_t> phase; ///< phase per voxel (x fastest); -1 = not a phase (left to the others)
+  std::vector<int16_t> phase; ///< phase per voxel (x fastest); -1 = not a phase (left to the others)
   std::vector<std::string> names;
   std::vector<int32_t> labels; ///< label value of each phase, strictly increasing
 };
 
-/// The field on the voxel grid (nodes at voxel centres). Indicator: phi_i =
+/// The field on the voxel grid (nodes at voxel centres), computed only in the
+/// bricks of voxels within reach (3 sigma, or the band) of a label change;
+/// elsewhere each node holds its own phase alone at the value it has deep
+/// inside a region (TopKGridField's uniform bricks). Indicator: phi_i =
 /// Gaussian-smoothed indicator of phase i (normalised by the smoothed weight of
 /// the voxels that are a phase), scaled by sigma sqrt(2 pi) / 2 voxel sizes so
 /// that phi_i - phi_j grows at about 1 per unit length across a flat boundary.

@@ -4,6 +4,7 @@
 
 #include "detail/label_field.hpp"
 #include "detail/memory.hpp"
+#include "detail/parallel.hpp"
 #include "detail/text.hpp"
 #include "detail/top_k_grid_field.hpp"
 #include "detail/voxel_grid.hpp"
@@ -49,11 +50,11 @@ std::vector<int32_t> label_targets(const std::vector<int32_t>& present, const In
 }
 
 /// Refuses, before building them, phase functions that cannot fit in memory:
-/// per voxel a phase id, K ids and values, a floor and the working copies of the
-/// label field's passes (about as much again).
-void refuse_huge_field(int64_t voxels, int top_k, const std::string& path) {
-  refuse_beyond_memory(double(voxels) * (13.0 + 8.0 * top_k) * 2, path,
-                       cat("building the phase functions of ", double(voxels), " voxels"));
+/// per node K ids (16-bit) and values and a floor (all of them for a distance
+/// grid, whose every node is stored), and `extra` bytes per node besides.
+void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string& path) {
+  refuse_beyond_memory(double(nodes) * (4.0 + 6.0 * top_k + extra), path,
+                       cat("building the phase functions of ", double(nodes), " voxels"));
 }
 
 void check_phase_count(size_t count, const std::string& source, const char* what) {
@@ -67,14 +68,16 @@ void check_input_options(const InputOptions& o) {
   if (!(o.smoothing > 0 && o.smoothing <= 8)) throw InvalidInput(cat("--smoothing: must be in (0, 8] voxels, got ", o.smoothing));
   if (!(o.band >= 1 && o.band <= 64)) throw InvalidInput(cat("--band: must be in [1, 64] voxels, got ", o.band));
   if (o.top_k < 1 || o.top_k > 16) throw InvalidInput("--top-k: must be between 1 and 16");
+  if (!(o.voxels_per_cell >= 1 && o.voxels_per_cell <= 64))
+    throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
 }
 
-Scene label_volume_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
+Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string& path) {
   if (v.components != 1)
     throw InvalidInput(located(path, cat("has ", v.components, " integer components per voxel; a label volume has one")));
-  refuse_huge_field(v.voxel_count(), o.top_k, path);
+  refuse_huge_field(v.voxel_count(), o.top_k, 6, path); // the labels and their phases
   const std::vector<int32_t> present = distinct(v.labels);
   const std::vector<int32_t> target = label_targets(present, o, path);
   PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
@@ -89,15 +92,23 @@ Scene label_volume_scene(const io::Volume& v, const InputOptions& o, const std::
     phase_of[i] = target[i] < 0 ? -1
                                 : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), target[i]) - pv.labels.begin());
   pv.phase.resize(v.labels.size());
-  for (size_t n = 0; n < v.labels.size(); ++n)
-    pv.phase[n] = phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) - present.begin())];
+  // Label value -> phase id: a table over the labels' range when it is small (8- and 16-bit files).
+  const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;
+  std::vector<int16_t> table(span <= (1 << 20) ? size_t(span) : 0);
+  for (size_t i = 0; i < present.size() && !table.empty(); ++i) table[size_t(present[i] - first)] = int16_t(phase_of[i]);
+  parallel_for_each_index(v.labels.size(), [&](size_t n) {
+    pv.phase[n] = !table.empty() ? table[size_t(v.labels[n] - first)]
+                                 : int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) -
+                                                           present.begin())]);
+  }, 1 << 16);
+  v.labels = {}; // the phases replace the labels: free them before the field grows
   LabelFieldParams params;
   params.signed_distance = o.label_function == LabelFunction::signed_distance;
   params.smoothing = o.smoothing;
   params.band = o.band;
   params.k = o.top_k;
   auto field = label_field(pv, params, path);
-  return Scene{even_scene_grid(field->grid(), path), field};
+  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field};
 }
 
 Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,
@@ -109,7 +120,7 @@ Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues&
     throw InvalidInput(located(source, cat(labels.size(), " phase labels for ", num_phases, " phases")));
   if (std::adjacent_find(labels.begin(), labels.end(), std::greater_equal<>()) != labels.end())
     throw InvalidInput(located(source, "phase labels must be strictly increasing"));
-  refuse_huge_field(grid.node_count(), top_k, source);
+  refuse_huge_field(grid.node_count(), top_k, 0, source);
   for (int i = int(names.size()); i < num_phases; ++i) names.push_back(cat("phase", i));
   auto field = std::make_shared<TopKGridField>(grid, top_k, std::move(names), std::move(labels));
   std::vector<float> values(static_cast<size_t>(num_phases));

@@ -25,7 +25,7 @@ void check_input_options(const InputOptions& o);
 /// naming `source` for more components, fewer than 2 or more than kMaxPhases
 /// phases, an option naming a label not in the volume, or a volume too big for
 /// this machine's memory.
-Scene label_volume_scene(const io::Volume& v, const InputOptions& o, const std::string& source);
+Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string& source);
 
 /// Writes the value of every phase at grid node n (i fastest) into `out`.
 using NodeValues = std::function<void(int64_t n, std::span<float> out)>;

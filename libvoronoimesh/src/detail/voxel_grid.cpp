@@ -4,6 +4,9 @@
 
 #include "detail/text.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace vm::detail {
 
 GridSpec voxel_grid(const std::array<int64_t, 3>& size, const Vec3& spacing, const Vec3& origin,
@@ -28,6 +31,15 @@ GridSpec even_scene_grid(const GridSpec& voxel_grid, const std::string& source) 
     if (g.cells[size_t(a)] > 4096)
       throw InvalidInput(located(source, cat("has ", g.cells[size_t(a)], " voxels along an axis; give a coarser grid (--grid, or \"grid\" in a scene; at most 4096 cells)")));
   }
+  return g;
+}
+
+GridSpec volume_scene_grid(const GridSpec& voxel_grid, double voxels_per_cell, const std::string& source) {
+  if (voxels_per_cell == 1) return even_scene_grid(voxel_grid, source);
+  GridSpec g = voxel_grid;
+  const double cell = voxels_per_cell * voxel_grid.spacing().minCoeff();
+  const Vec3 extent = voxel_grid.domain.max - voxel_grid.domain.min;
+  for (int a = 0; a < 3; ++a) g.cells[size_t(a)] = 2 * std::max(1, int(std::lround(extent[a] / (2 * cell))));
   return g;
 }
 

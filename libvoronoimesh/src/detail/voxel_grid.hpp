@@ -24,4 +24,10 @@ GridSpec voxel_grid(const std::array<int64_t, 3>& size, const Vec3& spacing, con
 /// `source` beyond 4096 cells along an axis.
 GridSpec even_scene_grid(const GridSpec& voxel_grid, const std::string& source);
 
+/// The scene grid of a volume with voxel grid `voxel_grid`: even_scene_grid
+/// when `voxels_per_cell` is 1, else the same box cut into an even number of
+/// cells per axis (the bcc lattice needs it), each about `voxels_per_cell`
+/// times the smallest spacing long.
+GridSpec volume_scene_grid(const GridSpec& voxel_grid, double voxels_per_cell, const std::string& source);
+
 } // namespace vm::detail
