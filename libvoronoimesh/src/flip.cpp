@@ -158,8 +158,7 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
   if (field)
     for (size_t f = 0; f < last_flip.size(); ++f)
-      if (last_flip[f] >= 0 && detail::touches_junction(mesh, m.triangles[f]) &&
-          !detail::agrees_with_field(m.points, m.triangles[f], m.pairs[f], *field))
+      if (last_flip[f] >= 0 && detail::touches_junction(mesh, m, f) && !detail::agrees_with_field(m, f, *field))
         culprits.push_back(log[size_t(last_flip[f])]);
   return culprits;
 }

@@ -15,7 +15,6 @@
 #include "voronoimesh/errors.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -52,12 +51,6 @@ void check_input(const NodeMesh& m) {
     if (p[0] < 0 || p[0] >= p[1] || p[1] > std::numeric_limits<int16_t>::max())
       throw TopologyError(located(kSource, detail::cat(describe(t, tri), ": bad phase pair (", p[0], ", ", p[1], ")")));
   }
-}
-
-/// A topology version no mesh had before.
-uint64_t fresh_version() {
-  static std::atomic<uint64_t> last{0};
-  return ++last;
 }
 
 } // namespace
@@ -164,13 +157,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   }
   im.build_adjacency();
   im.find_box_faces();
-  im.version_ = fresh_version();
   return im;
-}
-
-void InterfaceMesh::topology_changed() {
-  build_adjacency();
-  version_ = fresh_version();
 }
 
 void InterfaceMesh::build_adjacency() {

@@ -14,7 +14,7 @@ std::vector<Vec3>& PassContext::displacement() {
 
 void PassContext::commit() {
   if (!pending) return;
-  if (guard_crossings) undone_moves += guard.commit(mesh, delta).undone_nodes;
+  if (guard_crossings) undone_moves += commit_without_crossings(mesh, delta, field).undone_nodes;
   else mesh.move_nodes(delta);
   pending = false;
 }

@@ -2,15 +2,11 @@
 // surface through another are undone, on a hand-made move and on a scene where
 // the unguarded pipeline does cross.
 
-#include "voronoimesh/clamp.hpp"
 #include "voronoimesh/create.hpp"
-#include "voronoimesh/flip.hpp"
 #include "voronoimesh/guard.hpp"
 #include "voronoimesh/intersections.hpp"
 #include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/project.hpp"
 #include "voronoimesh/scene.hpp"
-#include "voronoimesh/smooth.hpp"
 #include "voronoimesh/validate.hpp"
 
 #include "fixtures.hpp"
@@ -99,69 +95,6 @@ TEST(Guard, the_default_pipeline_never_crosses_where_the_unguarded_one_does) {
       EXPECT_GT(worst, 0u); // the scene is hard enough to test the guard
     }
   }
-}
-
-TEST(Guard, a_guard_kept_across_commits_and_flips_gives_the_one_shot_result) {
-  // The kept guard skips pairs by clearance and certified fans and patches its
-  // pairs after flips; none of that may change a single bit of the outcome.
-  const Scene scene = parse_scene(kCrowdedSpheres, "crowded spheres");
-  InterfaceMesh kept_mesh = initial_mesh(scene), fresh_mesh = kept_mesh;
-  CrossingGuard kept(scene.field.get());
-  size_t undone = 0, flips = 0;
-  for (int it = 0; it < 15; ++it) {
-    SCOPED_TRACE(it);
-    std::vector<Vec3> delta(kept_mesh.num_nodes(), Vec3::Zero());
-    add_smoothing_forces(kept_mesh, *scene.field, {}, delta);
-    add_projection(kept_mesh, *scene.field, {}, delta);
-    clamp_displacements(kept_mesh, {}, delta);
-    std::vector<Vec3> fresh_delta = delta;
-    const GuardReport a = kept.commit(kept_mesh, delta);
-    const GuardReport b = commit_without_crossings(fresh_mesh, fresh_delta, scene.field.get());
-    ASSERT_EQ(a.undone_nodes, b.undone_nodes);
-    ASSERT_EQ(kept_mesh.positions(), fresh_mesh.positions());
-    ASSERT_EQ(delta, fresh_delta);
-    undone += a.undone_nodes;
-    FlipParams flip;
-    flip.field = scene.field.get();
-    flips += flip_edges(kept_mesh, flip).flips;
-    flip_edges(fresh_mesh, flip);
-    ASSERT_EQ(kept_mesh.to_node_mesh().triangles, fresh_mesh.to_node_mesh().triangles);
-  }
-  EXPECT_GT(undone, 0u); // the guard had work to do
-  EXPECT_GT(flips, 0u);  // and its pairs had to follow topology changes
-  EXPECT_TRUE(find_self_intersections(kept_mesh.to_node_mesh()).ok());
-}
-
-TEST(Guard, a_kept_guard_undoes_a_fold_within_one_fan) {
-  // A flat hexagonal fan whose centre is pushed just across one rim edge: that
-  // triangle turns over onto its neighbours, in their plane. Every overlapping
-  // pair shares the centre, the kind of pair a certified fan lets the kept guard
-  // skip; its fan was certified at the last commit, so it must look again.
-  NodeMesh fan;
-  fan.points.push_back(Vec3(0, 0, 0));
-  for (int k = 0; k < 6; ++k) fan.points.push_back(Vec3(std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0));
-  for (int32_t k = 0; k < 6; ++k) {
-    fan.triangles.push_back({0, 1 + k, 1 + (k + 1) % 6});
-    fan.pairs.push_back({0, 1});
-  }
-  fan.domain = {Vec3::Constant(-2), Vec3::Constant(2)};
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(fan);
-  CrossingGuard guard;
-  std::vector<Vec3> tiny(mesh.num_nodes(), Vec3::Zero());
-  tiny[0] = Vec3(1e-9, 0, 0);
-  guard.commit(mesh, tiny); // finds the pairs, certifies the fan
-  const Vec3 before = mesh.positions()[0];
-  const Vec3 mid = 0.5 * (fan.points[1] + fan.points[2]);
-  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
-  delta[0] = (mid + 0.05 * (mid - before)) - before;
-
-  InterfaceMesh unguarded = mesh;
-  unguarded.move_nodes(delta);
-  ASSERT_GT(find_self_intersections(unguarded.to_node_mesh()).count, 0u); // all pairs share node 0
-
-  const GuardReport report = guard.commit(mesh, delta);
-  EXPECT_EQ(report.undone_nodes, 1u);
-  EXPECT_EQ(mesh.positions()[0], before);
 }
 
 } // namespace

@@ -13,7 +13,6 @@
 #include "voronoimesh/mesh.hpp"
 
 #include <cstddef>
-#include <memory>
 #include <vector>
 
 namespace vm {
@@ -39,29 +38,5 @@ struct GuardReport {
 /// triangles could stand across their surface for a few iterations.
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
                                      const PhaseField* field = nullptr);
-
-/// commit_without_crossings() for repeated commits to one mesh, as a pipeline
-/// makes: it keeps the triangle pairs close enough to meet (boxes grown by a
-/// margin) with a lower bound on the distance of each, so a commit tests
-/// exactly only the pairs that share a node or whose nodes have moved, since
-/// the pairs were found, by as much as that distance. The pairs are found again
-/// when a node has moved farther than the margin or many triangles changed;
-/// triangles changed by flips get their pairs found locally. Same result as
-/// commit_without_crossings(), bit for bit, at a fraction of the cost.
-class CrossingGuard {
-public:
-  explicit CrossingGuard(const PhaseField* field = nullptr);
-  ~CrossingGuard();
-  CrossingGuard(CrossingGuard&&) noexcept;
-  CrossingGuard& operator=(CrossingGuard&&) noexcept;
-
-  /// As commit_without_crossings(mesh, delta, field). `mesh` may change
-  /// between calls (flips, another mesh): that is noticed.
-  GuardReport commit(InterfaceMesh& mesh, std::vector<Vec3>& delta);
-
-private:
-  struct State;
-  std::unique_ptr<State> state_;
-};
 
 } // namespace vm

@@ -68,11 +68,7 @@ public:
   /// afterwards.
   OMesh& omesh_for_topology() { return mesh_; }
   /// Rebuilds the node adjacency after flips.
-  void topology_changed();
-  /// Changes whenever the triangles do (flips, a new mesh); equal for copies
-  /// of one mesh. Lets state kept across passes (the crossing guard's
-  /// candidate pairs) notice that it is stale.
-  uint64_t topology_version() const { return version_; }
+  void topology_changed() { build_adjacency(); }
 
   /// Neighbouring nodes of node n across all its copies, sorted (as of the last
   /// topology_changed()).
@@ -113,7 +109,6 @@ private:
   std::vector<int32_t> adj_off_, adj_;
   std::vector<uint8_t> box_;
   Box domain_;
-  uint64_t version_ = 0;
   std::vector<std::string> names_;
   std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
 };

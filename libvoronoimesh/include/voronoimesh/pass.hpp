@@ -7,7 +7,6 @@
 /// so results never depend on thread count or scheduling.
 
 #include "voronoimesh/field.hpp"
-#include "voronoimesh/guard.hpp"
 #include "voronoimesh/mesh.hpp"
 #include "voronoimesh/stats.hpp"
 
@@ -46,10 +45,8 @@ struct PassContext {
   bool guard_crossings = true;
   size_t undone_moves = 0;           ///< moves the guard undid in the current iteration
   std::optional<MeshStats> stats;    ///< set by the stats pass
-  /// The guard commit() goes through; it keeps its candidate pairs between commits.
-  CrossingGuard guard;
 
-  explicit PassContext(InterfaceMesh& m, const PhaseField* f = nullptr) : mesh(m), field(f), guard(f) {}
+  explicit PassContext(InterfaceMesh& m, const PhaseField* f = nullptr) : mesh(m), field(f) {}
   /// The displacement buffer, zeroed if nothing is pending.
   std::vector<Vec3>& displacement();
   /// Applies the pending displacement to the mesh (through the guard if on).

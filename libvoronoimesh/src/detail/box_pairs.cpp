@@ -28,7 +28,6 @@ namespace {
 /// One triangle in one cell.
 struct Entry {
   uint64_t key;
-  double lo_x; ///< the box's lower x, to sweep a cell along x
   int32_t tri;
   uint8_t first; ///< bit a: the cell is the triangle's first one along axis a
 };
@@ -120,13 +119,10 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
   std::vector<Entry> entries(offset[n]);
   tbb::parallel_for(size_t(0), n, [&](size_t t) {
     size_t e = offset[t];
-    grid.for_cells(boxes[t], level[t], [&](uint64_t key, uint8_t first) { entries[e++] = {key, boxes[t].lo.x(), int32_t(t), first};
-    });
+    grid.for_cells(boxes[t], level[t], [&](uint64_t key, uint8_t first) { entries[e++] = {key, int32_t(t), first}; });
   });
   tbb::parallel_sort(entries.begin(), entries.end(),
-                     [](const Entry& x, const Entry& y) {
-                       return x.key != y.key ? x.key < y.key : x.lo_x != y.lo_x ? x.lo_x < y.lo_x : x.tri < y.tri;
-                     });
+                     [](const Entry& x, const Entry& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
   std::vector<size_t> cell_start;
   for (size_t e = 0; e < entries.size(); ++e)
     if (e == 0 || entries[e].key != entries[e - 1].key) cell_start.push_back(e);
@@ -144,12 +140,9 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_start.size() - 1), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found.local();
     for (size_t c = r.begin(); c != r.end(); ++c)
-      for (size_t i = cell_start[c]; i < cell_start[c + 1]; ++i) {
-        // Sorted by lower x: once a box starts beyond this one's upper x, so do the rest.
-        const double hi_x = boxes[size_t(entries[i].tri)].hi.x();
-        for (size_t j = i + 1; j < cell_start[c + 1] && entries[j].lo_x <= hi_x; ++j)
+      for (size_t i = cell_start[c]; i < cell_start[c + 1]; ++i)
+        for (size_t j = i + 1; j < cell_start[c + 1]; ++j)
           consider(out, entries[i].tri, entries[j].tri, entries[i].first, entries[j].first);
-      }
   });
   // Pairs across levels: each box looks up the cells it covers in every higher level.
   if (top_level > 0)
@@ -172,67 +165,5 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
   for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
   return pairs;
 }
-
-std::vector<int32_t> boxes_near(std::span<const Bounds> boxes, std::span<const uint8_t> flagged) {
-  const size_t nt = boxes.size();
-  auto box_of = [&](size_t t) -> const Bounds& { return boxes[t]; };
-  std::vector<int32_t> all;
-  size_t count = 0;
-  double cell = 0;
-  for (size_t t = 0; t < flagged.size(); ++t)
-    if (flagged[t]) {
-      const Bounds b = box_of(t);
-      ++count, cell = std::max(cell, (b.hi - b.lo).maxCoeff());
-    }
-  if (flagged.empty() || 3 * count >= nt) {
-    all.resize(nt);
-    for (size_t t = 0; t < nt; ++t) all[t] = int32_t(t);
-    return all;
-  }
-  if (!(cell > 0)) cell = 1;
-  auto cell_of = [&](double x) { return int64_t(std::floor(x / cell)); };
-  auto key = [](int64_t i, int64_t j, int64_t k) {
-    return uint64_t(i) * 0x9E3779B97F4A7C15ull ^ uint64_t(j) * 0xC2B2AE3D27D4EB4Full ^ uint64_t(k) * 0x165667B19E3779F9ull;
-  };
-  // Calls f(key) for each cell of box b; false if b covers too many to list.
-  auto cells = [&](const Bounds& b, auto&& f) {
-    const int64_t i0 = cell_of(b.lo.x()), i1 = cell_of(b.hi.x()), j0 = cell_of(b.lo.y()), j1 = cell_of(b.hi.y()),
-                  k0 = cell_of(b.lo.z()), k1 = cell_of(b.hi.z());
-    if ((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 64) return false;
-    for (int64_t i = i0; i <= i1; ++i)
-      for (int64_t j = j0; j <= j1; ++j)
-        for (int64_t k = k0; k <= k1; ++k) f(key(i, j, k));
-    return true;
-  };
-  // The covered cells in an open-addressing hash set: one probe or two per lookup.
-  std::vector<uint64_t> covered;
-  for (size_t t = 0; t < nt; ++t)
-    if (flagged[t]) cells(box_of(t), [&](uint64_t k) { covered.push_back(k); });
-  size_t slots = 16;
-  while (slots < 2 * covered.size()) slots *= 2;
-  constexpr uint64_t kEmpty = ~uint64_t(0); // keys are hashes: a collision with it only adds a false "near"
-  std::vector<uint64_t> table(slots, kEmpty);
-  for (uint64_t k : covered) {
-    size_t i = size_t(k) & (slots - 1);
-    while (table[i] != kEmpty && table[i] != k) i = (i + 1) & (slots - 1);
-    table[i] = k;
-  }
-  auto is_covered = [&](uint64_t k) {
-    for (size_t i = size_t(k) & (slots - 1);; i = (i + 1) & (slots - 1)) {
-      if (table[i] == k) return true;
-      if (table[i] == kEmpty) return false;
-    }
-  };
-  std::vector<uint8_t> keep(nt, 0);
-  tbb::parallel_for(size_t(0), nt, [&](size_t t) {
-    bool near = false;
-    const bool listed = cells(box_of(t), [&](uint64_t k) { near = near || is_covered(k); });
-    keep[t] = flagged[t] || !listed || near;
-  });
-  for (size_t t = 0; t < nt; ++t)
-    if (keep[t]) all.push_back(int32_t(t));
-  return all;
-}
-
 
 } // namespace vm::detail

@@ -21,12 +21,6 @@ struct Bounds {
   }
 };
 
-/// The bounding box of triangle `tri` (node ids into `points`).
-inline Bounds triangle_bounds(std::span<const Vec3> points, const std::array<int32_t, 3>& tri) {
-  const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
-  return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-}
-
 /// Indices {i, j}, i < j, of two boxes.
 using BoxPair = std::array<int32_t, 2>;
 
@@ -34,12 +28,5 @@ using BoxPair = std::array<int32_t, 2>;
 /// that depends on the thread count (callers must not depend on it). Boxes
 /// must be finite.
 std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes);
-
-/// The boxes that can overlap a flagged one (the flagged ones included), in
-/// increasing order: a superset found through a hash of coarse cells covering
-/// the flagged boxes; all of them when a third or more are flagged (no gain
-/// then) or `flagged` is empty. Lets a check after a few local changes skip
-/// most of the mesh.
-std::vector<int32_t> boxes_near(std::span<const Bounds> boxes, std::span<const uint8_t> flagged);
 
 } // namespace vm::detail
