@@ -1,6 +1,7 @@
 #include "voronoimesh/create.hpp"
 
 #include "detail/lattice.hpp"
+#include "detail/limit_key_index.hpp"
 #include "detail/node_values.hpp"
 #include "detail/tet_cutter.hpp"
 #include "detail/text.hpp"
@@ -12,14 +13,13 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
-#include <unordered_map>
 
 namespace vm {
 namespace {
 
 using detail::CutTriangle;
 using detail::LimitKey;
-using detail::LimitKeyHash;
+using detail::LimitKeyIndex;
 
 /// What one slab of the lattice produced: its distinct limit points (with
 /// positions) and triangles indexing them.
@@ -48,7 +48,7 @@ struct Extraction {
 void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid, int slab,
               int32_t outside, SlabResult& r) {
   detail::TetCutter cutter(values, lattice, grid);
-  std::unordered_map<LimitKey, int32_t, LimitKeyHash> local;
+  LimitKeyIndex local;
   std::vector<CutTriangle> cut;
   // A block whose nodes all have the same winner holds no interface: that phase
   // beats every other at every corner of every tet in it.
@@ -80,12 +80,12 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
     for (const CutTriangle& t : cut) {
       std::array<int32_t, 3> tri;
       for (int c = 0; c < 3; ++c) {
-        auto [it, inserted] = local.try_emplace(t.corners[c], int32_t(r.keys.size()));
+        const auto [id, inserted] = local.insert(t.corners[c], r.keys);
         if (inserted) {
           r.keys.push_back(t.corners[c]);
           r.points.push_back(cutter.position(t.corners[c]));
         }
-        tri[c] = it->second;
+        tri[c] = id;
       }
       if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
         ++r.dropped;
@@ -108,10 +108,12 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
                     [&](int s) { cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]); });
 
   Extraction e;
-  std::unordered_map<LimitKey, int32_t, LimitKeyHash> ids;
+  LimitKeyIndex ids;
   size_t keys = 0, triangles = 0;
   for (auto& s : slabs) keys += s.keys.size(), triangles += s.triangles.size();
   ids.reserve(keys);
+  e.points.reserve(keys);
+  e.keys.reserve(keys);
   e.triangles.reserve(triangles);
   e.pairs.reserve(triangles);
   std::vector<int32_t> global;
@@ -125,12 +127,12 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
     stats.box_triangles += s.box_triangles;
     global.resize(s.keys.size());
     for (size_t k = 0; k < s.keys.size(); ++k) {
-      auto [it, inserted] = ids.try_emplace(s.keys[k], int32_t(e.points.size()));
+      const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
       if (inserted) {
         e.points.push_back(s.points[k]);
         e.keys.push_back(s.keys[k]);
       }
-      global[k] = it->second;
+      global[k] = id;
     }
     for (size_t t = 0; t < s.triangles.size(); ++t) {
       const auto& tri = s.triangles[t];
