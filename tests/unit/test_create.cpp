@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <climits>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -325,6 +326,25 @@ TEST(Lattice, tetrahedra_tile_the_domain) {
     EXPECT_EQ(count, lattice.num_tets());
     EXPECT_GT(smallest, 0);
     EXPECT_NEAR(volume, 1.5 * 1.0 * 2.0, 1e-12);
+  }
+}
+
+// create's repair rounds cut again only the slabs that use an un-snapped node,
+// so slabs_of_node must name exactly the slabs whose tetrahedra use the node
+// (bcc tetrahedra reach into the neighbouring slabs' cube centres).
+TEST(Lattice, slabs_of_node_are_the_slabs_using_it) {
+  for (Lattice kind : {Lattice::bcc, Lattice::cube6}) {
+    GridSpec grid;
+    grid.cells = {4, 6, 8};
+    detail::TetLattice lattice(grid, kind);
+    std::vector<std::array<int, 2>> used(size_t(lattice.num_nodes()), {INT_MAX, INT_MIN});
+    for (int s = 0; s < lattice.num_slabs(); ++s)
+      lattice.for_each_tet(s, [](const int64_t*, int) { return false; }, [&](const std::array<int64_t, 4>& n) {
+        for (int64_t node : n) used[size_t(node)] = {std::min(used[size_t(node)][0], s), std::max(used[size_t(node)][1], s)};
+      });
+    for (int64_t node = 0; node < lattice.num_nodes(); ++node)
+      if (used[size_t(node)][0] != INT_MAX) // cube6 uses every node, bcc every lattice node
+        EXPECT_EQ(lattice.slabs_of_node(node), used[size_t(node)]) << "node " << node;
   }
 }
 
