@@ -275,7 +275,10 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     const auto check_start = std::chrono::steady_clock::now();
     ValidationReport report = validate(out);
     check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
-    if (report.ok()) break;
+    if (report.ok()) {
+      stats.validated = true;
+      break;
+    }
     if (unsnapped.empty()) unsnapped.assign(size_t(lattice.num_nodes()), 0);
     std::fill(recut.begin(), recut.end(), 0);
     uint64_t added = 0;
