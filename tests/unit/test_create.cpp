@@ -1,6 +1,7 @@
 // Tests of create (paper Algorithm 2): consistency, exactness, accuracy, and the
 // degenerate cases that snapping and symmetric scenes produce.
 
+#include "detail/exact.hpp"
 #include "detail/lattice.hpp"
 #include "detail/node_values.hpp"
 #include "voronoimesh/create.hpp"
@@ -19,6 +20,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace {
 
@@ -349,6 +351,24 @@ TEST(Lattice, slabs_of_node_are_the_slabs_using_it) {
     for (int64_t node = 0; node < lattice.num_nodes(); ++node)
       if (used[size_t(node)][0] != INT_MAX) // cube6 uses every node, bcc every lattice node
         EXPECT_EQ(lattice.slabs_of_node(node), used[size_t(node)]) << "node " << node;
+  }
+}
+
+// Vertex keys are reduced by the gcd of their 128-bit weights; the shortcut
+// through 64-bit words must give Euclid's answer on every size of operand.
+TEST(Exact, gcd_of_128_bit_magnitudes_is_euclids) {
+  using u128 = unsigned __int128;
+  auto euclid = [](u128 a, u128 b) {
+    while (b != 0) a = std::exchange(b, a % b);
+    return a;
+  };
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 20000; ++i) {
+    auto draw = [&] { return (u128(rng()) << 64 | rng()) >> (rng() % 128); };
+    const u128 common = draw() >> (rng() % 128);
+    const u128 a = draw() * (common | 1) >> (i % 3 == 0 ? 0 : 40), b = i % 7 == 0 ? 0 : draw() * (common | 1);
+    EXPECT_TRUE(detail::gcd(a, b) == euclid(a, b)) << "case " << i;
+    EXPECT_TRUE(detail::gcd(b, a) == euclid(a, b)) << "case " << i;
   }
 }
 
