@@ -1,6 +1,7 @@
 #include "voronoimesh/create.hpp"
 
 #include "detail/lattice.hpp"
+#include "detail/limit_key_index.hpp"
 #include "detail/node_values.hpp"
 #include "detail/tet_cutter.hpp"
 #include "detail/text.hpp"
@@ -12,14 +13,13 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
-#include <unordered_map>
 
 namespace vm {
 namespace {
 
 using detail::CutTriangle;
 using detail::LimitKey;
-using detail::LimitKeyHash;
+using detail::LimitKeyIndex;
 
 /// What one slab of the lattice produced: its distinct limit points (with
 /// positions) and triangles indexing them.
@@ -48,7 +48,7 @@ struct Extraction {
 void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid, int slab,
               int32_t outside, SlabResult& r) {
   detail::TetCutter cutter(values, lattice, grid);
-  std::unordered_map<LimitKey, int32_t, LimitKeyHash> local;
+  LimitKeyIndex local;
   std::vector<CutTriangle> cut;
   // A block whose nodes all have the same winner holds no interface: that phase
   // beats every other at every corner of every tet in it.
@@ -80,12 +80,12 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
     for (const CutTriangle& t : cut) {
       std::array<int32_t, 3> tri;
       for (int c = 0; c < 3; ++c) {
-        auto [it, inserted] = local.try_emplace(t.corners[c], int32_t(r.keys.size()));
+        const auto [id, inserted] = local.insert(t.corners[c], r.keys);
         if (inserted) {
           r.keys.push_back(t.corners[c]);
           r.points.push_back(cutter.position(t.corners[c]));
         }
-        tri[c] = it->second;
+        tri[c] = id;
       }
       if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
         ++r.dropped;
@@ -97,25 +97,32 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
   });
 }
 
-/// Cuts every tetrahedron (in parallel, slab by slab) and numbers the limit
-/// points in order of first appearance. Slabs are a property of the lattice, not
-/// of the thread count, and are merged in order: the result is the same for any
-/// number of threads.
+/// Cuts the tetrahedra of the slabs flagged in `recut` (in parallel, slab by
+/// slab; the others keep what an earlier round found, their nodes' values being
+/// unchanged) and numbers the limit points of all slabs in order of first
+/// appearance. Slabs are a property of the lattice, not of the thread count, and
+/// are merged in order: the result is the same for any number of threads, and
+/// the same as cutting every slab again.
 Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
-                   int32_t outside, CreateStats& stats) {
-  std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
-  tbb::parallel_for(0, lattice.num_slabs(),
-                    [&](int s) { cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]); });
+                   int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs,
+                   CreateStats& stats) {
+  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) {
+    if (!recut[size_t(s)]) return;
+    slabs[size_t(s)] = SlabResult{};
+    cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);
+  });
 
   Extraction e;
-  std::unordered_map<LimitKey, int32_t, LimitKeyHash> ids;
+  LimitKeyIndex ids;
   size_t keys = 0, triangles = 0;
   for (auto& s : slabs) keys += s.keys.size(), triangles += s.triangles.size();
   ids.reserve(keys);
+  e.points.reserve(keys);
+  e.keys.reserve(keys);
   e.triangles.reserve(triangles);
   e.pairs.reserve(triangles);
   std::vector<int32_t> global;
-  for (auto& s : slabs) {
+  for (const auto& s : slabs) {
     stats.tets_visited += s.tets;
     stats.tets_cut += s.counters.tets_cut;
     stats.polygons += s.counters.polygons;
@@ -125,19 +132,18 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
     stats.box_triangles += s.box_triangles;
     global.resize(s.keys.size());
     for (size_t k = 0; k < s.keys.size(); ++k) {
-      auto [it, inserted] = ids.try_emplace(s.keys[k], int32_t(e.points.size()));
+      const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
       if (inserted) {
         e.points.push_back(s.points[k]);
         e.keys.push_back(s.keys[k]);
       }
-      global[k] = it->second;
+      global[k] = id;
     }
     for (size_t t = 0; t < s.triangles.size(); ++t) {
       const auto& tri = s.triangles[t];
       e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
       e.pairs.push_back(s.pairs[t]);
     }
-    s = SlabResult{};
   }
   return e;
 }
@@ -243,14 +249,17 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   // shows one, snapping is undone at the lattice nodes of the offending vertices
   // and the mesh is made again. Un-snapping only removes ties, and a pinch needs a
   // tie, so this ends; in practice after one or two rounds.
+  // Only the slabs holding a node un-snapped in the last round are cut again.
   std::vector<char> unsnapped;
+  std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
+  std::vector<char> recut(slabs.size(), 1);
   CreateStats stats;
   double check_seconds = 0;
   Extraction e;
   for (int round = 0;; ++round) {
     detail::NodeValues values(field, lattice, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
     CreateStats round_stats;
-    e = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, round_stats);
+    e = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, round_stats);
     resolve_coincident_triangles(e, round_stats);
     round_stats.snapped_nodes = values.snapped_nodes();
     round_stats.unsnapped_nodes = stats.unsnapped_nodes;
@@ -266,14 +275,22 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     const auto check_start = std::chrono::steady_clock::now();
     ValidationReport report = validate(out);
     check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
-    if (report.ok()) break;
+    if (report.ok()) {
+      stats.validated = true;
+      break;
+    }
     if (unsnapped.empty()) unsnapped.assign(size_t(lattice.num_nodes()), 0);
+    std::fill(recut.begin(), recut.end(), 0);
     uint64_t added = 0;
     for (int32_t v : report.nodes)
       for (int c = 0; c < e.keys[size_t(v)].count; ++c) {
-        char& flag = unsnapped[size_t(e.keys[size_t(v)].nodes[c])];
-        added += !flag;
+        const int64_t node = e.keys[size_t(v)].nodes[c];
+        char& flag = unsnapped[size_t(node)];
+        if (flag) continue;
         flag = 1;
+        ++added;
+        const auto [first, last] = lattice.slabs_of_node(node);
+        for (int slab = first; slab <= last; ++slab) recut[size_t(slab)] = 1;
       }
     if (added == 0) break; // not a snapping problem: leave it to the caller's validation
     stats.unsnapped_nodes += added;

@@ -54,6 +54,8 @@ TetLattice::TetLattice(const GridSpec& grid, Lattice kind) : grid_(grid), kind_(
         auto it = std::find(bt.nodes.begin(), bt.nodes.end(), t.offsets[c]);
         corners[c] = uint8_t(it - bt.nodes.begin());
         if (it == bt.nodes.end()) bt.nodes.push_back(t.offsets[c]);
+        reach_[0] = std::min(reach_[0], t.offsets[c][2]);
+        reach_[1] = std::max(reach_[1], t.offsets[c][2]);
       }
       bt.corners.push_back(corners);
     }

@@ -1,6 +1,7 @@
 // Tests of create (paper Algorithm 2): consistency, exactness, accuracy, and the
 // degenerate cases that snapping and symmetric scenes produce.
 
+#include "detail/exact.hpp"
 #include "detail/lattice.hpp"
 #include "detail/node_values.hpp"
 #include "voronoimesh/create.hpp"
@@ -12,12 +13,14 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <climits>
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <random>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace {
 
@@ -274,6 +277,10 @@ TEST(Create, randomised_scenes_are_valid) {
                     << snap << ")\n"
                     << report.summary();
     EXPECT_EQ(c.stats.degenerate_cuts, 0u) << "trial " << trial;
+    // validated says whether create's own check (made when it snaps) passed, so
+    // callers can skip theirs.
+    const bool checked = snap > 0 && c.stats.repair_rounds < kMaxRepairRounds;
+    EXPECT_EQ(c.stats.validated, checked && report.ok()) << "trial " << trial;
     repaired += c.stats.unsnapped_nodes > 0;
     rounds += uint64_t(c.stats.repair_rounds);
     unsnapped += c.stats.unsnapped_nodes;
@@ -325,6 +332,43 @@ TEST(Lattice, tetrahedra_tile_the_domain) {
     EXPECT_EQ(count, lattice.num_tets());
     EXPECT_GT(smallest, 0);
     EXPECT_NEAR(volume, 1.5 * 1.0 * 2.0, 1e-12);
+  }
+}
+
+// create's repair rounds cut again only the slabs that use an un-snapped node,
+// so slabs_of_node must name exactly the slabs whose tetrahedra use the node
+// (bcc tetrahedra reach into the neighbouring slabs' cube centres).
+TEST(Lattice, slabs_of_node_are_the_slabs_using_it) {
+  for (Lattice kind : {Lattice::bcc, Lattice::cube6}) {
+    GridSpec grid;
+    grid.cells = {4, 6, 8};
+    detail::TetLattice lattice(grid, kind);
+    std::vector<std::array<int, 2>> used(size_t(lattice.num_nodes()), {INT_MAX, INT_MIN});
+    for (int s = 0; s < lattice.num_slabs(); ++s)
+      lattice.for_each_tet(s, [](const int64_t*, int) { return false; }, [&](const std::array<int64_t, 4>& n) {
+        for (int64_t node : n) used[size_t(node)] = {std::min(used[size_t(node)][0], s), std::max(used[size_t(node)][1], s)};
+      });
+    for (int64_t node = 0; node < lattice.num_nodes(); ++node)
+      if (used[size_t(node)][0] != INT_MAX) // cube6 uses every node, bcc every lattice node
+        EXPECT_EQ(lattice.slabs_of_node(node), used[size_t(node)]) << "node " << node;
+  }
+}
+
+// Vertex keys are reduced by the gcd of their 128-bit weights; the shortcut
+// through 64-bit words must give Euclid's answer on every size of operand.
+TEST(Exact, gcd_of_128_bit_magnitudes_is_euclids) {
+  using u128 = unsigned __int128;
+  auto euclid = [](u128 a, u128 b) {
+    while (b != 0) a = std::exchange(b, a % b);
+    return a;
+  };
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 20000; ++i) {
+    auto draw = [&] { return (u128(rng()) << 64 | rng()) >> (rng() % 128); };
+    const u128 common = draw() >> (rng() % 128);
+    const u128 a = draw() * (common | 1) >> (i % 3 == 0 ? 0 : 40), b = i % 7 == 0 ? 0 : draw() * (common | 1);
+    EXPECT_TRUE(detail::gcd(a, b) == euclid(a, b)) << "case " << i;
+    EXPECT_TRUE(detail::gcd(b, a) == euclid(a, b)) << "case " << i;
   }
 }
 

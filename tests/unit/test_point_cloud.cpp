@@ -3,6 +3,8 @@
 // errors of the point reader.
 #include "scratch_dir.hpp"
 
+#include "detail/point_cloud.hpp"
+
 #include "voronoimesh/create.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/input.hpp"
@@ -182,6 +184,43 @@ TEST_F(PlyPoints, ascii_float_phase_labels_and_errors) {
                         "property int label\nend_header\n"),
             f + ": has no points");
   EXPECT_EQ(error_of(f, head + "property int label\nend_header\n0 0 0 1\n"), f + ": truncated: element 'vertex' declares 3 items but only 8 bytes remain");
+}
+
+// The k nearest regions found through the tree of all points, the shortcut for
+// one-seed grains and the per-thread cache of the nearest point must all agree
+// with evaluating every phase from scratch: grains (a label per seed) and a few
+// labels shared by many seeds, queried at the seeds themselves (ties) and
+// between them, values and gradients asked in either order.
+TEST(PointCloudField, top_values_and_gradients_match_every_phase_evaluated) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const int labels : {0, 10}) { // 0: every seed its own label
+    vm::detail::LabelledPoints cloud;
+    for (int i = 0; i < 600; ++i) {
+      cloud.points.emplace_back(u(rng), u(rng), u(rng));
+      cloud.labels.push_back(labels ? int32_t(rng() % labels) : i);
+    }
+    const Scene scene = vm::detail::point_cloud_scene(cloud, "cloud");
+    const PhaseField& field = *scene.field;
+    const int n = field.num_phases();
+    std::vector<double> all(static_cast<size_t>(n));
+    for (int q = 0; q < 200; ++q) {
+      const Vec3 x = q % 4 == 0 ? cloud.points[size_t(q)] : Vec3(u(rng), u(rng), u(rng));
+      std::array<int32_t, 4> ids, want_ids;
+      std::array<double, 4> vals, want_vals;
+      field.top_values(x, ids, vals);
+      field.PhaseField::top_values(x, want_ids, want_vals); // every phase evaluated
+      EXPECT_EQ(ids, want_ids) << "query " << q;
+      EXPECT_EQ(vals, want_vals) << "query " << q;
+      field.values(x, all);
+      for (int32_t p : {ids[0], ids[3], int32_t(q % n)}) {
+        const Vec3 g = field.gradient(p, x); // gradient first, then value, then the gradient again
+        EXPECT_EQ(field.value(p, x), all[size_t(p)]);
+        EXPECT_EQ(field.gradient(p, x), g);
+        if (all[size_t(p)] < 0) EXPECT_NEAR(g.norm(), 1.0, 1e-12);
+      }
+    }
+  }
 }
 
 } // namespace

@@ -391,6 +391,10 @@ TEST_F(Writers, vtu_and_vtp_hold_phase_labels_and_junction_order) {
     EXPECT_EQ(array("offsets", m.num_triangles()).back(), 3 * (long long)m.num_triangles());
     if (grid) EXPECT_EQ(array("types", m.num_triangles())[0], 5);
     EXPECT_EQ(text.find("--", text.find("<!--") + 4), text.find("-->")) << "no '--' inside the comment";
+    // The comment names every phase once, in order, by label and name.
+    std::string phases;
+    for (size_t p = 0; p < m.phase_names.size(); ++p) phases += " " + std::to_string(10 * p) + "-" + m.phase_names[p];
+    EXPECT_NE(text.find("Phases:" + phases + " -->"), std::string::npos) << phases;
   }
 }
 

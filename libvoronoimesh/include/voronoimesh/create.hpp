@@ -44,6 +44,9 @@ struct CreateStats {
   int repair_rounds = 0;           ///< extra extractions that undoing snapping needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
   double check_seconds = 0;        ///< of which validating the result and undoing pinches
+  /// The mesh returned passed validate() inside create (which validates whenever
+  /// it snaps, to find pinches): callers need not validate it again.
+  bool validated = false;
 };
 
 /// Most extra extractions create makes to undo snapping where it pinches a phase.

@@ -13,6 +13,7 @@
 #include "voronoimesh/create.hpp"
 #include "voronoimesh/types.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -28,6 +29,17 @@ public:
   TetLattice(const GridSpec& grid, Lattice kind);
 
   int num_slabs() const { return num_slabs_; }
+
+  /// The slabs whose tetrahedra use lattice node `id`: first..last (bcc
+  /// tetrahedra join cube centres of neighbouring slabs).
+  std::array<int, 2> slabs_of_node(int64_t id) const {
+    const int z = grid_point(id)[2];
+    // Slab s uses nodes at z in [s * block_ + reach_[0], s * block_ + reach_[1]];
+    // z - reach_[1] + block_ * num_slabs_ keeps the dividend positive.
+    const int first = (z - reach_[1] + block_ * num_slabs_ + block_ - 1) / block_ - num_slabs_;
+    const int last = (z - reach_[0] + block_ * num_slabs_) / block_ - num_slabs_;
+    return {std::max(0, first), std::min(num_slabs_ - 1, last)};
+  }
 
   /// Number of lattice nodes (ids are 0 .. num_nodes()-1).
   int64_t num_nodes() const { return num_nodes_; }
@@ -88,6 +100,7 @@ private:
   int64_t num_nodes_ = 0, even_count_ = 0;
   std::array<int64_t, 3> even_{}, odd_{}; // bcc corner and centre nodes per axis
   std::array<BlockTemplate, 64> by_class_; // by block_class(), computed once
+  std::array<int32_t, 2> reach_{0, 0};     // least and greatest z offset of a tetrahedron's node in a block
 };
 
 template <class Skip, class F> uint64_t TetLattice::for_each_tet(int slab, Skip&& skip, F&& f) const {

@@ -9,6 +9,7 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -28,13 +29,16 @@ struct Points {
 };
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, uint32_t>;
 
-/// A k-d tree over its own copy of the points.
+/// A k-d tree over its own copy of the points. A single point (a grain of one
+/// seed) gets no tree: nanoflann's would take 8 KB, 80 MB for 10,000 grains.
 struct Indexed {
   Points points;
   std::unique_ptr<Tree> tree;
-  explicit Indexed(std::vector<Vec3> p) : points{std::move(p)}, tree(std::make_unique<Tree>(3, points)) {}
+  explicit Indexed(std::vector<Vec3> p)
+      : points{std::move(p)}, tree(points.p.size() > 1 ? std::make_unique<Tree>(3, points) : nullptr) {}
   /// The nearest point to x.
   const Vec3& nearest(const Vec3& x) const {
+    if (!tree) return points.p[0];
     uint32_t i = 0;
     double d2 = 0;
     tree->knnSearch(x.data(), 1, &i, &d2);
@@ -53,10 +57,10 @@ public:
   int num_phases() const override { return int(labels_.size()); }
   std::string phase_name(int i) const override { return cat("label", labels_.at(size_t(i))); }
   int32_t phase_label(int i) const override { return labels_.at(size_t(i)); }
-  double value(int i, const Vec3& x) const override { return -(x - regions_[size_t(i)]->nearest(x)).norm(); }
+  double value(int i, const Vec3& x) const override { return -(x - nearest(i, x)).norm(); }
   /// -(x - p) / |x - p| for the nearest p of the region; 0 on p.
   Vec3 gradient(int i, const Vec3& x) const override {
-    const Vec3 d = x - regions_[size_t(i)]->nearest(x);
+    const Vec3 d = x - nearest(i, x);
     const double n = d.norm();
     return n > 0 ? Vec3(-d / n) : Vec3::Zero();
   }
@@ -81,7 +85,7 @@ public:
     };
     const size_t total = all_.points.p.size(), k = ids.size();
     constexpr size_t max_want = 256;
-    for (size_t want = 8 * k; size_t(num_phases()) > 2 * k; want *= 4) {
+    for (size_t want = 2 * k; size_t(num_phases()) > 2 * k; want *= 4) {
       want = std::min(want, total);
       idx.resize(want), d2.resize(want);
       const size_t got = all_.tree->knnSearch(x.data(), want, idx.data(), d2.data());
@@ -99,6 +103,33 @@ public:
   }
 
 private:
+  /// The nearest point of region i to x. A grain of one seed needs no search.
+  /// Projection asks for the value and then the gradient of each phase at one
+  /// point, so each thread keeps its last answer: one search serves both.
+  const Vec3& nearest(int i, const Vec3& x) const {
+    const Indexed& region = *regions_[size_t(i)];
+    if (!region.tree) return region.points.p[0];
+    struct Last {
+      uint64_t field = 0; // serial_ of the field asked; 0 for none
+      int phase = -1;
+      Vec3 x;
+      const Vec3* nearest = nullptr;
+    };
+    thread_local Last last;
+    if (last.field == serial_ && last.phase == i && last.x == x) return *last.nearest;
+    const Vec3& p = region.nearest(x);
+    last = {serial_, i, x, &p};
+    return p;
+  }
+
+  /// Tells fields apart in the per-thread cache of nearest(): an address can be
+  /// reused by a later field, a serial is not.
+  static uint64_t next_serial() {
+    static std::atomic<uint64_t> counter{0};
+    return ++counter;
+  }
+
+  uint64_t serial_ = next_serial();
   std::vector<int32_t> labels_;
   std::vector<int32_t> phase_of_point_;
   Indexed all_;

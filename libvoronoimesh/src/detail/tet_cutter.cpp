@@ -188,7 +188,7 @@ LimitKey TetCutter::limit_key(const PolyVertex& v) const {
   for (int c = 1; c < count; ++c) // insertion sort by node: at most four entries
     for (int e = c; e > 0 && w[e].first < w[e - 1].first; --e) std::swap(w[e], w[e - 1]);
   unsigned __int128 g = 0;
-  for (int c = 0; c < count; ++c) g = gcd(g, abs_u(w[c].second));
+  for (int c = 0; c < count && g != 1; ++c) g = gcd(g, abs_u(w[c].second));
   LimitKey key;
   key.count = count;
   for (int c = 0; c < count; ++c) {

@@ -38,7 +38,9 @@ std::string header(const NodeMesh& m, bool ascii) {
     }
   h += '\n';
   // Every phase, present or not, so a reader recovers the whole label set.
-  for (size_t p = 0; p < detail::phase_count(m); ++p)
+  // (phase_count scans every triangle: once, not once per phase.)
+  const size_t phases = detail::phase_count(m);
+  for (size_t p = 0; p < phases; ++p)
     h += cat("comment phase ", detail::phase_label(m, int32_t(p)), " ", header_safe(detail::phase_name(m, int32_t(p))),
              "\n");
   h += cat("element vertex ", m.points.size(), "\n");

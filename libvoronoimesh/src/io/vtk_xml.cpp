@@ -55,7 +55,8 @@ void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset datase
     buf += "<?xml version=\"1.0\"?>\n<!-- voronoimesh interface mesh. Cell data phase0, phase1: the phase labels of"
            " each triangle, its normal pointing from phase0 into phase1. Point data junction_order: the number of"
            " phases meeting at the node (2 surface, 3 triple curve, 4 or more quadruple point). Phases:";
-    for (size_t p = 0; p < phase_count(m); ++p) buf += ' ' + xml_comment_safe(phase_token(m, int32_t(p)));
+    const size_t phases = phase_count(m); // scans every triangle: once, not once per phase
+    for (size_t p = 0; p < phases; ++p) buf += ' ' + xml_comment_safe(phase_token(m, int32_t(p)));
     buf += " -->\n";
     buf += cat("<VTKFile type=\"", type, "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
     buf += cat("  <", type, ">\n");
