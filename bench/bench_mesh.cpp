@@ -3,12 +3,15 @@
 // initial mesh (paper sect. 4.1), then 50 iterations of the paper's pipeline
 // (smooth, project, clamp, flip; sect. 4.2-4.3) with the crossing guard.
 //
-//   bench_mesh INPUT GRID THREADS [--no-guard]
+//   bench_mesh INPUT GRID THREADS [--no-guard] [--iterations N] [--voxels-per-cell F]
 //   bench_mesh --header
 //
 // INPUT is anything vm::load_input reads (scene JSON, label volume, labelled
 // point cloud); GRID sets the cells per axis (0 keeps the input's grid);
 // --no-guard commits moves without the crossing guard, to measure its cost.
+// --iterations N runs N instead of 50 (the largest cases; columns for iterations
+// not reached show "–"); --voxels-per-cell F meshes a label volume on a grid of
+// about F voxels per cell (voronoimesh mesh --voxels-per-cell).
 // Prints one Markdown table row (--header: the table's header and separator
 // lines, so scripts and tests never restate the columns). Create is the best
 // of up to 5 runs within about a second; everything else is measured once.
@@ -35,8 +38,8 @@
 
 namespace {
 
-constexpr int kIterations = 50;
-constexpr int kEarlyIterations = 20; // the targets are for 20 and 50 iterations
+constexpr int kIterations = 50;     // the targets are for 20 and 50 iterations
+constexpr int kEarlyIterations = 20;
 
 constexpr const char* kHeader =
     "| scene | grid | threads | phases | tets visited | triangles | load s | sampling s | create ms | ms/it. | "
@@ -73,10 +76,26 @@ struct Progress {
   double min_q = 0, mean_q = 0;
 };
 
-int run(const std::string& path, int grid, int threads, bool guard) {
+/// What the command line asks for beyond INPUT GRID THREADS.
+struct Options {
+  bool guard = true;
+  int iterations = kIterations; ///< fewer for the largest cases: the 50-iteration columns stay empty
+  vm::InputOptions input;       ///< --voxels-per-cell for label volumes
+};
+
+/// A time or quality column, or "–" when the run stopped before that iteration.
+std::string cell(bool reached, double value, const char* format) {
+  if (!reached) return "–";
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+int run(const std::string& path, int grid, int threads, const Options& o) {
+  const bool guard = o.guard;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
   auto t0 = std::chrono::steady_clock::now();
-  vm::Scene scene = vm::load_input(path);
+  vm::Scene scene = vm::load_input(path, o.input);
   const double load = seconds_since(t0);
   if (grid > 0) scene.grid.cells = {grid, grid, grid};
 
@@ -103,7 +122,7 @@ int run(const std::string& path, int grid, int threads, bool guard) {
   std::vector<double> per_pass(pipeline.steps().size(), 0.0);
   Progress now, early;
   vm::RunOptions options;
-  options.iterations = kIterations;
+  options.iterations = o.iterations;
   options.guard_crossings = guard;
   options.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh&) {
     now.seconds += r.seconds;
@@ -119,10 +138,13 @@ int run(const std::string& path, int grid, int threads, bool guard) {
   std::printf("| %s | %s | %d | %d | %llu | %zu | %.2f | %.2f | %.1f | %.2f |", name.c_str(),
               grid_text(scene.grid.cells).c_str(), threads, scene.field->num_phases(),
               (unsigned long long)stats.tets_visited, triangles, load, sampling, create * 1e3,
-              now.seconds / kIterations * 1e3);
-  for (double p : per_pass) std::printf(" %.2f |", p / kIterations * 1e3);
-  std::printf(" %.3f | %.3f | %.0f | %.3f | %.3f | %.3f | %.3f | %08x |\n", early.seconds, now.seconds,
-              usage.ru_maxrss / 1024.0, early.min_q, early.mean_q, now.min_q, now.mean_q,
+              now.seconds / o.iterations * 1e3);
+  for (double p : per_pass) std::printf(" %.2f |", p / o.iterations * 1e3);
+  const bool early_reached = o.iterations >= kEarlyIterations, all_reached = o.iterations >= kIterations;
+  std::printf(" %s | %s | %.0f | %s | %s | %s | %s | %08x |\n", cell(early_reached, early.seconds, "%.3f").c_str(),
+              cell(all_reached, now.seconds, "%.3f").c_str(), usage.ru_maxrss / 1024.0,
+              cell(early_reached, early.min_q, "%.3f").c_str(), cell(early_reached, early.mean_q, "%.3f").c_str(),
+              cell(all_reached, now.min_q, "%.3f").c_str(), cell(all_reached, now.mean_q, "%.3f").c_str(),
               mesh_hash(mesh.to_node_mesh()));
   return 0;
 }
@@ -137,18 +159,31 @@ int main(int argc, char** argv) {
     std::printf("%s\n%s\n", kHeader, separator.c_str());
     return 0;
   }
-  const bool no_guard = argc == 5 && std::strcmp(argv[4], "--no-guard") == 0;
-  if (argc != 4 && !no_guard) {
-    std::fprintf(stderr, "usage: bench_mesh INPUT GRID THREADS [--no-guard]\n       bench_mesh --header\n");
+  const char* const usage =
+      "usage: bench_mesh INPUT GRID THREADS [--no-guard] [--iterations N] [--voxels-per-cell F]\n"
+      "       bench_mesh --header\n";
+  if (argc < 4) {
+    std::fputs(usage, stderr);
     return 2;
   }
+  Options o;
+  for (int i = 4; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--no-guard") o.guard = false;
+    else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
+    else if (flag == "--voxels-per-cell" && i + 1 < argc) o.input.voxels_per_cell = std::atof(argv[++i]);
+    else {
+      std::fputs(usage, stderr);
+      return 2;
+    }
+  }
   const int grid = std::atoi(argv[2]), threads = std::atoi(argv[3]);
-  if (grid < 0 || threads < 1) {
-    std::fprintf(stderr, "bench_mesh: GRID must be 0 or more and THREADS 1 or more\n");
+  if (grid < 0 || threads < 1 || o.iterations < 1) {
+    std::fprintf(stderr, "bench_mesh: GRID must be 0 or more, THREADS and N 1 or more\n");
     return 2;
   }
   try {
-    return run(argv[1], grid, threads, !no_guard);
+    return run(argv[1], grid, threads, o);
   } catch (const vm::Error& e) {
     std::fprintf(stderr, "bench_mesh: %s\n", e.what());
     return 1;

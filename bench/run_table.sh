@@ -27,9 +27,6 @@ case "${1:-}" in
 esac
 bench=build/bench/bench_mesh
 make_volume=build/bench/make_label_volume
-# Grid for the label volumes: 0 meshes them on their voxel grid. A coarser
-# meshing grid for label volumes (an option another branch adds) goes here.
-label_grid=0
 mkdir -p out
 table=out/bench_table.md
 
@@ -54,20 +51,25 @@ rows examples/four_spheres.json 64
 if [ $quick = 1 ]; then
   rows "$(grains 10)" 32
   "$make_volume" grains 48 20 out/grains48_20.nrrd
-  rows out/grains48_20.nrrd "$label_grid"
+  rows out/grains48_20.nrrd 0 --voxels-per-cell 1.4
 else
   rows examples/four_spheres.json 128
   rows examples/four_spheres.json 256
-  rows examples/voronoi30.json 256
-  for count in 10 100 1000 10000; do rows "$(grains $count)" 128; done
-  rows "$(grains 10000 10)" 128
+  # The 1M-triangle case, and the grain scenes: 20 iterations (the targets).
+  rows examples/voronoi30.json 256 --iterations 20
+  for count in 10 100 1000; do rows "$(grains $count)" 128 --iterations 20; done
+  # 10,000 phases against the same seeds with 10 labels (about the same triangles):
+  # create and 5 unguarded iterations, the part the phase count could affect.
+  rows "$(grains 10000)" 128 --no-guard --iterations 5
+  rows "$(grains 10000 10)" 128 --no-guard --iterations 5
+  # Label volumes at about CGAL's triangle count (facet size 2 voxels): ~100k triangles.
   if "$make_volume" ct out/ct.nrrd 2>/dev/null; then
-    rows out/ct.nrrd "$label_grid"
+    rows out/ct.nrrd 0 --voxels-per-cell 2.4 --iterations 20
   else
     echo "run_table.sh: skipping the CT-like volume: this make_label_volume has no 'ct' kind" >&2
   fi
   "$make_volume" grains 96 60 out/grains96_60.nrrd
-  rows out/grains96_60.nrrd "$label_grid"
+  rows out/grains96_60.nrrd 0 --voxels-per-cell 1.4 --iterations 20
 fi
 
 # The table replaces whatever lies between the markers, with the command above it.
