@@ -60,13 +60,34 @@ void drop_unused_nodes(NodeMesh& m) {
 /// no node names (then nothing in the batch can be trusted).
 bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                    std::vector<int32_t>& nodes) {
-  const ValidationReport report = validate(trial);
-  nodes.insert(nodes.end(), report.nodes.begin(), report.nodes.end());
-  if (!report.ok() && report.nodes.empty()) return false;
-  if (!guard_crossings) return true;
-  std::vector<uint8_t> target(trial.num_nodes(), 0);
+  // Validation is local: a merge changes only triangles at its target a, whose
+  // corners (a and its ring, the "core") are the only nodes whose triangles,
+  // edges and fans can change. The triangles at core nodes are validated alone;
+  // problems they show only at other nodes are where that cut-out ends, and the
+  // mesh around them is as it was (valid). Linear in the mesh only for scans.
+  std::vector<uint8_t> target(trial.num_nodes(), 0), core(trial.num_nodes(), 0);
   for (int32_t a : into)
     if (a >= 0) target[size_t(a)] = 1;
+  for (const auto& t : trial.triangles)
+    if (target[size_t(t[0])] | target[size_t(t[1])] | target[size_t(t[2])])
+      for (int32_t v : t) core[size_t(v)] = 1;
+  NodeMesh local;
+  local.points = trial.points;
+  local.domain = trial.domain;
+  local.phase_names = trial.phase_names;
+  local.phase_labels = trial.phase_labels;
+  for (size_t t = 0; t < trial.num_triangles(); ++t) {
+    const auto& tri = trial.triangles[t];
+    if (core[size_t(tri[0])] | core[size_t(tri[1])] | core[size_t(tri[2])]) {
+      local.triangles.push_back(tri);
+      local.pairs.push_back(trial.pairs[t]);
+    }
+  }
+  const ValidationReport report = validate(local);
+  if (!report.ok() && report.nodes.empty()) return false;
+  for (int32_t n : report.nodes)
+    if (core[size_t(n)]) nodes.push_back(n);
+  if (!guard_crossings) return true;
   std::vector<uint8_t> involved(trial.num_triangles(), 0);
   for (size_t t = 0; t < trial.num_triangles(); ++t)
     for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
