@@ -115,6 +115,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
   int stalled = 0, done = 0;
   for (int it = 1; it <= options.iterations; ++it) {
+    if (options.stop_requested && options.stop_requested()) break;
     const auto start = std::chrono::steady_clock::now();
     context.iteration = it;
     context.flips = 0;

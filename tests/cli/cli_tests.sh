@@ -225,5 +225,19 @@ expect_error "--per-phase in a missing directory" 3 "/nonexistent/dir: cannot wr
 expect_error "--per-phase on a file" 3 "blocker: --per-phase: not a directory" -- "$vm" create --grid 4096 -o out.ply --per-phase blocker
 expect_error "smooth to an unknown format" 2 "out\.off: unknown output format" -- "$vm" smooth demo.ply -o out.off
 
+# Ctrl-C: the run stops at the next iteration, says so on one line, exits 130 and
+# writes nothing (no output, no temporary file). A long run, interrupted after 2 s.
+rm -f out.ply
+"$vm" mesh --grid 64 --iterations 100000 -o out.ply >stdout.txt 2>stderr.txt &
+pid=$!
+sleep 2
+kill -INT "$pid"
+wait "$pid"
+got=$?
+if [ "$got" -ne 130 ]; then fail "Ctrl-C: exit $got, expected 130 ($(tail -1 stderr.txt))"
+elif ! tail -1 stderr.txt | grep -q "voronoimesh: interrupted; nothing was written"; then fail "Ctrl-C: $(tail -1 stderr.txt)"
+elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "Ctrl-C: left an output file behind"
+else pass; fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

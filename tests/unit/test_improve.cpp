@@ -296,6 +296,20 @@ TEST(Pipeline, stops_when_quality_stops_improving) {
   EXPECT_GT(done, 3);
 }
 
+TEST(Pipeline, stops_before_the_iteration_after_a_stop_request) {
+  // The CLI's Ctrl-C: asked before each iteration, the run ends cleanly there.
+  Scene scene = example("four_spheres.json", 16);
+  InterfaceMesh mesh = initial_mesh(scene);
+  RunOptions run = iterations(50);
+  int seen = 0;
+  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { seen = r.iteration; };
+  run.stop_requested = [&] { return seen >= 3; };
+  const int done = Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), run);
+  EXPECT_EQ(done, 3);
+  EXPECT_EQ(seen, 3);
+  EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+}
+
 TEST(Registry, lists_the_builtin_passes_with_schemas) {
   const PassRegistry registry = builtin_registry();
   std::vector<std::string> names;

@@ -28,6 +28,7 @@ enum ExitCode : int {
   kIoError = 3,      ///< a file could not be read or written
   kTopology = 4,     ///< the mesh failed validation
   kInternal = 5,     ///< anything else (a bug)
+  kInterrupted = 130, ///< stopped by Ctrl-C or SIGTERM (128 + SIGINT, as shells report it)
 };
 
 /// Runs `body`, printing "voronoimesh: <message>" for any exception and

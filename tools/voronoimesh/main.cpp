@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "interrupt.hpp"
 
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/install_dirs.hpp"
@@ -19,6 +20,9 @@ int run_guarded(const std::function<int()>& body) {
   } catch (const vm::TopologyError& e) {
     std::cerr << "voronoimesh: " << e.what() << "\n";
     return kTopology;
+  } catch (const Interrupted& e) {
+    std::cerr << "voronoimesh: " << e.what() << "\n";
+    return kInterrupted;
   } catch (const std::bad_alloc&) {
     std::cerr << "voronoimesh: out of memory (try a smaller --grid)\n";
     return kInternal;
@@ -37,6 +41,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "voronoimesh " + vm::library_version());
   int exit_code = 0;
+  vmcli::install_interrupt_handlers();
   vmcli::add_mesh_command(app, exit_code);
   vmcli::add_create_command(app, exit_code);
   vmcli::add_smooth_commands(app, exit_code);

@@ -2,6 +2,7 @@
 /// The stages the subcommands share: options, progress, create and improve.
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 
 #include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/errors.hpp"
@@ -87,6 +88,7 @@ void check_outputs(const OutputOptions& o) {
 }
 
 void write_outputs(const vm::NodeMesh& mesh, const OutputOptions& o, const CommonOptions& common) {
+  stop_if_interrupted(); // a run stopped by Ctrl-C writes nothing
   vm::io::WriteOptions options;
   options.ascii = common.ascii;
   const std::vector<std::string> files = vm::io::write_mesh(mesh, o.path, options);
@@ -168,6 +170,7 @@ vm::NodeMesh create_stage(vm::Scene scene, const CreateOptions& o, const CommonO
                  grid.cells[0], grid.cells[1], grid.cells[2], o.lattice.c_str(), mesh.num_nodes(),
                  mesh.num_triangles(), t_sample, cs.seconds, (unsigned long long)cs.tets_visited,
                  (unsigned long long)cs.tets_cut, cs.check_seconds, (unsigned long long)cs.unsnapped_nodes);
+  stop_if_interrupted(); // create itself runs to its end; nothing after it does
   return mesh;
 }
 
@@ -263,6 +266,7 @@ void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const Improv
   run.iterations = o.iterations;
   run.stop_when_converged = o.stop_when_converged;
   run.guard_crossings = !o.unguarded;
+  run.stop_requested = interrupted;
   double first_min = 0, first_mean = 0, total = 0;
   vm::QualityHistory history;
   run.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh& current) {
@@ -276,6 +280,7 @@ void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const Improv
   };
   const int done = pipeline.run(im, field, run);
   progress.done();
+  stop_if_interrupted();
   mesh = im.to_node_mesh();
   vm::require_valid(mesh, "the improved mesh");
   if (!o.history.empty()) history.write(o.history);

@@ -42,6 +42,9 @@ struct RunOptions {
   bool guard_crossings = true;
   /// Called after every iteration (and with iteration 0 before the first).
   std::function<void(const IterationReport&, const InterfaceMesh&)> observer;
+  /// Asked before every iteration: true ends the run there, leaving the mesh as
+  /// the last complete iteration made it (the CLI's Ctrl-C).
+  std::function<bool()> stop_requested;
 };
 
 /// Configured passes in order, parsed from a spec string and run for some iterations.
