@@ -247,22 +247,26 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   // a node so that one phase touches it from two sides: a pinched, non-manifold
   // phase boundary (DESIGN.md, "Snapping can pinch a phase"). Where the result
   // shows one, snapping is undone at the lattice nodes of the offending vertices
-  // and the mesh is made again. Un-snapping only removes ties, and a pinch needs a
-  // tie, so this ends; in practice after one or two rounds.
-  // Only the slabs holding a node un-snapped in the last round are cut again.
-  std::vector<char> unsnapped;
+  // and the mesh is made again. Data can hold such ties themselves (labels,
+  // integer values, seeds on grid nodes), so a node that still pinches has its
+  // ties broken by a finite amount (NodeValues::Repair::untie). Each round only removes
+  // ties, and a pinch needs a tie, so this ends; in practice after one or two rounds.
+  // Only the slabs holding a node repaired in the last round are cut again.
+  std::vector<detail::NodeValues::Repair> repair;
   std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
   std::vector<char> recut(slabs.size(), 1);
   CreateStats stats;
   double check_seconds = 0;
   Extraction e;
   for (int round = 0;; ++round) {
-    detail::NodeValues values(field, lattice, params.snap * grid.h(), unsnapped.empty() ? nullptr : &unsnapped);
+    detail::NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(),
+                              repair.empty() ? nullptr : &repair);
     CreateStats round_stats;
     e = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, round_stats);
     resolve_coincident_triangles(e, round_stats);
     round_stats.snapped_nodes = values.snapped_nodes();
     round_stats.unsnapped_nodes = stats.unsnapped_nodes;
+    round_stats.untied_nodes = stats.untied_nodes;
     round_stats.repair_rounds = round;
     stats = round_stats;
 
@@ -271,7 +275,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     out.points = std::move(e.points);
     out.triangles = std::move(e.triangles);
     out.pairs = std::move(e.pairs);
-    if (params.snap == 0 || round == kMaxRepairRounds) break;
+    if (round == kMaxRepairRounds) break;
     const auto check_start = std::chrono::steady_clock::now();
     ValidationReport report = validate(out);
     check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
@@ -279,21 +283,28 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
       stats.validated = true;
       break;
     }
-    if (unsnapped.empty()) unsnapped.assign(size_t(lattice.num_nodes()), 0);
+    if (repair.empty()) repair.assign(size_t(lattice.num_nodes()), detail::NodeValues::Repair::snap);
     std::fill(recut.begin(), recut.end(), 0);
-    uint64_t added = 0;
+    uint64_t unsnapped = 0, untied = 0;
     for (int32_t v : report.nodes)
       for (int c = 0; c < e.keys[size_t(v)].count; ++c) {
         const int64_t node = e.keys[size_t(v)].nodes[c];
-        char& flag = unsnapped[size_t(node)];
-        if (flag) continue;
-        flag = 1;
-        ++added;
+        detail::NodeValues::Repair& how = repair[size_t(node)];
+        // Un-snap first (no change without snapping); untie what still pinches.
+        if (how == detail::NodeValues::Repair::untie) continue;
+        if (how == detail::NodeValues::Repair::snap && params.snap > 0) {
+          how = detail::NodeValues::Repair::unsnap;
+          ++unsnapped;
+        } else {
+          how = detail::NodeValues::Repair::untie;
+          ++untied;
+        }
         const auto [first, last] = lattice.slabs_of_node(node);
         for (int slab = first; slab <= last; ++slab) recut[size_t(slab)] = 1;
       }
-    if (added == 0) break; // not a snapping problem: leave it to the caller's validation
-    stats.unsnapped_nodes += added;
+    if (unsnapped + untied == 0) break; // not a tie problem: leave it to the caller's validation
+    stats.unsnapped_nodes += unsnapped;
+    stats.untied_nodes += untied;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.check_seconds = check_seconds;

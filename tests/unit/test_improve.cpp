@@ -14,6 +14,7 @@
 #include "voronoimesh/validate.hpp"
 
 #include "fixtures.hpp"
+#include "mesh_checks.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -31,35 +32,10 @@ Scene example(const std::string& name, int grid) { return test::example_scene(na
 
 InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(test::created_mesh(scene)); }
 
-/// Triangles whose normal does not point from their first phase into their second
-/// (grad (phi_q - phi_p) at the centroid), among those where that direction is clear.
-size_t inverted_triangles(const NodeMesh& m, const PhaseField& f) {
-  size_t bad = 0;
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    const auto& tri = m.triangles[t];
-    const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
-    const Vec3 centroid = (a + b + c) / 3;
-    const Vec3 dir = f.gradient(m.pairs[t][1], centroid) - f.gradient(m.pairs[t][0], centroid);
-    const Vec3 n = (b - a).cross(c - a);
-    if (dir.norm() > 0.1 && n.normalized().dot(dir.normalized()) <= 0) ++bad;
-  }
-  return bad;
-}
-
 RunOptions iterations(int n) {
   RunOptions o;
   o.iterations = n;
   return o;
-}
-
-/// Normals of every face of the mesh, by face index (valid to follow faces
-/// across passes that do not change the topology).
-std::vector<Vec3> face_normals(const InterfaceMesh& m) {
-  const NodeMesh n = m.to_node_mesh();
-  std::vector<Vec3> out;
-  for (const auto& t : n.triangles)
-    out.push_back((n.points[size_t(t[1])] - n.points[size_t(t[0])]).cross(n.points[size_t(t[2])] - n.points[size_t(t[0])]));
-  return out;
 }
 
 // Checked in every iteration on the shipped scenes at their own grid, run as its
@@ -80,19 +56,17 @@ TEST(Improve, every_iteration_keeps_the_mesh_valid_uninverted_and_unintersected)
     Scene scene = example(name, 64);
     InterfaceMesh mesh = initial_mesh(scene);
     for (int it = 1; it <= 20; ++it) {
-      const std::vector<Vec3> before = face_normals(mesh);
+      const std::vector<Vec3> before = test::face_normals(mesh);
       moving.run(mesh, scene.field.get(), iterations(1));
-      const std::vector<Vec3> after = face_normals(mesh);
-      size_t turned = 0;
-      for (size_t f = 0; f < after.size(); ++f) turned += after[f].dot(before[f]) <= 0;
-      EXPECT_EQ(turned, 0u) << "iteration " << it;
+      const std::vector<Vec3> after = test::face_normals(mesh);
+      EXPECT_EQ(test::turned_faces(before, after), 0u) << "iteration " << it;
       EXPECT_EQ(find_self_intersections(mesh.to_node_mesh()).count, 0u) << "iteration " << it << ", after moving";
 
       flips.run(mesh, scene.field.get(), iterations(1));
       const NodeMesh m = mesh.to_node_mesh();
       ValidationReport report = validate(m);
       ASSERT_TRUE(report.ok()) << "iteration " << it << "\n" << report.summary();
-      EXPECT_EQ(inverted_triangles(m, *scene.field), 0u) << "iteration " << it;
+      EXPECT_EQ(test::inverted_triangles(m, *scene.field), 0u) << "iteration " << it;
       EXPECT_EQ(find_self_intersections(m).count, 0u) << "iteration " << it << ", after flipping";
     }
   }

@@ -41,16 +41,23 @@ struct CreateStats {
   uint64_t box_triangles = 0;      ///< triangles on the box faces (with close)
   uint64_t snapped_nodes = 0;      ///< lattice nodes whose values snapping changed
   uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
-  int repair_rounds = 0;           ///< extra extractions that undoing snapping needed
+  uint64_t untied_nodes = 0;       ///< nodes whose ties in the data were broken because they pinched a phase
+  int repair_rounds = 0;           ///< extra extractions that undoing snapping and ties needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
   double check_seconds = 0;        ///< of which validating the result and undoing pinches
-  /// The mesh returned passed validate() inside create (which validates whenever
-  /// it snaps, to find pinches): callers need not validate it again.
+  /// The mesh returned passed validate() inside create (which validates every
+  /// mesh it makes, to find pinches): callers need not validate it again.
   bool validated = false;
 };
 
-/// Most extra extractions create makes to undo snapping where it pinches a phase.
+/// Most extra extractions create makes to undo snapping, and break ties in the
+/// data, where they pinch a phase.
 constexpr int kMaxRepairRounds = 8;
+
+/// How far create breaks a tie in the data that pinches a phase, in grid
+/// spacings h of phase value (detail::NodeValues::Repair::untie): small against the grid, far
+/// above round-off. Not in the paper, whose perturbation is symbolic only.
+constexpr double kUntieFraction = 1e-3;
 
 /// The grid create needs for `lattice`: bcc uses every second grid node, so each
 /// cell count is rounded up to an even number (the domain stays the same).

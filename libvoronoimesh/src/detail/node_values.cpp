@@ -3,13 +3,25 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
 namespace vm::detail {
 
-NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps,
-                       const std::vector<char>* unsnapped)
+namespace {
+
+/// splitmix64's finaliser: well-spread bits from a node and phase.
+uint64_t mix_bits(uint64_t x) {
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+} // namespace
+
+NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps,
+                       const std::vector<Repair>* repair)
     : k_(field.k()) {
   const GridSpec& grid = field.grid();
   const int64_t n_nodes = lattice.num_nodes();
@@ -25,6 +37,9 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
   const double scale = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
   const int64_t eps = std::llround(snap_eps * scale);
   auto quantize = [&](double v) { return int32_t((v - lo) * scale + 0.5); }; // v >= lo: rounds to nearest
+  // Small against the grid yet far above round-off, so that the caps it opens
+  // around a node are triangles validate() takes for non-degenerate.
+  const int64_t untie = std::clamp<int64_t>(std::llround(untie_eps * scale), 16, int64_t(1) << 19);
 
   snapped_nodes_ = tbb::parallel_reduce(
       tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
@@ -43,12 +58,30 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
             floor_[n] = quantize(field.floor_value(g));
             // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
             // phase takes the earlier phase's value, so earlier snaps are not undone.
-            if (eps > 0 && !(unsnapped && (*unsnapped)[size_t(n)])) {
-              for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
-                int e = s;
-                for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
-                by_id[e] = s;
+            const Repair how = repair ? (*repair)[size_t(n)] : Repair::snap;
+            for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
+              int e = s;
+              for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
+              by_id[e] = s;
+            }
+            if (how == Repair::untie) {
+              // A phase with r lower ids tied with it drops by r untie plus a
+              // pseudo-random part below untie, a function of node and phase:
+              // equal drops at neighbouring nodes would tie the phases anew
+              // inside the lattice edges between them. It stays above the floor
+              // (unstored phases stay below it).
+              int32_t tied_below[16] = {};
+              for (int a = 0; a < k_; ++a)
+                for (int b = a + 1; b < k_; ++b) tied_below[b] += q[by_id[a]] == q[by_id[b]];
+              for (int b = 0; b < k_; ++b) {
+                if (tied_below[b] == 0) continue;
+                const int64_t jitter = int64_t(mix_bits(uint64_t(n) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]])) %
+                                               uint64_t(untie));
+                q[by_id[b]] = int32_t(
+                    std::max<int64_t>(q[by_id[b]] - untie * tied_below[b] - jitter, int64_t(floor_[n]) + 1));
               }
+            }
+            if (eps > 0 && how == Repair::snap) {
               bool changed = false;
               for (int a = 0; a < k_; ++a)
                 for (int b = a + 1; b < k_; ++b) {

@@ -30,11 +30,25 @@ inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb
 
 class NodeValues {
 public:
+  /// What a node's values get besides quantization.
+  enum class Repair : char {
+    snap = 0,   ///< snapping (Algorithm 2, line 1)
+    unsnap = 1, ///< the sampled values as they are
+    /// The sampled values with exact ties broken by a finite amount in the
+    /// symbolic order (the higher phase id of a tied pair drops by untie_eps,
+    /// by at least 16 and at most 2^19 quanta): a tie in the data pinches a
+    /// phase where the symbolic perturbation alone shrinks a phase's cap around
+    /// the node to the node itself.
+    untie = 2,
+  };
+
   /// Quantizes and snaps `field` at the nodes of `lattice`, indexed by lattice
-  /// node id. `snap_eps` is in the field's value units. Nodes flagged in
-  /// `unsnapped` (if given, one entry per lattice node) keep their values.
-  NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps,
-             const std::vector<char>* unsnapped = nullptr);
+  /// node id. `snap_eps` and `untie_eps` are in the field's value units. `repair`
+  /// (if given, one Repair per lattice node) says where create undoes
+  /// what pinched a phase: snapping, or exact ties of the data themselves.
+  NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps = 0,
+             const std::vector<Repair>* repair = nullptr);
+
 
   /// Stored phase ids of lattice node n (the sampled field's order).
   std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + n * k_, size_t(k_)}; }

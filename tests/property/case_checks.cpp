@@ -1,0 +1,103 @@
+#include "case_checks.hpp"
+
+#include "voronoimesh/closed_domain.hpp"
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/registry.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include "mesh_checks.hpp"
+
+#include <tbb/global_control.h>
+
+#include <exception>
+#include <optional>
+
+namespace vm::test {
+
+namespace {
+
+/// The checks that hold for every mesh at every stage; appends a failure
+/// naming `stage` and returns false when one fails.
+bool valid_and_unintersected(const NodeMesh& m, const std::string& stage, CaseResult& r) {
+  const ValidationReport report = validate(m);
+  if (!report.ok()) {
+    r.failures.push_back(stage + ": validate: " + std::to_string(report.problem_count) + " problems, first: " +
+                         report.problems.front());
+    return false;
+  }
+  const IntersectionReport crossings = find_self_intersections(m, 1);
+  if (!crossings.ok()) {
+    r.failures.push_back(stage + ": " + std::to_string(crossings.count) + " intersecting triangle pairs, first: " +
+                         std::to_string(crossings.pairs[0][0]) + " and " + std::to_string(crossings.pairs[0][1]));
+    return false;
+  }
+  return true;
+}
+
+void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
+  MeshOptions options = c.options;
+  options.validate = false; // validated here, to report rather than throw
+  options.threads = 1;
+  NodeMesh created = create_mesh(c.scene, options);
+  r.triangles = created.num_triangles();
+  if (!valid_and_unintersected(created, "create", r)) return;
+
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const PassRegistry registry = builtin_registry();
+  const Pipeline moving = Pipeline::parse("smooth,project,clamp", registry);
+  const Pipeline flips = Pipeline::parse("flip", registry);
+  // A closed mesh has the extra phase outside the box; the passes need its function too.
+  const auto field = is_closed_mesh(created, c.scene.field->num_phases())
+                         ? with_outside_phase(c.scene.field, created.domain)
+                         : c.scene.field;
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  RunOptions once;
+  once.iterations = 1;
+  for (int it = 1; it <= o.iterations; ++it) {
+    const std::string stage = "iteration " + std::to_string(it);
+    const std::vector<Vec3> before = face_normals(mesh);
+    moving.run(mesh, field.get(), once);
+    if (const size_t turned = turned_faces(before, face_normals(mesh)); turned > 0) {
+      r.failures.push_back(stage + " after moving: " + std::to_string(turned) + " triangles turned by 90 degrees or more");
+      return;
+    }
+    if (!valid_and_unintersected(mesh.to_node_mesh(), stage + " after moving", r)) return;
+    flips.run(mesh, field.get(), once);
+    const NodeMesh m = mesh.to_node_mesh();
+    if (!valid_and_unintersected(m, stage + " after flipping", r)) return;
+    if (it == o.iterations && c.closed_form) r.against_field = inverted_triangles(m, *field);
+  }
+}
+
+/// The whole of mesh_scene() on `threads` threads.
+NodeMesh meshed(const RandomCase& c, int iterations, int threads) {
+  MeshOptions options = c.options;
+  options.iterations = iterations;
+  options.threads = threads;
+  return mesh_scene(c.scene, options);
+}
+
+void compare_threads(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
+  const NodeMesh one = meshed(c, o.iterations, 1), two = meshed(c, o.iterations, 2);
+  if (one.points != two.points || one.triangles != two.triangles || one.pairs != two.pairs)
+    r.failures.push_back("1 and 2 threads give different meshes (" + std::to_string(one.num_triangles()) + " and " +
+                         std::to_string(two.num_triangles()) + " triangles)");
+}
+
+} // namespace
+
+CaseResult check_case(const RandomCase& c, const CheckOptions& o) {
+  CaseResult r;
+  try {
+    check_stages(c, o, r);
+    if (r.ok() && o.compare_threads) compare_threads(c, o, r);
+  } catch (const std::exception& e) {
+    r.failures.push_back(std::string("threw: ") + e.what());
+  }
+  return r;
+}
+
+} // namespace vm::test

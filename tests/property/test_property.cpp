@@ -1,0 +1,65 @@
+// The quick tier of the property tests: a few hundred random scenes of every
+// kind (random_scenes.hpp), each created and improved for a few iterations with
+// every check of check_case(). The long tier runs the same cases by the
+// hundred thousand: scripts/property_tests.sh.
+
+#include "case_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace {
+
+using namespace vm::test;
+
+constexpr uint64_t kSeed = 1;
+constexpr int kShards = 8;
+constexpr int kCasesPerShard = 36; // 288 cases: each kind 36 times
+/// Every this many cases are also meshed on 1 and 2 threads and compared.
+constexpr uint64_t kThreadsEvery = 6;
+
+/// Cases known to fail, all tied_values: integer-valued data tied at many nodes
+/// still pinch a phase at create after un-snapping and untying (README
+/// "Reliability"). Listed so that any other failure, or one of these passing
+/// once fixed, fails the test.
+const std::set<uint64_t> kKnownFailures = {3, 11, 19, 35, 67, 123, 131, 155, 211, 219, 227, 283};
+
+class PropertyQuickTier : public testing::TestWithParam<int> {};
+
+// Each shard is its own test so that ctest spreads them over the cores.
+TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
+  int failed = 0;
+  for (int i = 0; i < kCasesPerShard; ++i) {
+    const uint64_t index = uint64_t(GetParam() * kCasesPerShard + i);
+    const RandomCase c = random_case(kSeed, index);
+    CheckOptions o;
+    o.compare_threads = index % kThreadsEvery == 0;
+    const CaseResult r = check_case(c, o);
+    if (kKnownFailures.count(index)) {
+      EXPECT_FALSE(r.ok()) << c.description() << " passes now: take it off kKnownFailures";
+      continue;
+    }
+    if (!r.ok() && ++failed <= 3)
+      ADD_FAILURE() << c.description() << "\n  " << r.failures.front()
+                    << "\n  reproduce: property_runner --seed " << kSeed << " --case " << index << " --verbose";
+  }
+  EXPECT_EQ(failed, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
+
+// The generator is a pure function of (seed, case): the long tier's failing
+// case ids reproduce anywhere.
+TEST(PropertyGenerator, cases_are_reproducible_and_cover_every_kind) {
+  for (uint64_t index = 0; index < uint64_t(2 * kSceneKinds); ++index) {
+    const RandomCase a = random_case(7, index), b = random_case(7, index);
+    EXPECT_EQ(a.description(), b.description());
+    EXPECT_EQ(a.scene_json, b.scene_json);
+    EXPECT_EQ(int(a.kind), int(index % kSceneKinds));
+    EXPECT_EQ(a.closed_form, !a.scene_json.empty());
+  }
+  EXPECT_NE(random_case(7, 0).description(), random_case(8, 0).description());
+}
+
+} // namespace
