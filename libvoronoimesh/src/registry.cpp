@@ -44,7 +44,8 @@ ParamValues PassRegistry::resolve(const std::string& pass, const ParamValues& gi
   ParamValues out;
   for (const ParamSpec& s : info.params) out[s.name] = s.default_value;
   for (const auto& [name, value] : given) {
-    auto spec = std::find_if(info.params.begin(), info.params.end(), [&](const ParamSpec& s) { return s.name == name; });
+    // &name = name: clang 14 (the fuzz build) cannot capture a structured binding.
+    auto spec = std::find_if(info.params.begin(), info.params.end(), [&name = name](const ParamSpec& s) { return s.name == name; });
     if (spec == info.params.end()) {
       std::string known;
       for (const ParamSpec& s : info.params) {

@@ -230,7 +230,7 @@ private:
     if (halfedges.size() == 2 && paired(halfedges[0]) && paired(halfedges[1]) &&
         detail::is_patch_interior(halfedges, m_.triangles, m_.pairs))
       return;
-    const auto [a, b] = edge;
+    const int32_t a = edge[0], b = edge[1]; // not a structured binding: clang 14 cannot capture one
     const bool on_box = (t_.on_box[size_t(a)] & t_.on_box[size_t(b)]) != 0;
     uses_.clear();
     tris_.clear();

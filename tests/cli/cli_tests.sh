@@ -163,7 +163,7 @@ expect_error "empty NIfTI" 2 "later\.nii\.gz: not a NIfTI file" -- "$vm" create 
 printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n\n' >huge.nrrd
 printf 'NRRD0004\ntype: float\ndimension: 4\nsizes: 2 2 2 2\nkinds: vector domain domain domain\nencoding: ascii\n\n0 0 0 0 0 nan 0 0 0 0 0 0 0 0 0 0\n' >nan.nrrd
 sed 's/nan/inf/' nan.nrrd >inf.nrrd
-expect_error "truncated volume" 2 "truncated\.nrrd: .*got only 500" -- "$vm" create truncated.nrrd -o out.ply
+expect_error "truncated volume" 2 "truncated\.nrrd: truncated: .*1000 samples of raw data" -- "$vm" create truncated.nrrd -o out.ply
 expect_error "volume with one label" 2 "single\.nrrd: has 1 phase\(s\)" -- "$vm" create single.nrrd -o out.ply
 expect_error "volume beyond memory" 2 "huge\.nrrd: reading 1e\+15 samples needs about .* GiB, this machine has" -- "$vm" create huge.nrrd -o out.ply
 expect_error "NaN in a distance grid" 2 "nan\.nrrd: value nan at sample 5" -- "$vm" create nan.nrrd -o out.ply

@@ -208,7 +208,8 @@ void offer_smoothed_indicators(const PhaseVoxels& v, const Box& block, const Den
     smoothed(v, [p = phase](int16_t q) { return q == p; }, to, w, buf);
     const Index3 bs = block.size();
     size_t n = 0;
-    to.for_each([&](int64_t i, int64_t j, int64_t k) {
+    // phase = phase: clang 14 (the fuzz build) cannot capture a structured binding.
+    to.for_each([&, phase = phase](int64_t i, int64_t j, int64_t k) {
       float value = buf[n++];
       if (!takes(i, j, k)) return;
       if (gaps) {
@@ -237,11 +238,12 @@ void offer_signed_distances(const PhaseVoxels& v, const Box& block, const DenseB
     to_inside.assign(size_t(from.count()), inf);
     to_outside.assign(size_t(from.count()), inf);
     size_t n = 0;
-    from.for_each([&](int64_t i, int64_t j, int64_t k) { (phase_at(v, i, j, k) == phase ? to_inside : to_outside)[n++] = 0.f; });
+    // phase = phase: as in offer_smoothed_indicators.
+    from.for_each([&, phase = phase](int64_t i, int64_t j, int64_t k) { (phase_at(v, i, j, k) == phase ? to_inside : to_outside)[n++] = 0.f; });
     squared_distance_transform(to_inside, from.size(), v.spacing);
     squared_distance_transform(to_outside, from.size(), v.spacing);
     const Index3 s = from.size();
-    to.for_each([&](int64_t i, int64_t j, int64_t k) {
+    to.for_each([&, phase = phase](int64_t i, int64_t j, int64_t k) {
       if (!takes(i, j, k)) return;
       const size_t at = size_t((i - from.lo[0]) + s[0] * ((j - from.lo[1]) + s[1] * (k - from.lo[2])));
       const bool inside = phase_at(v, i, j, k) == phase;

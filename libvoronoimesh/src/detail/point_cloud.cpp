@@ -12,6 +12,7 @@
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -213,6 +214,10 @@ Scene point_cloud_scene(LabelledPoints cloud, const std::string& path) {
   for (const Vec3& p : points) box.min = box.min.cwiseMin(p), box.max = box.max.cwiseMax(p);
   const double side = std::max((box.max - box.min).maxCoeff(), 1e-9 * std::max(1.0, box.max.cwiseAbs().maxCoeff()));
   const double margin = 0.05 * side, h = (side + 2 * margin) / 64;
+  // Finite points can still lie further apart than a double holds (|x| > 8e307).
+  if (!std::isfinite(side + 2 * margin))
+    throw InvalidInput(located(path, cat("the points span more than ", std::numeric_limits<double>::max() / 1.1,
+                                         " along an axis; rescale them")));
   Scene scene;
   for (int a = 0; a < 3; ++a) {
     // Cells of size h (at least 2), centred on the points.

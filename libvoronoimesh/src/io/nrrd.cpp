@@ -8,6 +8,7 @@
 
 #include "detail/memory.hpp"
 #include "detail/text.hpp"
+#include "detail/voxel_data.hpp"
 
 #include <teem/nrrd.h>
 
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 
 namespace vm::io {
@@ -118,6 +120,41 @@ void read_geometry(const std::string& path, const Nrrd& n, unsigned first, Volum
   }
 }
 
+/// The bytes the data of a NRRD whose header `io` describes can come from: the
+/// sizes of its data files, the header's own file when the data is attached (an
+/// upper bound: the header counts too). None when a file-name pattern names them.
+std::optional<uint64_t> data_file_bytes(const std::string& path, const NrrdIoState& io) {
+  if (io.dataFNFormat) return std::nullopt;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (io.dataFNArr->len == 0) return std::filesystem::file_size(path, ec);
+  uint64_t bytes = 0;
+  for (unsigned i = 0; i < io.dataFNArr->len; ++i) {
+    const std::filesystem::path name(io.dataFN[i]);
+    const uint64_t size = std::filesystem::file_size(name.is_absolute() ? name : folder / name, ec);
+    if (!ec) bytes += size; // a missing file is Teem's to report
+  }
+  return bytes;
+}
+
+/// Throws InvalidInput when the data files cannot hold the `samples` values of
+/// `sample_bytes` each that the header describes, in its encoding, before Teem
+/// allocates them: a corrupt size in a small file must not take gigabytes.
+/// (bzip2 is left to the memory check: its runs can compress millions to one.)
+void check_data_fits(const std::string& path, const NrrdIoState& io, uint64_t samples, uint64_t sample_bytes) {
+  const std::optional<uint64_t> held = data_file_bytes(path, io);
+  if (!held) return;
+  const NrrdEncoding* e = io.encoding;
+  const uint64_t needed = samples * sample_bytes;
+  if (e == nrrdEncodingGzip) return detail::check_inflatable(path, needed, *held);
+  // Raw data takes its bytes, hex two digits a byte, ascii a digit a sample at least.
+  const uint64_t least = e == nrrdEncodingRaw ? needed : e == nrrdEncodingHex ? 2 * needed
+                         : e == nrrdEncodingAscii ? samples : 0;
+  if (least > *held)
+    throw InvalidInput(located(path, cat("truncated: the header describes ", samples, " samples of ", e->name,
+                                         " data, which take at least ", least, " bytes; its file holds ", *held)));
+}
+
 } // namespace
 
 Volume read_nrrd(const std::string& path) {
@@ -131,11 +168,15 @@ Volume read_nrrd(const std::string& path) {
     header_only->skipData = 1;
     if (nrrdLoad(n.get(), path.c_str(), header_only.get()) != 0)
       throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
+    // Block samples' size is the file's to choose: refused before it counts.
+    if (n->type == nrrdTypeBlock) throw InvalidInput(located(path, "has type 'block'; expected integers or reals"));
     double elements = 1;
     for (unsigned a = 0; a < n->dim; ++a) elements *= double(n->axis[a].size);
     // Teem's copy and ours (4 bytes per sample) live together while converting.
     detail::refuse_beyond_memory(elements * double(nrrdTypeSize[n->type] + 4), path,
                                  cat("reading ", elements, " samples"));
+    // Below the memory, so the counts fit in 64 bits.
+    check_data_fits(path, *header_only, uint64_t(elements), nrrdTypeSize[n->type]);
   }
   if (nrrdLoad(n.get(), path.c_str(), nullptr) != 0)
     throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
@@ -153,7 +194,6 @@ Volume read_nrrd(const std::string& path) {
     if (n->axis[a].kind != nrrdKindUnknown && !nrrdKindIsDomain(n->axis[a].kind))
       throw InvalidInput(located(path, cat("axis ", a, " has kind '", airEnumStr(nrrdKind, n->axis[a].kind),
                                            "', not a spatial axis; only the first of 4 axes may hold components")));
-  if (n->type == nrrdTypeBlock) throw InvalidInput(located(path, "has type 'block'; expected integers or reals"));
 
   Volume v;
   v.components = n->dim == 4 ? int(n->axis[0].size) : 1;
