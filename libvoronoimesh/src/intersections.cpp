@@ -63,11 +63,7 @@ void check_input(const NodeMesh& m, bool needs_pairs) {
 /// (no gain then). Lets a check after a few local changes skip most of the mesh.
 std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> flagged) {
   const size_t nt = m.triangles.size();
-  auto box_of = [&](size_t t) {
-    const auto& tri = m.triangles[t];
-    const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
-    return Bounds{a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-  };
+  auto box_of = [&](size_t t) { return detail::triangle_bounds(m.points, m.triangles[t]); };
   std::vector<int32_t> all;
   size_t count = 0;
   double cell = 0;
@@ -154,9 +150,8 @@ IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<con
   std::vector<int8_t> axis(nt);
   tbb::parallel_for(size_t(0), nt, [&](size_t t) {
     const auto& tri = m.triangles[t];
-    const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
-    boxes[t] = {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
-    axis[t] = detail::projection_axis(a, b, c);
+    boxes[t] = detail::triangle_bounds(m.points, tri);
+    axis[t] = detail::projection_axis(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
   });
   const std::vector<detail::BoxPair> candidates = detail::overlapping_box_pairs(boxes);
 

@@ -21,6 +21,12 @@ struct Bounds {
   }
 };
 
+/// The bounding box of triangle `tri` (node ids into `points`).
+inline Bounds triangle_bounds(std::span<const Vec3> points, const std::array<int32_t, 3>& tri) {
+  const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
+  return {a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)};
+}
+
 /// Indices {i, j}, i < j, of two boxes.
 using BoxPair = std::array<int32_t, 2>;
 
