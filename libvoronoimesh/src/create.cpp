@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
 
 namespace vm {
@@ -245,14 +246,20 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
 
   // Snapping can tie three phases at both ends of a lattice edge, or tie phases at
   // a node so that one phase touches it from two sides: a pinched, non-manifold
-  // phase boundary (DESIGN.md, "Snapping can pinch a phase"). Where the result
-  // shows one, snapping is undone at the lattice nodes of the offending vertices
-  // and the mesh is made again. Data can hold such ties themselves (labels,
-  // integer values, seeds on grid nodes), so a node that still pinches has its
-  // ties broken by a finite amount (NodeValues::Repair::untie). Each round only removes
-  // ties, and a pinch needs a tie, so this ends; in practice after one or two rounds.
-  // Only the slabs holding a node repaired in the last round are cut again.
-  std::vector<detail::NodeValues::Repair> repair;
+  // phase boundary (DESIGN.md, "Snapping can pinch a phase"). Data can hold such
+  // ties themselves (labels, integer values, seeds on grid nodes), and crossings
+  // of three phases at one point of a lattice edge without any tie at its nodes.
+  // The symbolic perturbation keeps all of these apart, but only infinitesimally:
+  // their limit points coincide and merge. Where the result shows a problem,
+  // create repairs the lattice nodes of the offending vertices and makes the mesh
+  // again: snapping is undone where it changed something, then the node's values
+  // are moved by a small pseudo-random amount (NodeValues::RepairLevel), drawn
+  // anew each time the node offends again. Moved values hold no coincidences
+  // (bar a chance of one in 16 or more per draw), so this ends: in practice after
+  // a few rounds. Only the slabs holding a node repaired in the last round are
+  // cut again.
+  using Level = detail::NodeValues::RepairLevel;
+  std::vector<Level> repair;
   std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
   std::vector<char> recut(slabs.size(), 1);
   CreateStats stats;
@@ -283,26 +290,36 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
       stats.validated = true;
       break;
     }
-    if (repair.empty()) repair.assign(size_t(lattice.num_nodes()), detail::NodeValues::Repair::snap);
+    if (repair.empty()) repair.assign(size_t(lattice.num_nodes()), detail::NodeValues::kSnap);
     std::fill(recut.begin(), recut.end(), 0);
     uint64_t unsnapped = 0, untied = 0;
+    std::vector<int64_t> nodes;
     for (int32_t v : report.nodes)
-      for (int c = 0; c < e.keys[size_t(v)].count; ++c) {
-        const int64_t node = e.keys[size_t(v)].nodes[c];
-        detail::NodeValues::Repair& how = repair[size_t(node)];
-        // Un-snap first (no change without snapping); untie what still pinches.
-        if (how == detail::NodeValues::Repair::untie) continue;
-        if (how == detail::NodeValues::Repair::snap && params.snap > 0) {
-          how = detail::NodeValues::Repair::unsnap;
-          ++unsnapped;
-        } else {
-          how = detail::NodeValues::Repair::untie;
-          ++untied;
-        }
-        const auto [first, last] = lattice.slabs_of_node(node);
-        for (int slab = first; slab <= last; ++slab) recut[size_t(slab)] = 1;
+      for (int c = 0; c < e.keys[size_t(v)].count; ++c) nodes.push_back(e.keys[size_t(v)].nodes[c]);
+    // Repairs that stay at the offending nodes can move the problem to the next
+    // node along (unsnapping one node of a snapped region leaves its neighbours'
+    // ties): from the second round on, the neighbours are repaired with them.
+    if (round >= 1) {
+      const size_t offending = nodes.size();
+      for (size_t i = 0; i < offending; ++i)
+        lattice.for_each_neighbour(nodes[i], [&](int64_t n) { nodes.push_back(n); });
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (int64_t node : nodes) {
+      Level& level = repair[size_t(node)];
+      if (level == std::numeric_limits<Level>::max()) continue;
+      if (level == detail::NodeValues::kSnap && values.snapped(node)) {
+        level = detail::NodeValues::kUnsnap;
+        ++unsnapped;
+      } else {
+        level = std::max<Level>(level + 1, detail::NodeValues::kFirstUntie);
+        ++untied;
       }
-    if (unsnapped + untied == 0) break; // not a tie problem: leave it to the caller's validation
+      const auto [first, last] = lattice.slabs_of_node(node);
+      for (int slab = first; slab <= last; ++slab) recut[size_t(slab)] = 1;
+    }
+    if (unsnapped + untied == 0) break; // nothing left to repair: the caller's validation reports it
     stats.unsnapped_nodes += unsnapped;
     stats.untied_nodes += untied;
   }

@@ -7,8 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <set>
-
 namespace {
 
 using namespace vm::test;
@@ -18,12 +16,6 @@ constexpr int kShards = 8;
 constexpr int kCasesPerShard = 36; // 288 cases: each kind 36 times
 /// Every this many cases are also meshed on 1 and 2 threads and compared.
 constexpr uint64_t kThreadsEvery = 6;
-
-/// Cases known to fail, all tied_values: integer-valued data tied at many nodes
-/// still pinch a phase at create after un-snapping and untying (README
-/// "Reliability"). Listed so that any other failure, or one of these passing
-/// once fixed, fails the test.
-const std::set<uint64_t> kKnownFailures = {3, 11, 19, 35, 67, 123, 131, 155, 211, 219, 227, 283};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 
@@ -36,10 +28,6 @@ TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
     CheckOptions o;
     o.compare_threads = index % kThreadsEvery == 0;
     const CaseResult r = check_case(c, o);
-    if (kKnownFailures.count(index)) {
-      EXPECT_FALSE(r.ok()) << c.description() << " passes now: take it off kKnownFailures";
-      continue;
-    }
     if (!r.ok() && ++failed <= 3)
       ADD_FAILURE() << c.description() << "\n  " << r.failures.front()
                     << "\n  reproduce: property_runner --seed " << kSeed << " --case " << index << " --verbose";

@@ -52,7 +52,7 @@ struct CreateStats {
 
 /// Most extra extractions create makes to undo snapping, and break ties in the
 /// data, where they pinch a phase.
-constexpr int kMaxRepairRounds = 8;
+constexpr int kMaxRepairRounds = 12;
 
 /// How far create breaks a tie in the data that pinches a phase, in grid
 /// spacings h of phase value (detail::NodeValues::Repair::untie): small against the grid, far

@@ -51,6 +51,33 @@ public:
   }
   /// Grid point of a lattice node.
   GridPoint grid_point(int64_t id) const;
+  /// Calls f(neighbour id) for every lattice node within one lattice block of
+  /// node `id` (a superset of the nodes sharing a tetrahedron with it, box
+  /// templates included): the 26 around it for cube6; for bcc the 26 same-kind
+  /// nodes two grid steps away and the 8 of the other kind one step away.
+  template <class F> void for_each_neighbour(int64_t id, F&& f) const {
+    const GridPoint p = grid_point(id);
+    auto visit = [&](int step) {
+      for (int dz = -step; dz <= step; dz += step)
+        for (int dy = -step; dy <= step; dy += step)
+          for (int dx = -step; dx <= step; dx += step) {
+            const int64_t x = p[0] + dx, y = p[1] + dy, z = p[2] + dz;
+            if ((dx | dy | dz) == 0 || x < 0 || y < 0 || z < 0 || x > grid_.cells[0] || y > grid_.cells[1] ||
+                z > grid_.cells[2])
+              continue;
+            f(node_id(x, y, z));
+          }
+    };
+    visit(kind_ == Lattice::cube6 ? 1 : 2);
+    if (kind_ == Lattice::bcc)
+      for (int dz = -1; dz <= 1; dz += 2)
+        for (int dy = -1; dy <= 1; dy += 2)
+          for (int dx = -1; dx <= 1; dx += 2) {
+            const int64_t x = p[0] + dx, y = p[1] + dy, z = p[2] + dz;
+            if (x >= 0 && y >= 0 && z >= 0 && x <= grid_.cells[0] && y <= grid_.cells[1] && z <= grid_.cells[2])
+              f(node_id(x, y, z));
+          }
+  }
 
   /// Lattice nodes come in rows along x with consecutive ids: row r holds
   /// `count` nodes, ids first_id.., at grid points (x0 + step * n, y, z).

@@ -21,7 +21,7 @@ uint64_t mix_bits(uint64_t x) {
 } // namespace
 
 NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps,
-                       const std::vector<Repair>* repair)
+                       const std::vector<RepairLevel>* repair)
     : k_(field.k()) {
   const GridSpec& grid = field.grid();
   const int64_t n_nodes = lattice.num_nodes();
@@ -29,6 +29,7 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
   values_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
   floor_.reset(new int32_t[size_t(n_nodes)]);
   label_.reset(new int32_t[size_t(n_nodes)]);
+  snapped_.reset(new uint8_t[size_t(n_nodes)]);
 
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
@@ -39,7 +40,7 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
   auto quantize = [&](double v) { return int32_t((v - lo) * scale + 0.5); }; // v >= lo: rounds to nearest
   // Small against the grid yet far above round-off, so that the caps it opens
   // around a node are triangles validate() takes for non-degenerate.
-  const int64_t untie = std::clamp<int64_t>(std::llround(untie_eps * scale), 16, int64_t(1) << 19);
+  const int64_t untie = std::clamp<int64_t>(std::llround(untie_eps * scale), 1024, int64_t(1) << 19);
 
   snapped_nodes_ = tbb::parallel_reduce(
       tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
@@ -58,31 +59,32 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
             floor_[n] = quantize(field.floor_value(g));
             // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
             // phase takes the earlier phase's value, so earlier snaps are not undone.
-            const Repair how = repair ? (*repair)[size_t(n)] : Repair::snap;
+            const RepairLevel level = repair ? (*repair)[size_t(n)] : kSnap;
             for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
               int e = s;
               for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
               by_id[e] = s;
             }
-            if (how == Repair::untie) {
-              // A phase with r lower ids tied with it drops by r untie plus a
-              // pseudo-random part below untie, a function of node and phase:
-              // equal drops at neighbouring nodes would tie the phases anew
-              // inside the lattice edges between them. It stays above the floor
-              // (unstored phases stay below it).
+            if (level >= kFirstUntie) {
+              // A phase with r lower ids tied with it drops by r untie, so the
+              // symbolic order of tied phases survives, plus the pseudo-random
+              // part below untie that every phase drops by. Stored phases stay
+              // above the floor (unstored phases stay below it): one that would
+              // reach it rises by its random part instead.
               int32_t tied_below[16] = {};
               for (int a = 0; a < k_; ++a)
                 for (int b = a + 1; b < k_; ++b) tied_below[b] += q[by_id[a]] == q[by_id[b]];
               for (int b = 0; b < k_; ++b) {
-                if (tied_below[b] == 0) continue;
-                const int64_t jitter = int64_t(mix_bits(uint64_t(n) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]])) %
-                                               uint64_t(untie));
-                q[by_id[b]] = int32_t(
-                    std::max<int64_t>(q[by_id[b]] - untie * tied_below[b] - jitter, int64_t(floor_[n]) + 1));
+                const uint64_t draw = mix_bits(uint64_t(n) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]]) ^
+                                               uint64_t(level) << 56);
+                const int64_t jitter = 1 + int64_t(draw % uint64_t(untie));
+                const int64_t lowered = int64_t(q[by_id[b]]) - untie * tied_below[b] - jitter;
+                const int64_t raised = std::min(int64_t(q[by_id[b]]) + jitter, int64_t(1) << kValueBits);
+                q[by_id[b]] = int32_t(lowered > floor_[n] ? lowered : raised);
               }
             }
-            if (eps > 0 && how == Repair::snap) {
-              bool changed = false;
+            bool changed = false;
+            if (eps > 0 && level == kSnap)
               for (int a = 0; a < k_; ++a)
                 for (int b = a + 1; b < k_; ++b) {
                   const int32_t vi = q[by_id[a]];
@@ -92,8 +94,8 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
                     changed = true;
                   }
                 }
-              snapped += changed;
-            }
+            snapped_[n] = changed;
+            snapped += changed;
             int best = 0;
             for (int s = 1; s < k_; ++s)
               if (beats(q[s], ids[s], q[best], ids[best])) best = s;

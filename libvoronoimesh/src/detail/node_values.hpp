@@ -30,24 +30,23 @@ inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb
 
 class NodeValues {
 public:
-  /// What a node's values get besides quantization.
-  enum class Repair : char {
-    snap = 0,   ///< snapping (Algorithm 2, line 1)
-    unsnap = 1, ///< the sampled values as they are
-    /// The sampled values with exact ties broken by a finite amount in the
-    /// symbolic order (the higher phase id of a tied pair drops by untie_eps,
-    /// by at least 16 and at most 2^19 quanta): a tie in the data pinches a
-    /// phase where the symbolic perturbation alone shrinks a phase's cap around
-    /// the node to the node itself.
-    untie = 2,
-  };
+  /// How much of create's repair a node gets (create.cpp), by level: 0 snaps its
+  /// values (Algorithm 2, line 1); 1 keeps the sampled values; 2 and above also
+  /// lower every stored value by a pseudo-random amount of up to untie_eps (at
+  /// least 16 and at most 2^19 quanta), a function of node, phase and level. That
+  /// leaves no exact tie at the node, nor crossings of three phases at one point of
+  /// the lattice edges, faces and tets around it: the coincidences the symbolic
+  /// perturbation separates only infinitesimally, whose limit points merge into
+  /// a pinched phase. Each level draws anew, so a draw that ties again is redrawn.
+  using RepairLevel = uint8_t;
+  static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2;
 
   /// Quantizes and snaps `field` at the nodes of `lattice`, indexed by lattice
   /// node id. `snap_eps` and `untie_eps` are in the field's value units. `repair`
-  /// (if given, one Repair per lattice node) says where create undoes
-  /// what pinched a phase: snapping, or exact ties of the data themselves.
+  /// (if given, one RepairLevel per lattice node) says where create undoes
+  /// what pinched a phase: snapping, or ties and coincidences of the data themselves.
   NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps = 0,
-             const std::vector<Repair>* repair = nullptr);
+             const std::vector<RepairLevel>* repair = nullptr);
 
 
   /// Stored phase ids of lattice node n (the sampled field's order).
@@ -65,6 +64,8 @@ public:
   int32_t label(int64_t n) const { return label_[n]; }
   /// Nodes whose values snapping changed.
   uint64_t snapped_nodes() const { return snapped_nodes_; }
+  /// True when snapping changed the values of node n.
+  bool snapped(int64_t n) const { return snapped_[n] != 0; }
 
 private:
   int k_;
@@ -73,6 +74,7 @@ private:
   std::unique_ptr<int32_t[]> values_;
   std::unique_ptr<int32_t[]> floor_;
   std::unique_ptr<int32_t[]> label_;
+  std::unique_ptr<uint8_t[]> snapped_;
   uint64_t snapped_nodes_ = 0;
 };
 
