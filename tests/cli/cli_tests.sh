@@ -244,5 +244,19 @@ elif ! tail -1 stderr.txt | grep -q "voronoimesh: interrupted; nothing was writt
 elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "Ctrl-C: left an output file behind"
 else pass; fi
 
+# kill -9 at any moment leaves out.ply as it was (absent or a complete mesh), never a
+# partial file; the next run that writes out.ply removes the killed runs' temporaries.
+rm -f out.ply out.ply.tmp-*
+for delay in 0.05 0.1 0.15 0.2 0.25; do
+  "$vm" mesh --grid 40 --iterations 4 -q -o out.ply &
+  pid=$!
+  sleep "$delay"
+  kill -KILL "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  if [ -e out.ply ] && ! "$vm" stats out.ply >/dev/null 2>&1; then fail "kill -9 after ${delay}s: out.ply is not a complete mesh"; fi
+done
+if "$vm" mesh --grid 8 --iterations 0 -q -o out.ply && "$vm" stats out.ply >/dev/null && ! ls out.ply.tmp-* >/dev/null 2>&1
+then pass; else fail "kill -9: temporaries left after the next run"; fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
