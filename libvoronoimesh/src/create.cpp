@@ -304,12 +304,21 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
       for (size_t i = 0; i < offending; ++i)
         lattice.for_each_neighbour(nodes[i], [&](int64_t n) { nodes.push_back(n); });
     }
+    // Where the problems keep moving on instead (a snapped label field: each
+    // repaired node leaves its snapped neighbours pinched), one repair of every
+    // node ends it: no snapping left anywhere and every value moved, so no
+    // coincidences but by chance, which the remaining rounds redraw.
+    const bool everywhere = round + 1 == kLocalRepairRounds;
+    if (everywhere) {
+      nodes.resize(size_t(lattice.num_nodes()));
+      std::iota(nodes.begin(), nodes.end(), int64_t(0));
+    }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     for (int64_t node : nodes) {
       Level& level = repair[size_t(node)];
       if (level == std::numeric_limits<Level>::max()) continue;
-      if (level == detail::NodeValues::kSnap && values.snapped(node)) {
+      if (!everywhere && level == detail::NodeValues::kSnap && values.snapped(node)) {
         level = detail::NodeValues::kUnsnap;
         ++unsnapped;
       } else {

@@ -40,10 +40,12 @@ TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
 INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
 
 /// Cases the long tier found failing, as {seed, case}, each fixed since: they
-/// must keep passing. (Seed 1, cases 5412 and 5570: a triangle 10^-6 of the
+/// must keep passing. Seed 1, cases 5412 and 5570: a triangle 10^-6 of the
 /// mesh size turned by 93 degrees in the moving passes, clamping's planes
-/// being round-off at that size; the crossing guard now undoes such moves.)
-constexpr std::array<std::array<uint64_t, 2>, 2> kLongTierRegressions = {{{1, 5412}, {1, 5570}}};
+/// being round-off at that size; the crossing guard now undoes such moves.
+/// Case 9020: a snapped label field whose pinches moved on with every local
+/// repair; create now repairs every node after kLocalRepairRounds.
+constexpr std::array<std::array<uint64_t, 2>, 3> kLongTierRegressions = {{{1, 5412}, {1, 5570}, {1, 9020}}};
 
 TEST(PropertyLongTier, cases_it_found_failing_pass) {
   for (const auto& [seed, index] : kLongTierRegressions) {

@@ -53,6 +53,9 @@ struct CreateStats {
 /// Most extra extractions create makes to undo snapping, and break ties in the
 /// data, where they pinch a phase.
 constexpr int kMaxRepairRounds = 12;
+/// Extractions after which create stops repairing around the problems it finds
+/// and repairs every lattice node once (create.cpp).
+constexpr int kLocalRepairRounds = 6;
 
 /// How far create breaks a tie in the data that pinches a phase, in grid
 /// spacings h of phase value (detail::NodeValues::Repair::untie): small against the grid, far
