@@ -95,7 +95,8 @@ inline std::string compress_nrrd_data(std::string_view nrrd) {
   std::string_view value = header.substr(at + key.size());
   value = value.substr(0, value.find('\n'));
   while (!value.empty() && (value.front() == ' ' || value.front() == '\t')) value.remove_prefix(1);
-  while (!value.empty() && (value.back() == ' ' || value.back() == '\t' || value.back() == '\r')) value.remove_suffix(1);
+  while (!value.empty() && (value.back() == ' ' || value.back() == '\t' || value.back() == '\r'))
+    value.remove_suffix(1);
   if (value == "gzip" || value == "gz") return std::string(header) + gzip(data);
   if (value == "bzip2" || value == "bz2") return std::string(header) + bzip2(data);
   return std::string(nrrd);

@@ -6,6 +6,8 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
+#include "refusal.hpp"
+
 #include <gtest/gtest.h>
 #include <nifti2_io.h>
 #include <zlib.h>
@@ -100,16 +102,7 @@ protected:
   /// The message `reader` throws for `p` (as InvalidInput or IoError, per
   /// `io_error`), "" if it reads.
   static std::string error_of(io::Volume (*reader)(const std::string&), const std::string& p, bool io_error = false) {
-    try {
-      reader(p);
-    } catch (const IoError& e) {
-      EXPECT_TRUE(io_error) << e.what();
-      return e.what();
-    } catch (const InvalidInput& e) {
-      EXPECT_FALSE(io_error) << e.what();
-      return e.what();
-    }
-    return "";
+    return test::refusal([&] { reader(p); }, io_error);
   }
 
   fs::path dir_;
