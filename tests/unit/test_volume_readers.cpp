@@ -438,6 +438,12 @@ TEST_F(VolumeReaders, metaimage_bad_files) {
   write("list.mhd", mha_header("MET_SHORT", "", "LIST"));
   EXPECT_REFUSED(io::read_metaimage, path("list.mhd"), "LIST");
 
+  // The data file is read whole: a device or a pipe would never end.
+  write("zero.mhd", mha_header("MET_SHORT", "", "/dev/zero"));
+  EXPECT_NE(error_of(io::read_metaimage, path("zero.mhd"), true).find("zero.mhd: ElementDataFile /dev/zero is not a "
+                                                                       "regular file"),
+            std::string::npos);
+
   write("long64.mha", mha_header("MET_LONG_LONG", "") + data + data + data + data);
   EXPECT_REFUSED(io::read_metaimage, path("long64.mha"), "ElementType MET_LONG_LONG is not supported");
 
