@@ -3,6 +3,7 @@
 the variants their readers tell apart (types, byte orders, encodings, vectors).
 Usage: make_corpus.py OUT_DIR  (makes OUT_DIR/<reader>/...)."""
 
+import bz2
 import gzip
 import os
 import struct
@@ -25,6 +26,15 @@ dists = [v for x in range(8) for v in ((-0.5, 0.5) if x % 2 else (0.5, -0.5))]
 
 def raw(fmt, values, big=False):
     return struct.pack(("<>"[big]) + fmt * len(values), *values)
+
+
+def files(first, *named):
+    """A multi-file input (fuzz/input_layouts.hpp, split_files): the first file, then each
+    (name, bytes) after a "\n--- NAME\n" line."""
+    data = first.encode() if isinstance(first, str) else first
+    for name, body in named:
+        data += b"\n--- " + name.encode() + b"\n" + (body.encode() if isinstance(body, str) else body)
+    return data
 
 
 # ---- scene JSON
@@ -50,6 +60,38 @@ put("nrrd", "double_gzip.nrrd",
     head.format(t="double", d=3, s="2 2 2", e="gzip", x="endian: little\n").encode()
     + gzip.compress(raw("d", dists[::2])))
 put("nrrd", "int_ascii.nrrd", head.format(t="int", d=3, s="2 2 2", e="ascii", x="") + " ".join(map(str, labels)))
+put("nrrd", "ushort_bzip2.nrrd",
+    head.format(t="ushort", d=3, s="2 2 2", e="bzip2", x="endian: little\n").encode() + bz2.compress(raw("H", labels)))
+
+# ---- NRRD with the data compressed by the target (fuzz_nrrd_compressed), as its encoding says
+put("nrrd_compressed", "uchar_gzip.nrrd", head.format(t="uchar", d=3, s="2 2 2", e="gzip", x="").encode() + bytes(labels))
+put("nrrd_compressed", "float_vector_bzip2.nrrd",
+    head.format(t="float", d=4, s="2 2 2 2", e="bzip2", x="endian: little\nkinds: vector domain domain domain\n"
+                "byte skip: 4\n").encode() + bytes(4) + raw("f", dists))
+put("nrrd_compressed", "short_be_gz.nrrd",
+    head.format(t="short", d=3, s="2 2 2", e="gz", x="endian: big\n").encode() + raw("h", labels, True))
+
+# ---- detached NRRD headers and their data files (fuzz_nrrd_detached): one name, LIST, pattern, SKIPLIST
+detached = "NRRD0004\ntype: {t}\ndimension: 3\nsizes: 2 2 2\nencoding: {e}\n{x}data file: {f}\n"
+put("nrrd_detached", "one_raw.nhdr", files(detached.format(t="uchar", e="raw", x="", f="d.raw"), ("d.raw", bytes(labels))))
+put("nrrd_detached", "list_slices.nhdr",
+    files(detached.format(t="short", e="raw", x="endian: big\n", f="LIST 2") + "s0.raw\ns1.raw\n",
+          ("s0.raw", raw("h", labels[:4], True)), ("s1.raw", raw("h", labels[4:], True))))
+put("nrrd_detached", "pattern_slices.nhdr",
+    files(detached.format(t="uchar", e="raw", x="", f="s%03d.raw 0 1 1"),
+          ("s000.raw", bytes(labels[:4])), ("s001.raw", bytes(labels[4:]))))
+put("nrrd_detached", "pattern_down_gzip.nhdr",
+    files(detached.format(t="double", e="gzip", x="endian: little\n", f="z%d.gz 1 0 -1 2"),
+          ("z1.gz", gzip.compress(raw("d", dists[:8:2]))), ("z0.gz", gzip.compress(raw("d", dists[8::2])))))
+put("nrrd_detached", "one_bzip2_skips.nhdr",
+    files(detached.format(t="int", e="bzip2", x="endian: little\nline skip: 1\nbyte skip: 2\n", f="d.bz2"),
+          ("d.bz2", b"text\n" + bz2.compress(bytes(2) + raw("i", labels)))))
+put("nrrd_detached", "skiplist.nhdr",
+    files("NRRD0006\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: SKIPLIST 2\n"
+          "3 a.raw\n0 b.raw\n", ("a.raw", b"abc" + bytes(labels[:4])), ("b.raw", bytes(labels[4:]))))
+put("nrrd_detached", "ascii_list.nhdr",
+    files(detached.format(t="float", e="ascii", x="", f="LIST") + "a.txt\nb.txt\n",
+          ("a.txt", "0.5 -0.5 0.5 -0.5"), ("b.txt", "-1 1 -1 1")))
 
 
 # ---- NIfTI-1 (.nii, data at vox_offset 352)
@@ -75,6 +117,11 @@ put("nifti", "uint8.nii", nifti(2, 8, "B", labels))
 put("nifti", "int16_sform.nii", nifti(4, 16, "h", labels, sform=1))
 put("nifti", "float_vector_qform.nii", nifti(16, 32, "f", dists, dims=(5, 2, 2, 2, 1, 2, 1, 1), qform=1))
 put("nifti", "double_scaled.nii", nifti(64, 64, "d", dists[::2], slope=2.0))
+# .nii.gz: the gzip stream fuzzed as it is (fuzz_nifti_gz), or made by the target (fuzz_nifti_gzipped)
+for name, data in [("uint8", nifti(2, 8, "B", labels)), ("float_vector_qform", nifti(16, 32, "f", dists, dims=(5, 2, 2, 2, 1, 2, 1, 1), qform=1)),
+                   ("int16_sform", nifti(4, 16, "h", labels, sform=1))]:
+    put("nifti_gz", name + ".nii.gz", gzip.compress(data))
+    put("nifti_gzipped", name + ".nii", data)
 
 # ---- MetaImage (.mha, data after ElementDataFile = LOCAL)
 mha = ("ObjectType = Image\nNDims = {n}\nDimSize = {s}\n{x}ElementType = {t}\nElementDataFile = LOCAL\n")
@@ -91,6 +138,18 @@ put("metaimage", "double_compressed.mha",
     mha.format(n=3, s="2 2 2", t="MET_DOUBLE",
                x="CompressedData = True\nCompressedDataSize = %d\n" % len(compressed)).encode() + compressed)
 
+# ---- MetaImage .mhd with the data in files of their own (fuzz_metaimage_detached)
+mhd = "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n{x}ElementType = {t}\nElementDataFile = {f}\n"
+put("metaimage_detached", "uchar.mhd", files(mhd.format(x="", t="MET_UCHAR", f="d.raw"), ("d.raw", bytes(labels))))
+put("metaimage_detached", "short_msb_headersize.mhd",
+    files(mhd.format(x="BinaryDataByteOrderMSB = True\nHeaderSize = 3\n", t="MET_SHORT", f="d.raw"),
+          ("d.raw", b"abc" + raw("h", labels, True))))
+put("metaimage_detached", "float_end_of_file.mhd",
+    files(mhd.format(x="HeaderSize = -1\n", t="MET_FLOAT", f="d.raw"), ("d.raw", b"header" + raw("f", dists[::2]))))
+put("metaimage_detached", "double_compressed.mhd",
+    files(mhd.format(x="CompressedData = True\n", t="MET_DOUBLE", f="d.zraw"), ("d.zraw", zlib.compress(raw("d", dists[::2])))))
+put("metaimage_detached", "list.mhd",
+    files(mhd.format(x="", t="MET_UCHAR", f="LIST 2D") + "s0.raw\ns1.raw\n", ("s0.raw", bytes(labels[:4])), ("s1.raw", bytes(labels[4:]))))
 
 # ---- INR (256-byte header blocks; zlib's gzread reads gzip too)
 def inr(fields, data, dims="XDIM=2\nYDIM=2\nZDIM=2\n"):

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Fuzzes every reader (fuzz/): builds the libFuzzer targets with clang, ASan and
 # UBSan into build-fuzz, then runs each target for SECONDS (default 60), one after
-# the other, and prints per reader the executions, the coverage libFuzzer reached
+# the other, and prints per target the executions, the coverage libFuzzer reached
 # (cov: edges, ft: features) and whether it found a crash, leak, timeout or OOM.
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [READER...]
-#   readers: scene nrrd nifti metaimage inr points ply_points ply_mesh (default: all)
+#   readers (targets, default: all): scene nrrd nrrd_detached nrrd_compressed nifti
+#   nifti_gz nifti_gzipped metaimage metaimage_detached inr points ply_points ply_mesh
+#   (_detached: a header and its data files from one input; nifti_gz: the gzip
+#   stream as it is; nifti_gzipped, nrrd_compressed: data the target compresses)
 # The corpus of each reader grows across runs in build-fuzz/fuzz_runs/corpus/<reader>;
 # a crashing input lands in build-fuzz/fuzz_runs/artifacts/<reader>/ (rerun it with
 # build-fuzz/fuzz/fuzz_<reader> FILE) and belongs under tests/data/fuzz/ once fixed.
@@ -15,7 +18,8 @@ set -euo pipefail
 seconds=${1:-60}
 shift || true
 readers=("$@")
-[ ${#readers[@]} -gt 0 ] || readers=(scene nrrd nifti metaimage inr points ply_points ply_mesh)
+[ ${#readers[@]} -gt 0 ] || readers=(scene nrrd nrrd_detached nrrd_compressed nifti nifti_gz nifti_gzipped metaimage
+  metaimage_detached inr points ply_points ply_mesh)
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build-fuzz
 work=$build/fuzz_runs
@@ -29,7 +33,7 @@ python3 "$root/fuzz/make_corpus.py" "$work/seeds"
 # The dictionary of each reader's format, where it has one.
 dictionary() {
   case $1 in
-  nrrd | metaimage | inr | scene) echo "$root/fuzz/dict/$1.dict" ;;
+  nrrd* | metaimage* | inr | scene) echo "$root/fuzz/dict/${1%%_*}.dict" ;;
   ply_points | ply_mesh) echo "$root/fuzz/dict/ply.dict" ;;
   esac
 }
@@ -37,17 +41,17 @@ dictionary() {
 # Inputs are written to a file per run: in memory, not on disk, where possible.
 [ -w /dev/shm ] && export TMPDIR=/dev/shm
 
-printf '%-11s %12s %8s %8s %s\n' reader executions cov ft result
+printf '%-18s %12s %8s %8s %s\n' reader executions cov ft result
 faults=0
 for reader in "${readers[@]}"; do
   corpus=$work/corpus/$reader artifacts=$work/artifacts/$reader log=$work/$reader.log
   mkdir -p "$corpus" "$artifacts"
   dict=$(dictionary "$reader")
-  # Teem (Debian 12's libteem 1.11) leaks its header line buffer, or its zlib
+  # Teem (Debian 12's libteem2, a 1.12 snapshot) leaks its header line buffer, or its zlib
   # stream, on most NRRDs it refuses; each leak check then costs ~0.1 s. Our
   # side holds Teem's Nrrd in a unique_ptr, so NRRD runs without leak checks.
   leaks=1
-  [ "$reader" = nrrd ] && leaks=0
+  case $reader in nrrd*) leaks=0 ;; esac
   # 4 KiB holds every header with a small volume after it; 10 s for one input
   # is a hang; 2 GiB is far beyond what a 4 KiB input may make a reader take.
   status=0
@@ -64,9 +68,6 @@ for reader in "${readers[@]}"; do
     faults=1
     result="FAULT ($(grep -m1 -oE 'ERROR: [A-Za-z]+: [a-z-]+|ERROR: libFuzzer: [a-z-]+|runtime error: .*' "$log" || echo "exit $status")): $(ls -t "$artifacts" | head -1), see $log"
   fi
-  # Inputs are written to a file per run: in memory, not on disk, where possible.
-[ -w /dev/shm ] && export TMPDIR=/dev/shm
-
-printf '%-11s %12s %8s %8s %s\n' "$reader" "${execs:-?}" "${cov:-?}" "${ft:-?}" "$result"
+  printf '%-18s %12s %8s %8s %s\n' "$reader" "${execs:-?}" "${cov:-?}" "${ft:-?}" "$result"
 done
 exit $faults

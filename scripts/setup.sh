@@ -10,7 +10,7 @@ packages=(
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
-  zlib1g-dev libnifti2-dev
+  zlib1g-dev libbz2-dev libnifti2-dev
 )
 case "${1:-}" in
   --test-readers) packages+=(python3-meshio python3-vtk9 gmsh tetgen) ;;

@@ -169,6 +169,22 @@ expect_error "volume beyond memory" 2 "huge\.nrrd: reading 1e\+15 samples needs 
 expect_error "NaN in a distance grid" 2 "nan\.nrrd: value nan at sample 5" -- "$vm" create nan.nrrd -o out.ply
 expect_error "inf in a distance grid" 2 "inf\.nrrd: value inf at sample 5" -- "$vm" create inf.nrrd -o out.ply
 expect_error "unknown input" 2 "unknown input type" -- "$vm" create labels.vtk -o out.ply
+# Detached and compressed NRRD data: a header of a hundred bytes must not make Teem allocate what its data
+# files cannot hold (here 134 MB from 64 bytes of slices, and from 1 MB of zeros in 45 bytes of bzip2), nor
+# hand Teem a data file pattern its sprintf cannot expand safely.
+mkdir -p slices && for k in 0 1 2 3; do head -c 16 /dev/zero >"slices/s00$k.raw"; done
+nhdr() { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: %s\nencoding: raw\ndata file: %s\n' "$1" "$2"; }
+nhdr "512 512 512" "s%03d.raw 0 3 1 3" >slices/big.nhdr
+nhdr "2 2 2" "s%d%n.raw 0 1 1" >slices/unsafe.nhdr
+nhdr "2 2 2" "LIST" >slices/gone.nhdr && printf 's000.raw\ngone.raw\n' >>slices/gone.nhdr
+nhdr "2 2 2" "-" >stdin.nhdr
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 512 512 512\nencoding: bzip2\n\n'
+  head -c 1048576 /dev/zero | python3 -c 'import bz2, sys; sys.stdout.buffer.write(bz2.compress(sys.stdin.buffer.read()))'; } >zeros.nrrd
+expect_error "NRRD data files shorter than its sizes" 2 "slices/big\.nhdr: truncated: the header describes 134217728 samples of raw data, .*its 4 data files \(.*slices/s000\.raw \.\.\. .*slices/s003\.raw\) hold 64" -- "$vm" create slices/big.nhdr -o out.ply
+expect_error "bzip2 NRRD data short of its sizes" 2 "zeros\.nrrd: truncated: .*134217728 bytes\) of bzip2 data; its file inflates to 1048576 of the 134217728 bytes" -- "$vm" create zeros.nrrd -o out.ply
+expect_error "unsafe NRRD data file pattern" 2 "slices/unsafe\.nhdr: data file pattern 's%d%n\.raw' must hold one %d" -- "$vm" create slices/unsafe.nhdr -o out.ply
+expect_error "missing NRRD data file" 3 "slices/gone\.nhdr: cannot open its data file .*slices/gone\.raw" -- "$vm" create slices/gone.nhdr -o out.ply
+expect_error "NRRD data from standard input" 2 "stdin\.nhdr: data file '-' \(standard input\) is not read" -- "$vm" create stdin.nhdr -o out.ply </dev/null
 
 # Scene "grid" phases: one ASCII float NRRD per phase (two spheres on 16^3 voxels), beside the scene in a
 # folder of their own, mesh exactly as the same values in one 3-component file.

@@ -1,29 +1,17 @@
 #pragma once
 // Small NRRD files written by tests (the library reads them with Teem).
 
-#include <filesystem>
-#include <unistd.h>
+#include "process_folder.hpp"
+
 #include <fstream>
 #include <string>
 #include <vector>
 
 namespace vm::test {
 
-/// A path for a test file, in a folder of this process's own (removed when it
-/// exits): test runs in several build trees at once must not overwrite each
-/// other's files.
+/// A path for a test file, in this process's own folder.
 inline std::string temp_path(const std::string& name) {
-  struct Folder {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("vm_test_" + std::to_string(::getpid()));
-    Folder() { std::filesystem::create_directories(path); }
-    ~Folder() {
-      std::error_code ec;
-      std::filesystem::remove_all(path, ec);
-    }
-  };
-  static const Folder folder;
-  return (folder.path / ("vm_test_input_" + name)).string();
+  return (process_folder() / ("vm_test_input_" + name)).string();
 }
 
 /// Writes an attached raw NRRD: `header` holds the type/dimension/sizes lines and

@@ -6,6 +6,8 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
+#include "refusal.hpp"
+
 #include <gtest/gtest.h>
 #include <nifti2_io.h>
 #include <zlib.h>
@@ -100,16 +102,7 @@ protected:
   /// The message `reader` throws for `p` (as InvalidInput or IoError, per
   /// `io_error`), "" if it reads.
   static std::string error_of(io::Volume (*reader)(const std::string&), const std::string& p, bool io_error = false) {
-    try {
-      reader(p);
-    } catch (const IoError& e) {
-      EXPECT_TRUE(io_error) << e.what();
-      return e.what();
-    } catch (const InvalidInput& e) {
-      EXPECT_FALSE(io_error) << e.what();
-      return e.what();
-    }
-    return "";
+    return test::refusal([&] { reader(p); }, io_error);
   }
 
   fs::path dir_;
@@ -444,6 +437,12 @@ TEST_F(VolumeReaders, metaimage_bad_files) {
 
   write("list.mhd", mha_header("MET_SHORT", "", "LIST"));
   EXPECT_REFUSED(io::read_metaimage, path("list.mhd"), "LIST");
+
+  // The data file is read whole: a device or a pipe would never end.
+  write("zero.mhd", mha_header("MET_SHORT", "", "/dev/zero"));
+  EXPECT_NE(error_of(io::read_metaimage, path("zero.mhd"), true).find("zero.mhd: ElementDataFile /dev/zero is not a "
+                                                                       "regular file"),
+            std::string::npos);
 
   write("long64.mha", mha_header("MET_LONG_LONG", "") + data + data + data + data);
   EXPECT_REFUSED(io::read_metaimage, path("long64.mha"), "ElementType MET_LONG_LONG is not supported");

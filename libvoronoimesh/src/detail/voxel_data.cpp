@@ -55,13 +55,15 @@ void check_voxel_data_length(const std::string& path, uint64_t needed, uint64_t 
                                          " (wrong sizes or type?)")));
 }
 
-void check_inflatable(const std::string& path, uint64_t needed, uint64_t compressed) {
+uint64_t max_inflated_bytes(uint64_t compressed) {
   // zlib's deflate cannot compress better than about 1032:1 (258-byte matches
   // coded in 2 bits); 64 bytes cover the stream's header and trailer.
-  const uint64_t limit = compressed > std::numeric_limits<uint64_t>::max() / 1032 - 64
-                             ? std::numeric_limits<uint64_t>::max()
-                             : 1032 * compressed + 64;
-  if (needed > limit)
+  return compressed > std::numeric_limits<uint64_t>::max() / 1032 - 64 ? std::numeric_limits<uint64_t>::max()
+                                                                        : 1032 * compressed + 64;
+}
+
+void check_inflatable(const std::string& path, uint64_t needed, uint64_t compressed) {
+  if (needed > max_inflated_bytes(compressed))
     throw InvalidInput(located(path, cat("the header describes ", needed, " bytes of voxel data, more than ", compressed,
                                          " compressed bytes can hold (corrupt sizes?)")));
 }

@@ -33,9 +33,13 @@ uint64_t voxel_data_bytes(const std::string& path, const io::Volume& volume, Vox
 /// header does not describe the data (a wrong size or type).
 void check_voxel_data_length(const std::string& path, uint64_t needed, uint64_t available);
 
+/// The most bytes `compressed` bytes of deflate data (zlib, gzip) can inflate
+/// to: deflate's best ratio is about 1032:1, plus the stream's header and trailer.
+uint64_t max_inflated_bytes(uint64_t compressed);
+
 /// Throws InvalidInput "<path>: ..." when `needed` bytes cannot come out of
-/// `compressed` bytes of deflate data (whose best ratio is 1032:1): a corrupt
-/// header then asks for more memory than the file could ever fill.
+/// `compressed` bytes of deflate data (max_inflated_bytes()): a corrupt header
+/// then asks for more memory than the file could ever fill.
 void check_inflatable(const std::string& path, uint64_t needed, uint64_t compressed);
 
 /// Fills volume.labels (integer types, volume.integer = true) or volume.values

@@ -200,6 +200,11 @@ std::string_view data_bytes(const std::string& path, const Fields& f, const std:
     if (name.find('%') != std::string::npos)
       throw InvalidInput(located(path, cat("ElementDataFile '", name, "' is a file-name pattern, not supported")));
     const std::filesystem::path data_path = std::filesystem::path(path).parent_path() / name;
+    // A device or a pipe (/dev/zero, /dev/stdin) would be read without end.
+    std::error_code ec;
+    if (const auto status = std::filesystem::status(data_path, ec);
+        std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      throw IoError(located(path, cat("ElementDataFile ", data_path.string(), " is not a regular file")));
     try {
       storage = detail::read_text_file(data_path.string());
     } catch (const IoError& e) {

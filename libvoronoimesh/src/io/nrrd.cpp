@@ -1,23 +1,28 @@
 /// @file io/nrrd.cpp
 /// NRRD volumes through Teem's nrrdLoad, which handles attached and detached
 /// data (.nrrd/.nhdr), raw, gzip and bzip2 encodings and both endiannesses;
-/// this file checks what Teem accepts but a volume must not be.
+/// this file checks what Teem accepts but a volume must not be; what Teem
+/// must not be given is screened first (nrrd_header_screen.hpp), and whether
+/// the data files can hold the sizes is checked before Teem allocates them
+/// (nrrd_data_files.hpp).
 
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
 #include "detail/memory.hpp"
 #include "detail/text.hpp"
-#include "detail/voxel_data.hpp"
+#include "io/nrrd_data_files.hpp"
+#include "io/nrrd_header_screen.hpp"
 
 #include <teem/nrrd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <utility>
+#include <vector>
 
 namespace vm::io {
 
@@ -30,6 +35,14 @@ struct NrrdDeleter {
   void operator()(Nrrd* n) const { nrrdNuke(n); }
 };
 using NrrdPtr = std::unique_ptr<Nrrd, NrrdDeleter>;
+
+/// Frees the state of a header-only nrrdLoad, closing the data file Teem kept open.
+struct HeaderStateDeleter {
+  void operator()(NrrdIoState* io) const {
+    if (io->dataFile) std::fclose(io->dataFile);
+    nrrdIoStateNix(io);
+  }
+};
 
 /// Teem's error text, which spans several lines ("[nrrd] nrrdLoad: ..."), as the
 /// last (innermost, most specific) line.
@@ -120,52 +133,20 @@ void read_geometry(const std::string& path, const Nrrd& n, unsigned first, Volum
   }
 }
 
-/// The bytes the data of a NRRD whose header `io` describes can come from: the
-/// sizes of its data files, the header's own file when the data is attached (an
-/// upper bound: the header counts too). None when a file-name pattern names them.
-std::optional<uint64_t> data_file_bytes(const std::string& path, const NrrdIoState& io) {
-  if (io.dataFNFormat) return std::nullopt;
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (io.dataFNArr->len == 0) return std::filesystem::file_size(path, ec);
-  uint64_t bytes = 0;
-  for (unsigned i = 0; i < io.dataFNArr->len; ++i) {
-    const std::filesystem::path name(io.dataFN[i]);
-    const uint64_t size = std::filesystem::file_size(name.is_absolute() ? name : folder / name, ec);
-    if (!ec) bytes += size; // a missing file is Teem's to report
-  }
-  return bytes;
-}
-
-/// Throws InvalidInput when the data files cannot hold the `samples` values of
-/// `sample_bytes` each that the header describes, in its encoding, before Teem
-/// allocates them: a corrupt size in a small file must not take gigabytes.
-/// (bzip2 is left to the memory check: its runs can compress millions to one.)
-void check_data_fits(const std::string& path, const NrrdIoState& io, uint64_t samples, uint64_t sample_bytes) {
-  const std::optional<uint64_t> held = data_file_bytes(path, io);
-  if (!held) return;
-  const NrrdEncoding* e = io.encoding;
-  const uint64_t needed = samples * sample_bytes;
-  if (e == nrrdEncodingGzip) return detail::check_inflatable(path, needed, *held);
-  // Raw data takes its bytes, hex two digits a byte, ascii a digit a sample at least.
-  const uint64_t least = e == nrrdEncodingRaw ? needed : e == nrrdEncodingHex ? 2 * needed
-                         : e == nrrdEncodingAscii ? samples : 0;
-  if (least > *held)
-    throw InvalidInput(located(path, cat("truncated: the header describes ", samples, " samples of ", e->name,
-                                         " data, which take at least ", least, " bytes; its file holds ", *held)));
-}
-
 } // namespace
 
 Volume read_nrrd(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     throw IoError(located(path, "cannot open (No such file or directory)"));
+  // Before Teem reads the header: what its data file names must be safe for Teem.
+  const std::vector<std::filesystem::path> detached = nrrd::screen_data_files(path);
   NrrdPtr n(nrrdNew());
   {
     // The header first: a corrupt or absurd size is refused before Teem allocates it.
-    std::unique_ptr<NrrdIoState, NrrdIoState* (*)(NrrdIoState*)> header_only(nrrdIoStateNew(), nrrdIoStateNix);
+    std::unique_ptr<NrrdIoState, HeaderStateDeleter> header_only(nrrdIoStateNew());
     header_only->skipData = 1;
+    header_only->keepNrrdDataFileOpen = 1; // where a single file's data starts, for check_data_fits
     if (nrrdLoad(n.get(), path.c_str(), header_only.get()) != 0)
       throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
     // Block samples' size is the file's to choose: refused before it counts.
@@ -176,7 +157,7 @@ Volume read_nrrd(const std::string& path) {
     detail::refuse_beyond_memory(elements * double(nrrdTypeSize[n->type] + 4), path,
                                  cat("reading ", elements, " samples"));
     // Below the memory, so the counts fit in 64 bits.
-    check_data_fits(path, *header_only, uint64_t(elements), nrrdTypeSize[n->type]);
+    nrrd::check_data_fits(path, *header_only, detached, uint64_t(elements), nrrdTypeSize[n->type]);
   }
   if (nrrdLoad(n.get(), path.c_str(), nullptr) != 0)
     throw InvalidInput(located(path, "not a readable NRRD volume: " + teem_error()));
