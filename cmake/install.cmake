@@ -7,8 +7,9 @@ set(VORONOIMESH_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/voronoimesh")
 
 install(TARGETS voronoimesh EXPORT voronoimeshTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# mpi.hpp belongs to voronoimesh_mpi, which is not installed (yet): build-tree only.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libvoronoimesh/include/voronoimesh
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "mpi.hpp" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/include/voronoimesh/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voronoimesh)
 install(DIRECTORY DESTINATION ${VORONOIMESH_INSTALL_PLUGINDIR})

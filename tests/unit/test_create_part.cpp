@@ -5,6 +5,7 @@
 #include "detail/lattice.hpp"
 #include "detail/validate_part.hpp"
 #include "fixtures.hpp"
+#include "voronoimesh/errors.hpp"
 #include "voronoimesh/sampled_field.hpp"
 #include "voronoimesh/validate.hpp"
 
