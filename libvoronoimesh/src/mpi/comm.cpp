@@ -175,6 +175,18 @@ std::vector<char> Comm::gather_bytes(std::span<const char> bytes) {
   return all;
 }
 
+void Comm::all_to_all_in_place(const char* send, std::span<const int> send_count, std::span<const int> send_at,
+                               char* recv, std::span<const int> recv_count, std::span<const int> recv_at,
+                               size_t unit_bytes) {
+  check_in();
+  Timed t(mpi_seconds_);
+  MPI_Datatype unit;
+  MPI_Type_contiguous(count(unit_bytes), MPI_BYTE, &unit);
+  MPI_Type_commit(&unit);
+  MPI_Alltoallv(send, send_count.data(), send_at.data(), unit, recv, recv_count.data(), recv_at.data(), unit, comm_);
+  MPI_Type_free(&unit);
+}
+
 std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<char>>& send) {
   check_in();
   Timed t(mpi_seconds_);

@@ -69,6 +69,13 @@ public:
   }
   /// Sends send[q] to every rank q; returns what each rank sent here, by rank.
   std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send);
+  /// Sends the blocks of `unit_bytes`-byte units send + send_at[q] (send_count[q]
+  /// units) to every rank q and receives from each rank q recv_count[q] units
+  /// into recv + recv_at[q]: for large data that is already in place (grid
+  /// layers), with no copy and counts in units, so they stay far below 2^31.
+  void all_to_all_in_place(const char* send, std::span<const int> send_count, std::span<const int> send_at,
+                           char* recv, std::span<const int> recv_count, std::span<const int> recv_at,
+                           size_t unit_bytes);
   /// Rank 0 gets every rank's `values` concatenated in rank order; the others nothing.
   template <class T> std::vector<T> gather(std::span<const T> values) {
     return bytes_as<T>(gather_bytes(as_bytes(values)));

@@ -78,12 +78,10 @@ Plan plan(Comm& comm, const SampledField& block, Lattice kind) {
   std::vector<int32_t> winners(block.all_floors().size());
   for (size_t n = 0; n < winners.size(); ++n) winners[n] = block.all_ids()[n * size_t(block.k())];
   const size_t layer_nodes = size_t(grid.nodes()[0] * grid.nodes()[1]);
-  const std::vector<char> labels = detail::exchange_layers(
-      comm, p.blocks, wants, {reinterpret_cast<const char*>(winners.data()), winners.size() * sizeof(int32_t)},
-      layer_nodes * sizeof(int32_t));
-  const std::vector<detail::SlabWork> work = detail::slab_work(
-      lattice, grid, {reinterpret_cast<const int32_t*>(labels.data()), labels.size() / sizeof(int32_t)},
-      wants[size_t(comm.rank())], counted);
+  const std::vector<int32_t> labels =
+      detail::exchange_layers(comm, p.blocks, wants, std::span<const int32_t>(winners), layer_nodes);
+  const std::vector<detail::SlabWork> work =
+      detail::slab_work(lattice, grid, labels, wants[size_t(comm.rank())], counted);
   const std::vector<detail::SlabWork> all = comm.all_gather(std::span<const detail::SlabWork>(work));
   p.slabs = detail::balance_slabs(all, comm.size());
   for (const SlabRange& s : p.slabs) {

@@ -3,7 +3,6 @@
 #include "voronoimesh/errors.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <string>
 
 namespace vm::mpi::detail {
@@ -25,49 +24,36 @@ std::vector<Layers> agree_on_blocks(Comm& comm, Layers mine, int32_t last) {
   return blocks;
 }
 
-std::vector<char> exchange_layers(Comm& comm, const std::vector<Layers>& blocks, const std::vector<Layers>& wants,
-                                  std::span<const char> mine, size_t bytes_per_layer) {
-  const Layers have = blocks[size_t(comm.rank())];
-  std::vector<std::vector<char>> send(size_t(comm.size()));
-  for (size_t q = 0; q < send.size(); ++q) {
+template <class T>
+std::vector<T> exchange_layers(Comm& comm, const std::vector<Layers>& blocks, const std::vector<Layers>& wants,
+                               std::span<const T> mine, size_t per_layer) {
+  // In whole layers, straight from `mine` into the window: each layer of the
+  // window comes from the one rank whose block holds it.
+  const size_t ranks = blocks.size();
+  const Layers have = blocks[size_t(comm.rank())], want = wants[size_t(comm.rank())];
+  std::vector<int> send_count(ranks, 0), send_at(ranks, 0), recv_count(ranks, 0), recv_at(ranks, 0);
+  for (size_t q = 0; q < ranks; ++q) {
     const int32_t lo = std::max(have[0], wants[q][0]), hi = std::min(have[1], wants[q][1]);
-    if (lo > hi) continue;
-    const char* from = mine.data() + size_t(lo - have[0]) * bytes_per_layer;
-    send[q].assign(from, from + size_t(hi - lo + 1) * bytes_per_layer);
+    if (lo <= hi) send_count[q] = hi - lo + 1, send_at[q] = lo - have[0];
+    const int32_t from = std::max(blocks[q][0], want[0]), to = std::min(blocks[q][1], want[1]);
+    if (from <= to) recv_count[q] = to - from + 1, recv_at[q] = from - want[0];
   }
-  const std::vector<std::vector<char>> received = comm.all_to_all(send);
-  const Layers want = wants[size_t(comm.rank())];
-  std::vector<char> window(size_t(want[1] - want[0] + 1) * bytes_per_layer);
-  for (size_t q = 0; q < received.size(); ++q) {
-    const int32_t lo = std::max(blocks[q][0], want[0]);
-    if (!received[q].empty())
-      std::memcpy(window.data() + size_t(lo - want[0]) * bytes_per_layer, received[q].data(), received[q].size());
-  }
+  std::vector<T> window(size_t(want[1] - want[0] + 1) * per_layer);
+  comm.all_to_all_in_place(reinterpret_cast<const char*>(mine.data()), send_count, send_at,
+                           reinterpret_cast<char*>(window.data()), recv_count, recv_at, per_layer * sizeof(T));
   return window;
 }
 
-namespace {
-
-template <class T> std::vector<T> layers_of(Comm& comm, const std::vector<Layers>& blocks,
-                                            const std::vector<Layers>& wants, std::span<const T> mine,
-                                            size_t per_layer) {
-  const std::vector<char> bytes =
-      exchange_layers(comm, blocks, wants, {reinterpret_cast<const char*>(mine.data()), mine.size_bytes()},
-                      per_layer * sizeof(T));
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), bytes.size());
-  return values;
-}
-
-} // namespace
+template std::vector<int32_t> exchange_layers(Comm&, const std::vector<Layers>&, const std::vector<Layers>&,
+                                              std::span<const int32_t>, size_t);
 
 SampledField exchange_samples(Comm& comm, const std::vector<Layers>& blocks, const std::vector<Layers>& wants,
                               const SampledField& mine) {
   const GridSpec& grid = mine.grid();
   const size_t nodes = size_t(grid.nodes()[0] * grid.nodes()[1]), k = size_t(mine.k());
-  std::vector<int32_t> ids = layers_of(comm, blocks, wants, mine.all_ids(), nodes * k);
-  std::vector<double> values = layers_of(comm, blocks, wants, mine.all_values(), nodes * k);
-  std::vector<double> floors = layers_of(comm, blocks, wants, mine.all_floors(), nodes);
+  std::vector<int32_t> ids = exchange_layers(comm, blocks, wants, mine.all_ids(), nodes * k);
+  std::vector<double> values = exchange_layers(comm, blocks, wants, mine.all_values(), nodes * k);
+  std::vector<double> floors = exchange_layers(comm, blocks, wants, mine.all_floors(), nodes);
   return SampledField::from_samples(grid, mine.num_phases(), mine.k(), wants[size_t(comm.rank())], std::move(ids),
                                     std::move(values), std::move(floors));
 }

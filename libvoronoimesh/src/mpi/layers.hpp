@@ -19,11 +19,12 @@ using Layers = std::array<int32_t, 2>; ///< first and last layer
 /// 0..last once, in rank order (InvalidInput otherwise, naming the rank).
 std::vector<Layers> agree_on_blocks(Comm& comm, Layers mine, int32_t last);
 
-/// Layers wants[rank] of an array of `bytes_per_layer` bytes per layer, of
+/// Layers wants[rank] of an array of `per_layer` values per layer, of
 /// which this rank holds layers blocks[rank] in `mine`: each layer comes from
 /// the rank whose block holds it. `wants` are every rank's windows.
-std::vector<char> exchange_layers(Comm& comm, const std::vector<Layers>& blocks, const std::vector<Layers>& wants,
-                                  std::span<const char> mine, size_t bytes_per_layer);
+template <class T>
+std::vector<T> exchange_layers(Comm& comm, const std::vector<Layers>& blocks, const std::vector<Layers>& wants,
+                               std::span<const T> mine, size_t per_layer);
 
 /// The samples of layers wants[rank], from the ranks' blocks (`mine` is this
 /// rank's, holding blocks[rank]).
