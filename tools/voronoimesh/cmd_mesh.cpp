@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include "voronoimesh/closed_domain.hpp"
+#include "voronoimesh/errors.hpp"
 
 #include <memory>
 
