@@ -109,7 +109,10 @@ size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& para
   std::vector<std::pair<double, size_t>> slivers;
   for (auto f : om.faces()) {
     const std::array<int32_t, 3> c = mesh.face_nodes(f);
-    if (std::any_of(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) < 3; })) continue;
+    // Two corners on junctions can be an edge along a junction (a triple curve
+    // with nodes bunched where a tiny face ends), which no flip may touch; a
+    // sliver with fewer is the flips' to mend.
+    if (std::count_if(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) >= 3; }) < 2) continue;
     const double q = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
     if (q < params.below_quality) slivers.push_back({q, size_t(f.idx())});
   }

@@ -27,12 +27,19 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
   m.points = mesh.positions();
   std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
   detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
-  std::vector<uint8_t> involved(m.triangles.size()), turned(watched.size());
+  std::vector<uint8_t> involved(m.triangles.size()), turned(watched.size()), inverted(m.triangles.size());
+  auto normal = [&](const std::vector<Vec3>& p, const std::array<int32_t, 3>& t) {
+    return (p[size_t(t[1])] - p[size_t(t[0])]).cross(p[size_t(t[2])] - p[size_t(t[0])]);
+  };
   while (true) {
     // Only triangles changed since the last check can have started to cross.
+    // Clamping keeps triangles from turning over, but for triangles a millionth
+    // of the mesh size its planes are round-off: any triangle whose normal
+    // turned by 90 degrees or more is undone as well.
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
       const auto& tri = m.triangles[t];
       involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
+      inverted[t] = involved[t] && normal(m.points, tri).dot(normal(before, tri)) <= 0;
     });
     detail::parallel_for_each_index(watched.size(), [&](size_t i) {
       turned[i] = agreed[i] && !detail::agrees_with_field(m, size_t(watched[i]), *field);
@@ -44,6 +51,8 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     for (const auto& pair : crossings.pairs) culprits.insert(culprits.end(), pair.begin(), pair.end());
     for (size_t i = 0; i < watched.size(); ++i)
       if (turned[i]) culprits.push_back(watched[i]);
+    for (size_t t = 0; t < inverted.size(); ++t)
+      if (inverted[t]) culprits.push_back(int32_t(t));
     std::fill(changed.begin(), changed.end(), 0);
     std::vector<int32_t> undo;
     for (int32_t t : culprits)

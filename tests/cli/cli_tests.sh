@@ -197,6 +197,11 @@ printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file"
 printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "gone.nrrd"}]}\n' >grids/missing.json
 printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "short.nrrd"}]}\n' >grids/other.json
 printf '{"domain": {"min": [0, 0, 0], "max": [20, 1, 1]}, "phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "sphere", "center": [5, 5, 5], "radius": 2}]}\n' >grids/domain.json
+# Options for volumes are refused where they would be ignored, naming the input and the option.
+expect_error "volume option on a scene" 2 "grids/scene\.json: --voxels-per-cell applies only to volumes, and this is a scene" -- "$vm" create grids/scene.json --voxels-per-cell 2 -o out.ply
+expect_error "label option on a distance grid" 2 "all\.nrrd: --smoothing applies only to label volumes, and this is a distance grid" -- "$vm" create all.nrrd --smoothing 2 -o out.ply
+expect_error "label options on the demo" 2 "the built-in demo: --drop-labels, --signed-distance apply only to label volumes" -- "$vm" mesh --drop-labels 3 --signed-distance -o out.ply
+expect_error "volume option on a point cloud" 2 "cloud\.xyz: --ignore-direction applies only to volumes, and this is a point cloud" -- "$vm" create cloud.xyz --ignore-direction -o out.ply
 if "$vm" create -q grids/scene.json -o gs.ply && "$vm" create -q all.nrrd -o ga.ply && cmp -s gs.ply ga.ply; then pass
 else fail "grid phases do not mesh as the multi-component file"; fi
 if "$vm" stats gs.ply | grep -qE "^phases +3" && "$vm" stats gs.ply | grep -qE "^topology +valid"; then pass; else fail "grid phase mesh is not valid"; fi
@@ -238,6 +243,20 @@ if [ "$got" -ne 130 ]; then fail "Ctrl-C: exit $got, expected 130 ($(tail -1 std
 elif ! tail -1 stderr.txt | grep -q "voronoimesh: interrupted; nothing was written"; then fail "Ctrl-C: $(tail -1 stderr.txt)"
 elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "Ctrl-C: left an output file behind"
 else pass; fi
+
+# kill -9 at any moment leaves out.ply as it was (absent or a complete mesh), never a
+# partial file; the next run that writes out.ply removes the killed runs' temporaries.
+rm -f out.ply out.ply.tmp-*
+for delay in 0.05 0.1 0.15 0.2 0.25; do
+  "$vm" mesh --grid 40 --iterations 4 -q -o out.ply &
+  pid=$!
+  sleep "$delay"
+  kill -KILL "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  if [ -e out.ply ] && ! "$vm" stats out.ply >/dev/null 2>&1; then fail "kill -9 after ${delay}s: out.ply is not a complete mesh"; fi
+done
+if "$vm" mesh --grid 8 --iterations 0 -q -o out.ply && "$vm" stats out.ply >/dev/null && ! ls out.ply.tmp-* >/dev/null 2>&1
+then pass; else fail "kill -9: temporaries left after the next run"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

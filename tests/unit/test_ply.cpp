@@ -5,6 +5,8 @@
 #include "voronoimesh/io/ply.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -88,6 +90,23 @@ TEST_F(Ply, write_leaves_no_temporary_and_replaces_the_target) {
   for (const auto& e : fs::directory_iterator(dir_)) files += (void(e), 1);
   EXPECT_EQ(files, 1u);
   EXPECT_EQ(io::read_ply(path("m.ply")).triangles.size(), 4u);
+}
+
+// A run killed while writing (kill -9) leaves its m.ply.tmp-<pid>; the next
+// write of m.ply removes it, but not a live process's nor other files.
+TEST_F(Ply, write_removes_what_killed_runs_left_and_nothing_else) {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0); // its pid now belongs to no process (bar reuse within microseconds)
+  const std::string dead = "m.ply.tmp-" + std::to_string(child);
+  const std::string live = "m.ply.tmp-" + std::to_string(::getppid());
+  for (const std::string& name : {dead, live, std::string("m.ply.tmp-x1"), std::string("n.ply.tmp-1")})
+    write_text(name, "partial");
+  io::write_ply(test::tetrahedron(), path("m.ply"));
+  EXPECT_FALSE(fs::exists(path(dead)));
+  for (const std::string& name : {live, std::string("m.ply.tmp-x1"), std::string("n.ply.tmp-1"), std::string("m.ply")})
+    EXPECT_TRUE(fs::exists(path(name))) << name;
 }
 
 TEST_F(Ply, write_to_a_missing_directory_names_the_path) {

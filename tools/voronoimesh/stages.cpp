@@ -203,7 +203,6 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
 }
 
 vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Progress& progress, bool quiet) {
-  if (path.empty()) return vm::demo_scene();
   for (const std::string& group : o.merge) {
     std::vector<int32_t> labels;
     size_t start = 0;
@@ -220,6 +219,10 @@ vm::Scene read_input(const std::string& path, InputCliOptions o, int top_k, Prog
   }
   o.input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
   o.input.top_k = top_k;
+  if (path.empty()) {
+    vm::refuse_options_that_do_not_apply(o.input, false, false, "a scene", "the built-in demo");
+    return vm::demo_scene();
+  }
   progress.stage("reading " + path + "...");
   const auto t0 = std::chrono::steady_clock::now();
   vm::Scene scene = vm::load_input(path, o.input);

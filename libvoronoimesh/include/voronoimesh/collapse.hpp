@@ -4,7 +4,9 @@
 /// paper: where quadruple points lie closer than a grid cell, triangles with all
 /// three corners on junction curves can become degenerate; clamping then freezes
 /// their corners (a degenerate triangle allows no move) and, their other edges
-/// being junctions, no flip can remove them.
+/// being junctions, no flip can remove them. Where a tiny face ends, nodes bunch
+/// on its triple curve: triangles with one short edge along the curve, which no
+/// flip may touch either.
 
 #include "voronoimesh/mesh.hpp"
 
@@ -12,7 +14,7 @@ namespace vm {
 
 /// Parameters of the collapse pass.
 struct CollapseParams {
-  /// Triangles below this quality whose three corners all lie on junctions (or
+  /// Triangles below this quality with two or three corners on junctions (or
   /// the box) are collapsed. 0 turns collapsing off.
   double below_quality = 0.05;
   /// At most this many collapses per call.

@@ -35,7 +35,9 @@ struct GuardReport {
 /// against the direction from its first phase into its second
 /// (grad phi_second - grad phi_first at its centroid, where that is clear) are
 /// undone too: clamping cannot see that, and near close quadruple points such
-/// triangles could stand across their surface for a few iterations.
+/// triangles could stand across their surface for a few iterations. So are the
+/// moves that turn any triangle's normal by 90 degrees or more: clamping rules
+/// that out, but not in round-off for triangles a millionth of the mesh's size.
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
                                      const PhaseField* field = nullptr);
 

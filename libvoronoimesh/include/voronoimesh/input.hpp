@@ -48,4 +48,13 @@ struct InputOptions {
 /// unknown extension) or IoError (unreadable), one line naming the file.
 Scene load_input(const std::string& path, const InputOptions& options = {});
 
+/// Throws InvalidInput "<what>: --smoothing, ... apply only to volumes, and
+/// this is <kind>" when an option that only volumes (or label volumes) use differs
+/// from its default, so that none is silently ignored. load_input() checks its
+/// inputs with it; a program meshing a scene of its own (the CLI's demo) can too.
+/// `volume` and `labels` say whether the options for volumes and for label
+/// volumes apply; `kind` names the input ("a scene").
+void refuse_options_that_do_not_apply(const InputOptions& options, bool volume, bool labels, const std::string& kind,
+                                      const std::string& what);
+
 } // namespace vm

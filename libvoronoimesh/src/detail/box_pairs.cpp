@@ -29,7 +29,8 @@ namespace {
 struct Entry {
   uint64_t key;
   int32_t tri;
-  uint8_t first; ///< bit a: the cell is the triangle's first one along axis a
+  uint8_t first;    ///< bit a: the cell is the triangle's first one along axis a
+  uint8_t involved; ///< the box is one whose pairs are wanted
 };
 
 constexpr int kAxisBits = 19; // cells per axis below 2^19 (see Grid::Grid)
@@ -103,8 +104,9 @@ private:
 
 } // namespace
 
-std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
+std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved) {
   const size_t n = boxes.size();
+  auto is_involved = [&](size_t t) { return uint8_t(involved.empty() || involved[t]); };
   if (n < 2) return {};
   const Grid grid(boxes);
   std::vector<int8_t> level(n);
@@ -119,7 +121,8 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
   std::vector<Entry> entries(offset[n]);
   tbb::parallel_for(size_t(0), n, [&](size_t t) {
     size_t e = offset[t];
-    grid.for_cells(boxes[t], level[t], [&](uint64_t key, uint8_t first) { entries[e++] = {key, int32_t(t), first}; });
+    grid.for_cells(boxes[t], level[t],
+                   [&](uint64_t key, uint8_t first) { entries[e++] = {key, int32_t(t), first, is_involved(t)}; });
   });
   tbb::parallel_sort(entries.begin(), entries.end(),
                      [](const Entry& x, const Entry& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
@@ -140,9 +143,14 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_start.size() - 1), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found.local();
     for (size_t c = r.begin(); c != r.end(); ++c)
-      for (size_t i = cell_start[c]; i < cell_start[c + 1]; ++i)
-        for (size_t j = i + 1; j < cell_start[c + 1]; ++j)
-          consider(out, entries[i].tri, entries[j].tri, entries[i].first, entries[j].first);
+      // Each involved entry meets every other, but an involved one before it
+      // (that pair was taken from the other side).
+      for (size_t i = cell_start[c]; i < cell_start[c + 1]; ++i) {
+        if (!entries[i].involved) continue;
+        for (size_t j = involved.empty() ? i + 1 : cell_start[c]; j < cell_start[c + 1]; ++j)
+          if (j > i || (j < i && !entries[j].involved))
+            consider(out, entries[i].tri, entries[j].tri, entries[i].first, entries[j].first);
+      }
   });
   // Pairs across levels: each box looks up the cells it covers in every higher level.
   if (top_level > 0)
@@ -154,7 +162,8 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes) {
           grid.for_cells(boxes[t], l, [&](uint64_t key, uint8_t first) {
             auto lo = std::lower_bound(entries.begin(), entries.end(), key,
                                        [](const Entry& e, uint64_t k) { return e.key < k; });
-            for (; lo != entries.end() && lo->key == key; ++lo) consider(out, int32_t(t), lo->tri, first, lo->first);
+            for (; lo != entries.end() && lo->key == key; ++lo)
+              if (is_involved(t) || lo->involved) consider(out, int32_t(t), lo->tri, first, lo->first);
           });
         }
     });

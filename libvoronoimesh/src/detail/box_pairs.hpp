@@ -32,7 +32,9 @@ using BoxPair = std::array<int32_t, 2>;
 
 /// Every pair of boxes that overlap (touching included), each once, in an order
 /// that depends on the thread count (callers must not depend on it). Boxes
-/// must be finite.
-std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes);
+/// must be finite. With `involved` (one flag per box; empty: all boxes), only
+/// the pairs with at least one involved box: checking a few moved triangles
+/// against the rest then costs little more than finding their neighbours.
+std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved = {});
 
 } // namespace vm::detail
