@@ -7,8 +7,14 @@ set(VORONOIMESH_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/voronoimesh")
 
 install(TARGETS voronoimesh EXPORT voronoimeshTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The CLI of an MPI build needs voronoimesh_mpi beside the core library. Its header
+# (mpi.hpp, which needs mpi.h) and a CMake target for it are not part of the
+# package yet: programs use it from the build tree.
+if(VM_MPI)
+  install(TARGETS voronoimesh_mpi LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libvoronoimesh/include/voronoimesh
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "mpi.hpp" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/include/voronoimesh/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voronoimesh)
 install(DIRECTORY DESTINATION ${VORONOIMESH_INSTALL_PLUGINDIR})

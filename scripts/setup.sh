@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs everything voronoimesh needs to build, from Debian 12 packages; with
 # --test-readers also the independent readers the tests check every output format
-# with (meshio, VTK, Gmsh, TetGen: large, and only the tests need them).
+# with (meshio, VTK, Gmsh, TetGen: large, and only the tests need them); with
+# --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi).
 # Safe to run again: apt-get skips what is already there. Needs root (or sudo).
-# Usage: scripts/setup.sh [--test-readers]
+# Usage: scripts/setup.sh [--test-readers] [--mpi]
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
@@ -12,11 +13,13 @@ packages=(
   libteem-dev libnanoflann-dev
   zlib1g-dev libbz2-dev libnifti2-dev
 )
-case "${1:-}" in
-  --test-readers) packages+=(python3-meshio python3-vtk9 gmsh tetgen) ;;
-  "") ;;
-  *) echo "usage: scripts/setup.sh [--test-readers]" >&2; exit 2 ;;
-esac
+for arg in "$@"; do
+  case "$arg" in
+    --test-readers) packages+=(python3-meshio python3-vtk9 gmsh tetgen) ;;
+    --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
+    *) echo "usage: scripts/setup.sh [--test-readers] [--mpi]" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

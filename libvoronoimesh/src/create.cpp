@@ -1,10 +1,12 @@
 #include "voronoimesh/create.hpp"
 
+#include "detail/create_part.hpp"
 #include "detail/lattice.hpp"
 #include "detail/limit_key_index.hpp"
 #include "detail/node_values.hpp"
 #include "detail/tet_cutter.hpp"
 #include "detail/text.hpp"
+#include "detail/validate_part.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/validate.hpp"
 
@@ -18,9 +20,11 @@
 namespace vm {
 namespace {
 
+using detail::CreatePart;
 using detail::CutTriangle;
 using detail::LimitKey;
 using detail::LimitKeyIndex;
+using SlabRange = std::array<int, 2>;
 
 /// What one slab of the lattice produced: its distinct limit points (with
 /// positions) and triangles indexing them.
@@ -33,14 +37,6 @@ struct SlabResult {
   uint64_t tets = 0;
   uint64_t dropped = 0;
   uint64_t box_triangles = 0;
-};
-
-/// The mesh of one extraction, and the exact point behind every vertex.
-struct Extraction {
-  std::vector<Vec3> points;
-  std::vector<LimitKey> keys;
-  std::vector<std::array<int32_t, 3>> triangles;
-  std::vector<PhasePair> pairs;
 };
 
 /// Cuts the tetrahedra of one slab, and with `outside` >= 0 their faces on the
@@ -98,54 +94,79 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
   });
 }
 
-/// Cuts the tetrahedra of the slabs flagged in `recut` (in parallel, slab by
-/// slab; the others keep what an earlier round found, their nodes' values being
-/// unchanged) and numbers the limit points of all slabs in order of first
-/// appearance. Slabs are a property of the lattice, not of the thread count, and
-/// are merged in order: the result is the same for any number of threads, and
-/// the same as cutting every slab again.
-Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
-                   int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs,
-                   CreateStats& stats) {
-  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) {
+/// Numbers the limit points of slab `s` among those of `e` (adding the new
+/// ones), into `global`; marks where they were made.
+void ids_of_slab(const SlabResult& s, LimitKeyIndex& ids, CreatePart& e, uint8_t where, std::vector<int32_t>& global) {
+  global.resize(s.keys.size());
+  for (size_t k = 0; k < s.keys.size(); ++k) {
+    const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
+    if (inserted) {
+      e.points.push_back(s.points[k]);
+      e.keys.push_back(s.keys[k]);
+      e.where.push_back(0);
+    }
+    e.where[size_t(id)] |= where;
+    global[k] = id;
+  }
+}
+
+void append_triangles(const SlabResult& s, const std::vector<int32_t>& global, CreatePart& e) {
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& tri = s.triangles[t];
+    e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
+    e.pairs.push_back(s.pairs[t]);
+  }
+}
+
+/// Cuts the tetrahedra of the slabs cut[0]..cut[1] flagged in `recut` (in
+/// parallel, slab by slab; the others keep what an earlier round found, their
+/// nodes' values being unchanged) and numbers the limit points of those slabs
+/// in order of first appearance. Slabs are a property of the lattice, not of
+/// the thread count, and are merged in order: the result is the same for any
+/// number of threads, and the same as cutting every slab again. Statistics
+/// count the `owned` slabs.
+CreatePart extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
+                   int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs, SlabRange owned,
+                   SlabRange cut, CreateStats& stats) {
+  tbb::parallel_for(cut[0], cut[1] + 1, [&](int s) {
     if (!recut[size_t(s)]) return;
     slabs[size_t(s)] = SlabResult{};
     cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);
   });
 
-  Extraction e;
+  CreatePart e;
   LimitKeyIndex ids;
   size_t keys = 0, triangles = 0;
-  for (auto& s : slabs) keys += s.keys.size(), triangles += s.triangles.size();
+  for (int s = cut[0]; s <= cut[1]; ++s)
+    keys += slabs[size_t(s)].keys.size(), triangles += slabs[size_t(s)].triangles.size();
   ids.reserve(keys);
   e.points.reserve(keys);
   e.keys.reserve(keys);
+  e.where.reserve(keys);
   e.triangles.reserve(triangles);
   e.pairs.reserve(triangles);
   std::vector<int32_t> global;
-  for (const auto& s : slabs) {
-    stats.tets_visited += s.tets;
-    stats.tets_cut += s.counters.tets_cut;
-    stats.polygons += s.counters.polygons;
-    stats.degenerate_cuts += s.counters.degenerate;
-    stats.collapsed_polygons += s.counters.collapsed;
-    stats.dropped_triangles += s.dropped;
-    stats.box_triangles += s.box_triangles;
-    global.resize(s.keys.size());
-    for (size_t k = 0; k < s.keys.size(); ++k) {
-      const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
-      if (inserted) {
-        e.points.push_back(s.points[k]);
-        e.keys.push_back(s.keys[k]);
-      }
-      global[k] = id;
+  for (int slab = cut[0]; slab <= cut[1]; ++slab) {
+    const SlabResult& s = slabs[size_t(slab)];
+    const uint8_t where = slab < owned[0]   ? detail::kBelowOwned
+                          : slab > owned[1] ? detail::kAboveOwned
+                                            : detail::kInOwned;
+    if (slab == owned[0]) e.owned_begin = e.triangles.size();
+    if (where == detail::kInOwned) {
+      stats.tets_visited += s.tets;
+      stats.tets_cut += s.counters.tets_cut;
+      stats.polygons += s.counters.polygons;
+      stats.degenerate_cuts += s.counters.degenerate;
+      stats.collapsed_polygons += s.counters.collapsed;
+      stats.dropped_triangles += s.dropped;
+      stats.box_triangles += s.box_triangles;
     }
-    for (size_t t = 0; t < s.triangles.size(); ++t) {
-      const auto& tri = s.triangles[t];
-      e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
-      e.pairs.push_back(s.pairs[t]);
-    }
+    ids_of_slab(s, ids, e, where, global);
+    append_triangles(s, global, e);
+    if (slab == owned[0]) e.first_owned_slab = global;
+    if (slab == owned[1]) e.owned_end = e.triangles.size();
   }
+  if (cut[1] > owned[1]) e.slab_above = global;
   return e;
 }
 
@@ -155,7 +176,7 @@ Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& 
 /// is the one they share, and what remains is the interface between the outer two
 /// (nothing, if those are the same phase). Couples that do not stack that way, and
 /// stacks of three or more, are left for the validator to report.
-void resolve_coincident_triangles(Extraction& e, CreateStats& stats) {
+void resolve_coincident_triangles(CreatePart& e, CreateStats& stats) {
   auto& tris = e.triangles;
   auto& pairs = e.pairs;
   // Two polygons from different tets can only coincide on the face between them,
@@ -207,13 +228,18 @@ void resolve_coincident_triangles(Extraction& e, CreateStats& stats) {
     }
     g = end;
   }
-  size_t w = 0;
-  for (size_t t = 0; t < tris.size(); ++t)
+  size_t w = 0, owned_begin = 0, owned_end = 0;
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (t == e.owned_begin) owned_begin = w;
+    if (t == e.owned_end) owned_end = w;
     if (!removed[t]) {
       tris[w] = tris[t];
       pairs[w] = pairs[t];
       ++w;
     }
+  }
+  e.owned_begin = e.owned_begin < tris.size() ? owned_begin : w;
+  e.owned_end = e.owned_end < tris.size() ? owned_end : w;
   tris.resize(w);
   pairs.resize(w);
 }
@@ -236,13 +262,104 @@ uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
   return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes);
 }
 
-CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+void check_params(const CreateParams& params) {
   if (!(params.snap >= 0 && params.snap <= 0.5))
     throw InvalidInput("snap: must be between 0 and 0.5 (a fraction of the grid spacing h), got " +
                        detail::cat(params.snap));
+}
+
+/// The grid layers whose nodes the owner of slabs `owned` counts in statistics:
+/// from the first layer of its first slab to below the first layer of the next
+/// owner's, so every layer is counted once.
+std::array<int32_t, 2> counted_layers(const detail::TetLattice& lattice, SlabRange owned, int32_t top) {
+  const int next = owned[1] + 1;
+  return {lattice.layers_of_slabs(owned[0], owned[0])[0],
+          next < lattice.num_slabs() ? lattice.layers_of_slabs(next, next)[0] - 1 : top};
+}
+
+uint64_t count_snapped(const detail::NodeValues& values, const detail::TetLattice& lattice,
+                       std::array<int32_t, 2> layers) {
+  const detail::NodeWindow w = lattice.window(layers[0], layers[1]);
+  uint64_t snapped = 0;
+  for (int r = 0; r < 2; ++r)
+    for (int64_t id = w.first[size_t(r)]; id < w.first[size_t(r)] + w.count[size_t(r)]; ++id)
+      snapped += values.snapped(id);
+  return snapped;
+}
+
+/// The lattice nodes of the vertices in the problems validate() finds around
+/// the vertices of the owned slabs, and how many problems it finds. `whole`:
+/// the part is the whole mesh. Otherwise only the vertices made in the owned
+/// slabs have all their triangles in the part: they are numbered first and
+/// validate_first_nodes() checks them alone, which finds exactly the problems
+/// validate() finds at them in the whole mesh.
+std::pair<std::vector<int64_t>, size_t> offending_nodes(CreatePart& part, const Box& domain, bool whole) {
+  NodeMesh mesh;
+  mesh.domain = domain;
+  ValidationReport report;
+  if (whole) {
+    mesh.points = std::move(part.points);
+    mesh.triangles = std::move(part.triangles);
+    mesh.pairs = std::move(part.pairs);
+    report = validate(mesh);
+    part.points = std::move(mesh.points);
+    part.triangles = std::move(mesh.triangles);
+    part.pairs = std::move(mesh.pairs);
+  } else {
+    std::vector<int32_t> order, renumbered(part.points.size());
+    for (int pass = 0; pass < 2; ++pass)
+      for (size_t v = 0; v < part.points.size(); ++v)
+        if (((part.where[v] & detail::kInOwned) != 0) == (pass == 0)) {
+          renumbered[v] = int32_t(order.size());
+          order.push_back(int32_t(v));
+        }
+    size_t checked = 0;
+    while (checked < order.size() && (part.where[size_t(order[checked])] & detail::kInOwned)) ++checked;
+    mesh.points.reserve(order.size());
+    for (int32_t v : order) mesh.points.push_back(part.points[size_t(v)]);
+    mesh.triangles.reserve(part.triangles.size());
+    for (const auto& t : part.triangles)
+      mesh.triangles.push_back({renumbered[size_t(t[0])], renumbered[size_t(t[1])], renumbered[size_t(t[2])]});
+    mesh.pairs = part.pairs;
+    report = detail::validate_first_nodes(mesh, checked);
+    for (int32_t& v : report.nodes) v = order[size_t(v)];
+  }
+  std::vector<int64_t> nodes;
+  for (int32_t v : report.nodes)
+    for (int c = 0; c < part.keys[size_t(v)].count; ++c) nodes.push_back(part.keys[size_t(v)].nodes[c]);
+  return {std::move(nodes), report.problem_count};
+}
+
+} // namespace
+
+namespace detail {
+
+CreateStats create_part(const SampledField& field, std::array<double, 2> value_range, const CreateParams& params,
+                        SlabRange owned, CreatePeers& peers, CreatePart& part) {
+  const auto start = std::chrono::steady_clock::now();
+  check_params(params);
   const GridSpec& grid = field.grid();
-  detail::TetLattice lattice(grid, params.lattice);
+  TetLattice lattice(grid, params.lattice);
+  const int num_slabs = lattice.num_slabs();
+  if (owned[0] < 0 || owned[1] >= num_slabs || owned[0] > owned[1])
+    throw InvalidInput(cat("create: slabs ", owned[0], "..", owned[1], " are not within the lattice's 0..",
+                           num_slabs - 1));
+  // The slab on each side too, so that every triangle around a vertex of the
+  // owned slabs is here (a lattice node's tetrahedra lie in two neighbouring slabs).
+  const SlabRange cut{std::max(0, owned[0] - 1), std::min(num_slabs - 1, owned[1] + 1)};
+  const bool whole = cut == owned;
+  const std::array<int32_t, 2> layers = lattice.layers_of_slabs(cut[0], cut[1]);
+  if (field.layers()[0] > layers[0] || field.layers()[1] < layers[1])
+    throw InvalidInput(cat("create: the samples hold grid layers ", field.layers()[0], "..", field.layers()[1],
+                           ", slabs ", cut[0], "..", cut[1], " need ", layers[0], "..", layers[1]));
+  const NodeScope scope{lattice.window(layers[0], layers[1]), value_range[0], value_range[1]};
+  const std::array<int32_t, 2> counted = counted_layers(lattice, owned, grid.cells[2]);
+  auto is_counted = [&](int64_t node) {
+    const int32_t z = lattice.grid_point(node)[2];
+    return z >= counted[0] && z <= counted[1];
+  };
 
   // Snapping can tie three phases at both ends of a lattice edge, or tie phases at
   // a node so that one phase touches it from two sides: a pinched, non-manifold
@@ -257,45 +374,40 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   // anew each time the node offends again. Moved values hold no coincidences
   // (bar a chance of one in 16 or more per draw), so this ends: in practice after
   // a few rounds. Only the slabs holding a node repaired in the last round are
-  // cut again.
-  using Level = detail::NodeValues::RepairLevel;
-  std::vector<Level> repair;
-  std::vector<SlabResult> slabs(size_t(lattice.num_slabs()));
-  std::vector<char> recut(slabs.size(), 1);
+  // cut again. Every rank repairs the nodes all ranks found, so all make the
+  // repairs one process makes.
+  using Level = NodeValues::RepairLevel;
+  std::vector<Level> repair; // by the window's numbering
+  std::vector<SlabResult> slabs(static_cast<size_t>(num_slabs));
+  std::vector<char> recut(slabs.size(), 0);
+  std::fill(recut.begin() + cut[0], recut.begin() + cut[1] + 1, 1);
   CreateStats stats;
   double check_seconds = 0;
-  Extraction e;
   for (int round = 0;; ++round) {
-    detail::NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(),
-                              repair.empty() ? nullptr : &repair);
+    NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(),
+                      repair.empty() ? nullptr : &repair, &scope);
     CreateStats round_stats;
-    e = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, round_stats);
-    resolve_coincident_triangles(e, round_stats);
-    round_stats.snapped_nodes = values.snapped_nodes();
+    part = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, owned, cut,
+                   round_stats);
+    resolve_coincident_triangles(part, round_stats);
+    round_stats.snapped_nodes = whole ? values.snapped_nodes() : count_snapped(values, lattice, counted);
     round_stats.unsnapped_nodes = stats.unsnapped_nodes;
     round_stats.untied_nodes = stats.untied_nodes;
     round_stats.repair_rounds = round;
     stats = round_stats;
-
-    out = NodeMesh{};
-    out.domain = grid.domain;
-    out.points = std::move(e.points);
-    out.triangles = std::move(e.triangles);
-    out.pairs = std::move(e.pairs);
     if (round == kMaxRepairRounds) break;
+
     const auto check_start = std::chrono::steady_clock::now();
-    ValidationReport report = validate(out);
+    auto [nodes, problems] = offending_nodes(part, grid.domain, whole);
     check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
-    if (report.ok()) {
+    nodes = peers.merge_nodes(std::move(nodes));
+    if (peers.sum(problems) == 0) {
       stats.validated = true;
       break;
     }
-    if (repair.empty()) repair.assign(size_t(lattice.num_nodes()), detail::NodeValues::kSnap);
+    if (repair.empty()) repair.assign(size_t(scope.window.size()), NodeValues::kSnap);
     std::fill(recut.begin(), recut.end(), 0);
     uint64_t unsnapped = 0, untied = 0;
-    std::vector<int64_t> nodes;
-    for (int32_t v : report.nodes)
-      for (int c = 0; c < e.keys[size_t(v)].count; ++c) nodes.push_back(e.keys[size_t(v)].nodes[c]);
     // Repairs that stay at the offending nodes can move the problem to the next
     // node along (unsnapping one node of a snapped region leaves its neighbours'
     // ties): from the second round on, the neighbours are repaired with them.
@@ -316,24 +428,44 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     for (int64_t node : nodes) {
-      Level& level = repair[size_t(node)];
+      if (!scope.window.contains(node)) continue; // no slab cut here uses it
+      Level& level = repair[size_t(scope.window.local(node))];
       if (level == std::numeric_limits<Level>::max()) continue;
-      if (!everywhere && level == detail::NodeValues::kSnap && values.snapped(node)) {
-        level = detail::NodeValues::kUnsnap;
-        ++unsnapped;
+      if (!everywhere && level == NodeValues::kSnap && values.snapped(node)) {
+        level = NodeValues::kUnsnap;
+        unsnapped += is_counted(node);
       } else {
-        level = std::max<Level>(level + 1, detail::NodeValues::kFirstUntie);
-        ++untied;
+        level = std::max<Level>(level + 1, NodeValues::kFirstUntie);
+        untied += is_counted(node);
       }
       const auto [first, last] = lattice.slabs_of_node(node);
-      for (int slab = first; slab <= last; ++slab) recut[size_t(slab)] = 1;
+      for (int slab = std::max(first, cut[0]); slab <= std::min(last, cut[1]); ++slab) recut[size_t(slab)] = 1;
     }
+    unsnapped = peers.sum(unsnapped);
+    untied = peers.sum(untied);
     if (unsnapped + untied == 0) break; // nothing left to repair: the caller's validation reports it
     stats.unsnapped_nodes += unsnapped;
     stats.untied_nodes += untied;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.check_seconds = check_seconds;
+  return stats;
+}
+
+} // namespace detail
+
+CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
+  check_params(params);
+  const detail::TetLattice lattice(field.grid(), params.lattice);
+  detail::CreatePeers alone;
+  CreatePart part;
+  const CreateStats stats = detail::create_part(field, {field.min_value(), field.max_value()}, params,
+                                                {0, lattice.num_slabs() - 1}, alone, part);
+  out = NodeMesh{};
+  out.domain = field.grid().domain;
+  out.points = std::move(part.points);
+  out.triangles = std::move(part.triangles);
+  out.pairs = std::move(part.pairs);
   return stats;
 }
 

@@ -74,6 +74,28 @@ GridPoint TetLattice::grid_point(int64_t id) const {
   return {int32_t(2 * (id % n[0])) + o, int32_t(2 * (id / n[0] % n[1])) + o, int32_t(2 * (id / (n[0] * n[1]))) + o};
 }
 
+NodeWindow TetLattice::window(int32_t z0, int32_t z1) const {
+  NodeWindow w;
+  w.z0 = std::max(0, z0);
+  w.z1 = std::min(grid_.cells[2], z1);
+  if (w.z1 < w.z0) return w;
+  if (kind_ == Lattice::cube6) {
+    const int64_t layer = grid_.nodes()[0] * grid_.nodes()[1];
+    w.first[0] = w.z0 * layer;
+    w.count[0] = (w.z1 - w.z0 + 1) * layer;
+    return w;
+  }
+  // Corners lie on even layers, centres on odd ones; each kind is numbered layer by layer.
+  auto run = [&](int parity, int64_t per_layer, int64_t offset, int r) {
+    const int32_t lo = w.z0 + ((w.z0 & 1) != parity), hi = w.z1 - ((w.z1 & 1) != parity);
+    w.first[r] = offset + int64_t(lo >> 1) * per_layer;
+    w.count[r] = hi >= lo ? int64_t((hi - lo) / 2 + 1) * per_layer : 0;
+  };
+  run(0, even_[0] * even_[1], 0, 0);
+  run(1, odd_[0] * odd_[1], even_count_, 1);
+  return w;
+}
+
 int64_t TetLattice::num_node_rows() const {
   if (kind_ == Lattice::cube6) return grid_.nodes()[1] * grid_.nodes()[2];
   return even_[1] * even_[2] + odd_[1] * odd_[2];

@@ -33,9 +33,8 @@ void require_field(const Scene& scene) {
 
 } // namespace
 
-NodeMesh create_mesh(const Scene& scene, const MeshOptions& o) {
+GridSpec create_grid(const Scene& scene, const MeshOptions& o) {
   require_field(scene);
-  const auto limit = thread_limit(o);
   GridSpec grid = scene.grid;
   if (o.grid != std::array<int, 3>{0, 0, 0}) {
     for (int n : o.grid)
@@ -43,17 +42,32 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& o) {
     grid.cells = o.grid;
   }
   if (o.top_k < 1 || o.top_k > 16) throw InvalidInput(cat("top_k: must be between 1 and 16, got ", o.top_k));
+  return grid_for_lattice(grid, o.lattice);
+}
+
+CreateParams create_params(const MeshOptions& o) {
   CreateParams params;
   params.lattice = o.lattice;
   params.snap = o.snap;
   params.close = o.close;
-  grid = grid_for_lattice(grid, params.lattice);
+  return params;
+}
+
+void name_phases(NodeMesh& mesh, const Scene& scene, const MeshOptions& o) {
+  name_phases(mesh, *(o.close ? with_outside_phase(scene.field, mesh.domain) : scene.field));
+}
+
+NodeMesh create_mesh(const Scene& scene, const MeshOptions& o) {
+  require_field(scene);
+  const auto limit = thread_limit(o);
+  const GridSpec grid = create_grid(scene, o);
+  const CreateParams params = create_params(o);
   detail::refuse_beyond_memory(double(estimate_create_memory(grid, o.top_k, params.lattice)), "grid",
                                cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid"));
   const SampledField samples = SampledField::sample(*scene.field, grid, o.top_k);
   NodeMesh mesh;
   const CreateStats stats = create_initial_mesh(samples, params, mesh);
-  name_phases(mesh, *(o.close ? with_outside_phase(scene.field, grid.domain) : scene.field));
+  name_phases(mesh, scene, o);
   if (o.validate && !stats.validated) require_valid(mesh, "the created mesh");
   return mesh;
 }

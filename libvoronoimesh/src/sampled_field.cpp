@@ -55,9 +55,17 @@ double node_floor(std::span<const double> vals, double h) {
 } // namespace
 
 SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k) {
+  return sample(field, grid, k, {0, grid.cells[2]});
+}
+
+SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k,
+                                  std::array<int32_t, 2> layers) {
   if (k < 1 || k > 16)
     throw InvalidInput(located("sample", "k (phases kept per node) must be between 1 and 16, got " + std::to_string(k)));
   check_grid(grid);
+  if (layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1])
+    throw InvalidInput(located("sample", "layers " + std::to_string(layers[0]) + ".." + std::to_string(layers[1]) +
+                                             " are not within the grid's 0.." + std::to_string(grid.cells[2])));
   const int n_phases = field.num_phases();
   if (n_phases < 1) throw InvalidInput(located("sample", "the field has no phases"));
 
@@ -66,12 +74,14 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
   s.num_phases_ = n_phases;
   s.k_ = std::min(k, n_phases);
   const size_t kk = size_t(s.k_);
-  const int64_t count = grid.node_count();
+  const auto nodes = grid.nodes();
+  s.layers_ = layers;
+  s.first_node_ = grid.node_index(0, 0, layers[0]);
+  const int64_t count = (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
   s.ids_.resize(size_t(count) * kk);
   s.values_.resize(size_t(count) * kk);
   s.floor_.resize(size_t(count));
   const double h = grid.h();
-  const auto nodes = grid.nodes();
 
   // Lowest node index holding a NaN or infinity. Nodes above it are skipped and
   // nodes below it are all visited, so the error reported does not depend on
@@ -79,11 +89,12 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
   std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
 
   // One task range = rows of nodes along x; every node is written by one task only.
-  tbb::parallel_for(tbb::blocked_range<int64_t>(0, nodes[1] * nodes[2]), [&](const auto& rows) {
+  const int64_t first_row = layers[0] * nodes[1], end_row = (layers[1] + 1) * nodes[1];
+  tbb::parallel_for(tbb::blocked_range<int64_t>(first_row, end_row), [&](const auto& rows) {
     for (int64_t row = rows.begin(); row != rows.end(); ++row) {
       const int64_t j = row % nodes[1], kz = row / nodes[1];
       for (int64_t i = 0; i < nodes[0]; ++i) {
-        const int64_t n = grid.node_index(i, j, kz);
+        const int64_t n = grid.node_index(i, j, kz) - s.first_node_;
         if (n > first_bad.load(std::memory_order_relaxed)) return;
         const std::span<int32_t> ids{&s.ids_[size_t(n) * kk], kk};
         const std::span<double> vals{&s.values_[size_t(n) * kk], kk};
@@ -98,20 +109,47 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
     }
   });
   if (const int64_t bad = first_bad.load(); bad != std::numeric_limits<int64_t>::max())
-    throw_not_finite(field, grid, bad);
-
-  // The floor is below every stored value of its node, and slot 0 is the node's largest.
-  s.min_value_ = *std::min_element(s.floor_.begin(), s.floor_.end());
-  s.max_value_ = s.values_[0];
-  for (int64_t n = 1; n < count; ++n) s.max_value_ = std::max(s.max_value_, s.values_[size_t(n) * kk]);
+    throw_not_finite(field, grid, bad + s.first_node_);
+  s.find_range();
   return s;
+}
+
+SampledField SampledField::from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,
+                                        std::vector<int32_t> ids, std::vector<double> values,
+                                        std::vector<double> floors) {
+  check_grid(grid);
+  const auto nodes = grid.nodes();
+  const int64_t count = (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
+  if (k < 1 || layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1] ||
+      ids.size() != size_t(count) * size_t(k) || values.size() != ids.size() || floors.size() != size_t(count))
+    throw InvalidInput(located("samples", "the arrays do not match layers " + std::to_string(layers[0]) + ".." +
+                                              std::to_string(layers[1]) + " with " + std::to_string(k) +
+                                              " phases per node"));
+  SampledField s;
+  s.grid_ = grid;
+  s.num_phases_ = num_phases;
+  s.k_ = k;
+  s.layers_ = layers;
+  s.first_node_ = grid.node_index(0, 0, layers[0]);
+  s.ids_ = std::move(ids);
+  s.values_ = std::move(values);
+  s.floor_ = std::move(floors);
+  s.find_range();
+  return s;
+}
+
+void SampledField::find_range() {
+  // The floor is below every stored value of its node, and slot 0 is the node's largest.
+  min_value_ = *std::min_element(floor_.begin(), floor_.end());
+  max_value_ = values_[0];
+  for (size_t n = 1; n < floor_.size(); ++n) max_value_ = std::max(max_value_, values_[n * size_t(k_)]);
 }
 
 double SampledField::value(int64_t n, int32_t phase) const {
   const auto stored = ids(n);
   for (size_t slot = 0; slot < stored.size(); ++slot)
-    if (stored[slot] == phase) return values_[size_t(n) * size_t(k_) + slot];
-  return floor_[size_t(n)];
+    if (stored[slot] == phase) return values(n)[slot];
+  return floor_value(n);
 }
 
 } // namespace vm

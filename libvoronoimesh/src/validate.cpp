@@ -11,6 +11,7 @@
 #include "voronoimesh/errors.hpp"
 
 #include "detail/problem_log.hpp"
+#include "detail/validate_part.hpp"
 #include "detail/topology.hpp"
 #include "detail/union_find.hpp"
 
@@ -83,9 +84,10 @@ std::vector<uint8_t> box_faces(const NodeMesh& m) {
 /// valid and distinct (the only ones `nt` holds), `paired` those also with a
 /// valid phase pair; the node checks skip the others.
 struct Tables {
-  explicit Tables(const NodeMesh& mesh)
-      : m(mesh), usable(mesh.triangles.size()), paired(mesh.triangles.size(), 0) {}
+  Tables(const NodeMesh& mesh, size_t checked_nodes)
+      : m(mesh), checked(checked_nodes), usable(mesh.triangles.size()), paired(mesh.triangles.size(), 0) {}
   const NodeMesh& m;
+  size_t checked; ///< nodes 0..checked-1 are checked (validate_first_nodes)
   std::vector<uint8_t> on_box;
   std::vector<char> usable, paired;
   NodeTriangles nt;
@@ -368,24 +370,30 @@ void check_triangles(Tables& tables, ProblemLog& log) {
   detail::check_in_chunks<1>(tables.m.triangles.size(), kTriangleGrain, log,
                              [&](size_t begin, size_t end, auto& reports) {
                                ProblemLog part(reports[0]);
-                               for (size_t t = begin; t < end; ++t) check_triangle(tables, t, part);
+                               for (size_t t = begin; t < end; ++t) {
+                                 const auto& tri = tables.m.triangles[t];
+                                 if (tables.checked < tables.m.points.size() &&
+                                     size_t(std::min({tri[0], tri[1], tri[2]})) >= tables.checked)
+                                   continue;
+                                 check_triangle(tables, t, part);
+                               }
                              });
 }
 
 /// Duplicates are listed first, then edge problems, then fan problems.
 void check_nodes(const Tables& tables, ProblemLog& log) {
-  detail::check_in_chunks<3>(tables.m.points.size(), kNodeGrain, log, [&](size_t begin, size_t end, auto& reports) {
+  detail::check_in_chunks<3>(tables.checked, kNodeGrain, log, [&](size_t begin, size_t end, auto& reports) {
     ProblemLog duplicates(reports[0]), edges(reports[1]), fans(reports[2]);
     NodeChecks checks(tables, duplicates, edges, fans);
     for (size_t n = begin; n < end; ++n) checks.check(n);
   });
 }
 
-void check_node_mesh(const NodeMesh& m, ProblemLog& log) {
+void check_node_mesh(const NodeMesh& m, size_t checked, ProblemLog& log) {
   const size_t num_tris = m.triangles.size(), num_nodes = m.points.size();
   if (m.pairs.size() != num_tris)
     log.add({}, [&] { return cat("size mismatch: ", num_tris, " triangles but ", m.pairs.size(), " phase pairs"); });
-  Tables tables(m);
+  Tables tables(m, checked);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, num_tris, kTriangleGrain), [&](const auto& tris) {
     for (size_t t = tris.begin(); t < tris.end(); ++t)
       tables.usable[t] = detail::well_formed(m.triangles[t], num_nodes);
@@ -413,7 +421,16 @@ ValidationReport validate(const NodeMesh& m) {
   ValidationReport report;
   {
     ProblemLog log(report); // sorts the nodes when it goes
-    check_node_mesh(m, log);
+    check_node_mesh(m, m.points.size(), log);
+  }
+  return report;
+}
+
+ValidationReport detail::validate_first_nodes(const NodeMesh& m, size_t checked) {
+  ValidationReport report;
+  {
+    ProblemLog log(report);
+    check_node_mesh(m, std::min(checked, m.points.size()), log);
   }
   return report;
 }

@@ -88,7 +88,7 @@ if grep -qF "plugin folder $libdir/voronoimesh/plugins" consumer.txt; then pass;
 # loads_installed NAME PROGRAM: the program loads the installed library, no other copy.
 loads_installed() {
   local loaded
-  loaded=$(ldd "$2" | awk '$1 ~ /^libvoronoimesh/ {print $3}')
+  loaded=$(ldd "$2" | awk '$1 ~ /^libvoronoimesh\.so/ {print $3}') # not libvoronoimesh_mpi
   if [ -n "$loaded" ] && [ "$(realpath "$loaded")" = "$(realpath "$libdir/libvoronoimesh.so.$soversion")" ]; then pass
   else fail "$1 does not load $libdir/libvoronoimesh.so.$soversion but '$loaded'"; fi
 }

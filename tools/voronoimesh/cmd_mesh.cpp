@@ -1,21 +1,22 @@
 #include "commands.hpp"
 
 #include "voronoimesh/closed_domain.hpp"
+#include "voronoimesh/errors.hpp"
 
 #include <memory>
 
 namespace vmcli {
 
+#ifndef VORONOIMESH_MPI
+int mesh_with_mpi(const MeshCommandOptions&) {
+  return run_guarded([]() -> int {
+    throw vm::InvalidInput("--mpi: this voronoimesh was built without MPI (configure with -DVM_MPI=ON)");
+  });
+}
+#endif
+
 void add_mesh_command(CLI::App& app, int& exit_code) {
-  struct Options {
-    std::string input;
-    OutputOptions output;
-    CreateOptions create;
-    InputCliOptions input_options;
-    ImproveOptions improve;
-    CommonOptions common;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<MeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it (PLY, OBJ, "
               "STL, MSH, VTU, VTP or MEDIT).");
@@ -26,7 +27,17 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   add_input_options(cmd, o->input_options);
   add_improve_options(cmd, o->improve, 20);
   add_common_options(cmd, o->common, true);
+  cmd->add_flag("--mpi", o->mpi,
+                "Run under mpirun: create distributed over the ranks, each sampling and meshing its share of the "
+                "grid's slabs (balanced by interface tetrahedra). With --iterations 0, -o FILE.pvtu writes one .vtu "
+                "piece per rank and a ParaView index; other formats are assembled and written by rank 0. With "
+                "iterations, for now (temporary, until improvement is distributed) the mesh is assembled on rank 0 "
+                "and improved there");
   cmd->callback([o, &exit_code] {
+    if (o->mpi) {
+      exit_code = mesh_with_mpi(*o);
+      return;
+    }
     exit_code = run_guarded([&] {
       check_outputs(o->output);
       const vm::PassRegistry registry = pass_registry(o->improve.plugins, o->common.quiet);

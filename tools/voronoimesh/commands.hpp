@@ -31,9 +31,9 @@ enum ExitCode : int {
   kInterrupted = 130, ///< stopped by Ctrl-C or SIGTERM (128 + SIGINT, as shells report it)
 };
 
-/// Runs `body`, printing "voronoimesh: <message>" for any exception and
-/// returning the matching exit code.
-int run_guarded(const std::function<int()>& body);
+/// Runs `body`, printing "voronoimesh: <message>" for any exception (unless
+/// not `report`) and returning the matching exit code.
+int run_guarded(const std::function<int()>& body, bool report = true);
 
 /// What INPUT (create, mesh) and --field (smooth) accept.
 inline constexpr const char* kInputHelp =
@@ -130,6 +130,20 @@ void check_improve_options(const ImproveOptions& o, const vm::PassRegistry& regi
 /// unless quiet.
 void improve_stage(vm::NodeMesh& mesh, const vm::PhaseField* field, const ImproveOptions& o,
                    const vm::PassRegistry& registry, const CommonOptions& common, Progress& progress);
+
+/// Everything `mesh` is told.
+struct MeshCommandOptions {
+  std::string input;
+  OutputOptions output;
+  CreateOptions create;
+  InputCliOptions input_options;
+  ImproveOptions improve;
+  CommonOptions common;
+  bool mpi = false;
+};
+/// `mesh --mpi`, under mpirun (mpi_mesh.cpp): returns the exit code, the same
+/// on every rank; rank 0 prints.
+int mesh_with_mpi(const MeshCommandOptions& o);
 
 void add_create_command(CLI::App& app, int& exit_code);
 void add_mesh_command(CLI::App& app, int& exit_code);

@@ -8,26 +8,26 @@
 
 namespace vmcli {
 
-int run_guarded(const std::function<int()>& body) {
+int run_guarded(const std::function<int()>& body, bool report) {
   try {
     return body();
   } catch (const vm::InvalidInput& e) {
-    std::cerr << "voronoimesh: " << e.what() << "\n";
+    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
     return kInvalidInput;
   } catch (const vm::IoError& e) {
-    std::cerr << "voronoimesh: " << e.what() << "\n";
+    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
     return kIoError;
   } catch (const vm::TopologyError& e) {
-    std::cerr << "voronoimesh: " << e.what() << "\n";
+    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
     return kTopology;
   } catch (const Interrupted& e) {
-    std::cerr << "voronoimesh: " << e.what() << "\n";
+    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
     return kInterrupted;
   } catch (const std::bad_alloc&) {
-    std::cerr << "voronoimesh: out of memory (try a smaller --grid)\n";
+    if (report) std::cerr << "voronoimesh: out of memory (try a smaller --grid)\n";
     return kInternal;
   } catch (const std::exception& e) {
-    std::cerr << "voronoimesh: internal error: " << e.what() << "\n";
+    if (report) std::cerr << "voronoimesh: internal error: " << e.what() << "\n";
     return kInternal;
   }
 }

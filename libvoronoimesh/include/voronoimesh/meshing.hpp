@@ -61,6 +61,18 @@ struct MeshOptions {
   int threads = 0;
 };
 
+/// The grid create_mesh() samples: the scene's, or options.grid, with the cell
+/// counts the lattice needs (grid_for_lattice()). Throws InvalidInput for a null
+/// field, a grid or top_k out of range.
+GridSpec create_grid(const Scene& scene, const MeshOptions& options);
+
+/// The CreateParams of `options`.
+CreateParams create_params(const MeshOptions& options);
+
+/// Sets the phase names and labels of a mesh create_mesh() made from `scene`
+/// (name_phases(), with the extra phase of a closed domain if options.close).
+void name_phases(NodeMesh& mesh, const Scene& scene, const MeshOptions& options);
+
 /// Samples `scene.field` on the scene's grid (or options.grid) and creates the
 /// initial mesh, with the phases' names and labels (NodeMesh::phase_names,
 /// phase_labels) for writers. Throws InvalidInput for a null field or an

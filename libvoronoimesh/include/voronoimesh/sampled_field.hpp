@@ -6,6 +6,7 @@
 #include "voronoimesh/field.hpp"
 #include "voronoimesh/types.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -21,30 +22,57 @@ public:
   /// [1, 16] (more is never needed: few phases compete at any one point).
   static SampledField sample(const PhaseField& field, const GridSpec& grid, int k = 4);
 
+  /// As sample(), but only the nodes of grid layers layers[0]..layers[1] (the
+  /// nodes (i, j, z) with z in that range): one rank's block of a distributed
+  /// run (mpi.hpp). Node indices stay those of the whole grid. Throws
+  /// InvalidInput as sample(), and for layers outside [0, grid.cells[2]].
+  static SampledField sample(const PhaseField& field, const GridSpec& grid, int k, std::array<int32_t, 2> layers);
+
+  /// A block of samples made elsewhere (another rank's sample()): `ids` and
+  /// `values` hold k entries per node, `floors` one, for the nodes of `layers`
+  /// in node-index order. Throws InvalidInput if the sizes do not match.
+  static SampledField from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,
+                                   std::vector<int32_t> ids, std::vector<double> values, std::vector<double> floors);
+
   const GridSpec& grid() const { return grid_; }  ///< the grid sampled
   int num_phases() const { return num_phases_; } ///< N, all phases of the field
   /// Slots per node (min(k, N)).
   int k() const { return k_; }
+  /// The grid layers held: the whole grid unless sampled by layers.
+  std::array<int32_t, 2> layers() const { return layers_; }
+  /// Index of the first node held (nodes first_node() .. are held).
+  int64_t first_node() const { return first_node_; }
+  /// The stored arrays, nodes in order (k() entries per node for ids and values).
+  std::span<const int32_t> all_ids() const { return ids_; }
+  std::span<const double> all_values() const { return values_; }
+  std::span<const double> all_floors() const { return floor_; }
 
   /// Phase ids stored at node n, sorted by decreasing value (k() entries).
-  std::span<const int32_t> ids(int64_t n) const { return {ids_.data() + n * k_, size_t(k_)}; }
+  std::span<const int32_t> ids(int64_t n) const { return {ids_.data() + (n - first_node_) * k_, size_t(k_)}; }
   /// Values matching ids(n).
-  std::span<const double> values(int64_t n) const { return {values_.data() + n * k_, size_t(k_)}; }
+  std::span<const double> values(int64_t n) const {
+    return {values_.data() + (n - first_node_) * k_, size_t(k_)};
+  }
   /// The value every phase not stored at node n takes there: below all stored
   /// values by a margin, and a function of the node alone, so the piecewise-linear
   /// field stays one consistent field (DESIGN.md, "Field").
-  double floor_value(int64_t n) const { return floor_[n]; }
+  double floor_value(int64_t n) const { return floor_[size_t(n - first_node_)]; }
   /// Value of phase `phase` at node n (stored value or floor_value).
   double value(int64_t n, int32_t phase) const;
 
-  /// Smallest and largest value held (floor values included).
+  /// Smallest and largest value held (floor values included); for a block of
+  /// layers, those of the block.
   double min_value() const { return min_value_; }
   double max_value() const { return max_value_; }
 
 private:
+  void find_range();
+
   GridSpec grid_;
   int num_phases_ = 0;
   int k_ = 0;
+  std::array<int32_t, 2> layers_{0, -1};
+  int64_t first_node_ = 0;
   std::vector<int32_t> ids_;
   std::vector<double> values_;
   std::vector<double> floor_;

@@ -16,12 +16,32 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace vm::detail {
 
 /// Integer grid coordinates of a node.
 using GridPoint = std::array<int32_t, 3>;
+
+/// The lattice nodes on a range of grid layers (z = z0..z1), numbered
+/// consecutively: what one rank of a distributed create holds values for. Their
+/// ids form at most two runs of consecutive ids (bcc numbers all cube corners
+/// before all centres), stored one after the other. The whole grid's window
+/// numbers every node by its id.
+struct NodeWindow {
+  int32_t z0 = 0, z1 = -1;                       ///< grid layers
+  std::array<int64_t, 2> first{0, std::numeric_limits<int64_t>::max()}; ///< first id of each run
+  std::array<int64_t, 2> count{0, 0};            ///< ids in each run
+  /// Nodes in the window.
+  int64_t size() const { return count[0] + count[1]; }
+  /// Position of node `id` (which must be in the window) in the window's numbering.
+  int64_t local(int64_t id) const { return id - (id >= first[1] ? first[1] - count[0] : first[0]); }
+  /// True when node `id` is in the window.
+  bool contains(int64_t id) const {
+    return (id >= first[0] && id < first[0] + count[0]) || (id >= first[1] && id < first[1] + count[1]);
+  }
+};
 
 class TetLattice {
 public:
@@ -40,6 +60,13 @@ public:
     const int last = (z - reach_[0] + block_ * num_slabs_) / block_ - num_slabs_;
     return {std::max(0, first), std::min(num_slabs_ - 1, last)};
   }
+
+  /// The grid layers (z) holding the nodes of the tetrahedra of slabs first..last.
+  std::array<int32_t, 2> layers_of_slabs(int first, int last) const {
+    return {std::max(0, first * block_ + reach_[0]), std::min(grid_.cells[2], last * block_ + reach_[1])};
+  }
+  /// The nodes on grid layers z0..z1 (clamped to the grid).
+  NodeWindow window(int32_t z0, int32_t z1) const;
 
   /// Number of lattice nodes (ids are 0 .. num_nodes()-1).
   int64_t num_nodes() const { return num_nodes_; }

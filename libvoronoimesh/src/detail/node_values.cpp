@@ -21,10 +21,10 @@ uint64_t mix_bits(uint64_t x) {
 } // namespace
 
 NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps,
-                       const std::vector<RepairLevel>* repair)
-    : k_(field.k()) {
+                       const std::vector<RepairLevel>* repair, const NodeScope* scope)
+    : window_(scope ? scope->window : lattice.window(0, field.grid().cells[2])), k_(field.k()) {
   const GridSpec& grid = field.grid();
-  const int64_t n_nodes = lattice.num_nodes();
+  const int64_t n_nodes = window_.size();
   ids_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
   values_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
   floor_.reset(new int32_t[size_t(n_nodes)]);
@@ -33,8 +33,8 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
 
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
-  const double lo = field.min_value();
-  const double range = field.max_value() - lo;
+  const double lo = scope ? scope->min_value : field.min_value();
+  const double range = (scope ? scope->max_value : field.max_value()) - lo;
   const double scale = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
   const int64_t eps = std::llround(snap_eps * scale);
   auto quantize = [&](double v) { return int32_t((v - lo) * scale + 0.5); }; // v >= lo: rounds to nearest
@@ -48,8 +48,9 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
         int32_t by_id[16];
         for (int64_t r = rows.begin(); r < rows.end(); ++r) {
           const TetLattice::NodeRow row = lattice.node_row(r);
+          if (row.z < window_.z0 || row.z > window_.z1) continue;
           for (int32_t x = 0; x < row.count; ++x) {
-            const int64_t n = row.first_id + x;
+            const int64_t id = row.first_id + x, n = window_.local(id);
             const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
             auto ids = field.ids(g);
             auto vals = field.values(g);
@@ -75,7 +76,7 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
               for (int a = 0; a < k_; ++a)
                 for (int b = a + 1; b < k_; ++b) tied_below[b] += q[by_id[a]] == q[by_id[b]];
               for (int b = 0; b < k_; ++b) {
-                const uint64_t draw = mix_bits(uint64_t(n) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]]) ^
+                const uint64_t draw = mix_bits(uint64_t(id) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]]) ^
                                                uint64_t(level) << 56);
                 const int64_t jitter = 1 + int64_t(draw % uint64_t(untie));
                 const int64_t lowered = int64_t(q[by_id[b]]) - untie * tied_below[b] - jitter;

@@ -28,6 +28,15 @@ constexpr int kValueBits = 29;
 /// perturbed order.
 inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb || (va == vb && a < b); }
 
+/// The part of the field a NodeValues holds, for one rank of a distributed
+/// create: the lattice nodes of a window of grid layers, and the range of
+/// values over the whole field. Every rank must quantize with the same range,
+/// or the same value would become different integers on different ranks.
+struct NodeScope {
+  NodeWindow window;
+  double min_value = 0, max_value = 0;
+};
+
 class NodeValues {
 public:
   /// How much of create's repair a node gets (create.cpp), by level: 0 snaps its
@@ -43,31 +52,39 @@ public:
 
   /// Quantizes and snaps `field` at the nodes of `lattice`, indexed by lattice
   /// node id. `snap_eps` and `untie_eps` are in the field's value units. `repair`
-  /// (if given, one RepairLevel per lattice node) says where create undoes
-  /// what pinched a phase: snapping, or ties and coincidences of the data themselves.
+  /// (if given, one RepairLevel per node of the window, in its numbering) says
+  /// where create undoes what pinched a phase: snapping, or ties and
+  /// coincidences of the data themselves. `scope` (if given) limits the nodes
+  /// to a window, which `field` must cover, and sets the range quantized;
+  /// otherwise every node, and the range of `field`.
   NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps = 0,
-             const std::vector<RepairLevel>* repair = nullptr);
+             const std::vector<RepairLevel>* repair = nullptr, const NodeScope* scope = nullptr);
+
+  /// The nodes held.
+  const NodeWindow& window() const { return window_; }
 
 
   /// Stored phase ids of lattice node n (the sampled field's order).
-  std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + n * k_, size_t(k_)}; }
+  std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + window_.local(n) * k_, size_t(k_)}; }
   /// Quantized, snapped values matching ids(n).
-  std::span<const int32_t> values(int64_t n) const { return {values_.get() + n * k_, size_t(k_)}; }
+  std::span<const int32_t> values(int64_t n) const { return {values_.get() + window_.local(n) * k_, size_t(k_)}; }
   /// Quantized value of phase p at node n (its stored value or the node's floor).
   int32_t value(int64_t n, int32_t p) const {
+    n = window_.local(n);
     const int32_t* id = ids_.get() + n * k_;
     for (int s = 0; s < k_; ++s)
       if (id[s] == p) return values_[n * k_ + s];
     return floor_[n];
   }
   /// The winning phase at node n in the perturbed order.
-  int32_t label(int64_t n) const { return label_[n]; }
+  int32_t label(int64_t n) const { return label_[window_.local(n)]; }
   /// Nodes whose values snapping changed.
   uint64_t snapped_nodes() const { return snapped_nodes_; }
   /// True when snapping changed the values of node n.
-  bool snapped(int64_t n) const { return snapped_[n] != 0; }
+  bool snapped(int64_t n) const { return snapped_[window_.local(n)] != 0; }
 
 private:
+  NodeWindow window_;
   int k_;
   // Every entry is written once by the parallel fill, so none is zeroed first.
   std::unique_ptr<int32_t[]> ids_;

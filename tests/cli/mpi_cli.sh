@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# `voronoimesh mesh --mpi` under mpirun: pieces with a ParaView index, the
+# assembled file equal to the one of one process, and a failure on one rank
+# ending every rank with one message and its exit code.
+# Usage: mpi_cli.sh MPIRUN VORONOIMESH EXAMPLES_DIR WORK_DIR
+set -uo pipefail
+mpirun=$1 vm=$2 examples=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+run() { "$mpirun" -np 2 --oversubscribe "$vm" "$@"; }
+passed=0 failed=0
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+scene=$examples/four_spheres.json
+
+run mesh "$scene" --grid 16 --mpi --iterations 0 --threads 1 -o pieces.pvtu 2>stderr.txt
+if [ $? -ne 0 ]; then fail "pvtu: $(cat stderr.txt)"
+elif [ ! -s pieces_0.vtu ] || [ ! -s pieces_1.vtu ]; then fail "pvtu: pieces missing: $(ls)"
+elif [ "$(grep -c '<Piece Source=' pieces.pvtu)" -ne 2 ]; then fail "pvtu: index does not list 2 pieces"
+elif ! grep -q "create (mpi, 2 ranks)" stderr.txt; then fail "pvtu: no summary: $(cat stderr.txt)"
+else pass; fi
+
+# The same file as one process, created and also (for now on rank 0) improved.
+for iterations in 0 2; do
+  "$vm" mesh "$scene" --grid 16 --iterations $iterations --threads 1 -q -o alone_$iterations.ply
+  run mesh "$scene" --grid 16 --mpi --iterations $iterations --threads 1 -q -o ranks_$iterations.ply 2>stderr.txt
+  if [ $? -ne 0 ]; then fail "assembled, $iterations iterations: $(cat stderr.txt)"
+  elif ! cmp -s alone_$iterations.ply ranks_$iterations.ply; then fail "assembled, $iterations iterations: differs"
+  else pass; fi
+done
+
+# NaN in the top layers, which rank 1 samples: every rank exits 2, one message.
+cat >nan.json <<'JSON'
+{"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 16, "phases": [
+  {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.3},
+  {"kind": "expr", "expr": "z > 0.9 ? sqrt(-1) : 0.1 - abs(x - 0.5)"}]}
+JSON
+timeout 60 "$mpirun" -np 2 --oversubscribe "$vm" mesh nan.json --mpi --iterations 0 -o nan.ply 2>stderr.txt
+code=$?
+if [ $code -ne 2 ]; then fail "nan: exit $code, expected 2: $(cat stderr.txt)"
+elif [ "$(grep -c 'voronoimesh: rank 1 of 2: .*NaN' stderr.txt)" -ne 1 ]; then fail "nan: message: $(cat stderr.txt)"
+elif [ -e nan.ply ]; then fail "nan: wrote a file"
+else pass; fi
+
+run mesh "$scene" --grid 16 --mpi -o improved.pvtu 2>stderr.txt
+code=$?
+if [ $code -ne 2 ] || ! grep -q "pieces per rank (.pvtu) need --iterations 0" stderr.txt; then
+  fail "pvtu with iterations: exit $code: $(cat stderr.txt)"
+else pass; fi
+
+echo "mpi cli: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,232 @@
+// Distributed create (mpi.hpp), run under mpirun with 2 and 4 ranks: the mesh
+// the ranks make together is the one one process makes, node for node and
+// triangle for triangle in the same order, and a failure on one rank is an
+// error on every rank, not a hang. Rank 0 compares; every rank runs every test
+// in the same order (each test makes the same collective calls on all ranks).
+
+#include "voronoimesh/array_input.hpp"
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/meshing.hpp"
+#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/scene.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <random>
+#include <string>
+
+namespace {
+
+using namespace vm;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+Scene example(const std::string& name, int grid) {
+  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
+  scene.grid.cells = {grid, grid, grid};
+  return scene;
+}
+
+/// The parts' global ids and owners agree with the assembled mesh: every
+/// vertex of a part is the assembled vertex of its id, each id owned by one
+/// rank, and the parts' triangles are the assembled ones from first_triangle on.
+void expect_parts_match(const mpi::MeshPart& part, const NodeMesh& whole) {
+  std::vector<double> rows; // id, owner, x, y, z per vertex; then -1, first triangle, 0, 0, 0
+  for (size_t v = 0; v < part.points.size(); ++v)
+    rows.insert(rows.end(), {double(part.global_ids[v]), double(part.owners[v]), part.points[v].x(),
+                             part.points[v].y(), part.points[v].z()});
+  int count = int(rows.size());
+  std::vector<int> counts(static_cast<size_t>(ranks())), offsets(static_cast<size_t>(ranks()));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  for (size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(rank() == 0 ? size_t(offsets.back() + counts.back()) : 0);
+  MPI_Gatherv(rows.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
+              MPI_COMM_WORLD);
+  if (rank() != 0) return;
+  std::vector<int> owner(whole.points.size(), -1);
+  for (size_t i = 0; i + 4 < all.size(); i += 5) {
+    const size_t id = size_t(all[i]);
+    ASSERT_LT(id, whole.points.size());
+    EXPECT_EQ(Vec3(all[i + 2], all[i + 3], all[i + 4]), whole.points[id]) << "vertex " << id;
+    EXPECT_TRUE(owner[id] == -1 || owner[id] == int(all[i + 1])) << "vertex " << id << " has two owners";
+    owner[id] = int(all[i + 1]);
+  }
+  EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0) << "vertices in no part";
+  for (size_t t = 0; t < part.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(part.global_ids[size_t(part.triangles[t][size_t(c)])],
+                whole.triangles[size_t(part.first_triangle) + t][size_t(c)]);
+}
+
+/// Creates `scene` on every rank together and in one process on rank 0, and
+/// compares: the same nodes, triangles and pairs in the same order. Returns
+/// what the distributed create did.
+mpi::DistributedStats expect_same_as_one_process(const Scene& scene, MeshOptions o) {
+  o.threads = 1; // ranks share two cores
+  mpi::DistributedStats stats;
+  const mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, o, &stats);
+  const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
+  expect_parts_match(part, together);
+  EXPECT_EQ(stats.slabs.size(), size_t(ranks()));
+  if (rank() != 0) return stats;
+  const NodeMesh alone = create_mesh(scene, o);
+  EXPECT_GT(alone.num_triangles(), 0u);
+  EXPECT_EQ(together.points, alone.points);
+  EXPECT_EQ(together.triangles, alone.triangles);
+  EXPECT_EQ(together.pairs, alone.pairs);
+  EXPECT_EQ(together.phase_names, alone.phase_names);
+  EXPECT_EQ(together.phase_labels, alone.phase_labels);
+  const ValidationReport report = validate(together);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  return stats;
+}
+
+TEST(MpiCreate, four_spheres_is_the_one_process_mesh) {
+  expect_same_as_one_process(example("four_spheres.json", 32), {});
+}
+
+TEST(MpiCreate, closed_cube6_four_spheres_is_the_one_process_mesh) {
+  MeshOptions o;
+  o.lattice = Lattice::cube6;
+  o.close = true;
+  expect_same_as_one_process(example("four_spheres.json", 20), o);
+}
+
+TEST(MpiCreate, voronoi30_is_the_one_process_mesh) { expect_same_as_one_process(example("voronoi30.json", 36), {}); }
+
+TEST(MpiCreate, label_volume_is_the_one_process_mesh) {
+  // Grains: a label per node from the nearest of 12 random seeds.
+  GridSpec grid;
+  grid.cells = {24, 22, 26};
+  std::mt19937_64 rng(8);
+  std::vector<Vec3> seeds;
+  for (int s = 0; s < 12; ++s) seeds.push_back(Vec3(double(rng() % 1000), double(rng() % 1000), double(rng() % 1000)) / 1000);
+  std::vector<int32_t> labels(size_t(grid.node_count()));
+  for (int64_t k = 0; k <= grid.cells[2]; ++k)
+    for (int64_t j = 0; j <= grid.cells[1]; ++j)
+      for (int64_t i = 0; i <= grid.cells[0]; ++i) {
+        const Vec3 x = grid.node_position(i, j, k);
+        int best = 0;
+        for (int s = 1; s < 12; ++s)
+          if ((x - seeds[size_t(s)]).norm() < (x - seeds[size_t(best)]).norm()) best = s;
+        labels[size_t(grid.node_index(i, j, k))] = 10 * best;
+      }
+  expect_same_as_one_process(scene_from_labels(grid, labels), {});
+}
+
+// Integer values tie everywhere: create needs repair rounds, and every rank
+// must make the repairs one process makes (test_create_ties.cpp).
+TEST(MpiCreate, repairs_of_tied_data_are_those_of_one_process) {
+  std::mt19937_64 rng(20261121);
+  int repaired = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    GridSpec grid;
+    grid.cells = {8, 8, 12 + 2 * trial};
+    const int phases = 3 + trial % 3;
+    std::vector<std::vector<double>> values(size_t(phases), std::vector<double>(size_t(grid.node_count())));
+    for (auto& phase : values)
+      for (double& v : phase) v = double(rng() % 3);
+    std::vector<std::span<const double>> spans(values.begin(), values.end());
+    const Scene scene = scene_from_phase_values(grid, spans);
+    MeshOptions o;
+    o.lattice = trial % 2 ? Lattice::bcc : Lattice::cube6;
+    o.snap = trial % 3 == 0 ? 0.0 : 0.2;
+    repaired += expect_same_as_one_process(scene, o).create.untied_nodes > 0;
+  }
+  EXPECT_GE(repaired, 2);
+}
+
+// Blocks of samples made where the data live, of uneven sizes.
+TEST(MpiCreate, blocks_of_samples_give_the_one_process_mesh) {
+  const Scene scene = example("four_spheres.json", 24);
+  const GridSpec grid = grid_for_lattice(scene.grid, Lattice::bcc);
+  const int layers = grid.cells[2] + 1, n = ranks(), r = rank();
+  // Rank r holds a share growing with r.
+  auto start = [&](int q) { return q * q * layers / (n * n); };
+  const SampledField block = SampledField::sample(*scene.field, grid, 4, {start(r), start(r + 1) - 1});
+  const mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, block, CreateParams{});
+  const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
+  if (rank() != 0) return;
+  NodeMesh alone;
+  create_initial_mesh(SampledField::sample(*scene.field, grid), CreateParams{}, alone);
+  EXPECT_EQ(together.points, alone.points);
+  EXPECT_EQ(together.triangles, alone.triangles);
+  EXPECT_EQ(together.pairs, alone.pairs);
+}
+
+/// Runs `f` on every rank and checks that every rank throws E naming `rank`.
+template <class E, class F> void expect_every_rank_throws(F&& f, const std::string& rank_text, const std::string& what) {
+  try {
+    f();
+    ADD_FAILURE() << "rank " << rank() << " did not throw";
+  } catch (const E& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(rank_text), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+}
+
+// A phase that is NaN in the top layers only: the rank sampling them fails,
+// and every rank throws its error.
+TEST(MpiCreate, nan_in_one_block_fails_every_rank) {
+  Scene scene = parse_scene(R"json({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 16, "phases": [
+      {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.3},
+      {"kind": "expr", "expr": "z > 0.9 ? sqrt(-1) : 0.1 - abs(x - 0.5)"}]})json",
+                            "nan_scene");
+  MeshOptions o;
+  o.threads = 1;
+  expect_every_rank_throws<InvalidInput>([&] { mpi::create_part(MPI_COMM_WORLD, scene, o); },
+                                         "rank " + std::to_string(ranks() - 1) + " of " + std::to_string(ranks()),
+                                         "NaN");
+  // The ranks are still in step: a collective call after the failure works.
+  const mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, example("four_spheres.json", 16), o);
+  EXPECT_GT(mpi::assemble(MPI_COMM_WORLD, part).num_triangles() + size_t(rank()), 0u);
+}
+
+// Blocks that do not cover the grid: every rank refuses, none waits.
+TEST(MpiCreate, blocks_that_leave_a_gap_fail_every_rank) {
+  const Scene scene = example("four_spheres.json", 16);
+  const GridSpec grid = grid_for_lattice(scene.grid, Lattice::bcc);
+  const int per = (grid.cells[2] + 1) / ranks();
+  // Rank 1 leaves out its first layer.
+  const std::array<int32_t, 2> mine{rank() * per + (rank() == 1), rank() + 1 == ranks() ? grid.cells[2] : (rank() + 1) * per - 1};
+  const SampledField block = SampledField::sample(*scene.field, grid, 4, mine);
+  expect_every_rank_throws<InvalidInput>([&] { mpi::create_part(MPI_COMM_WORLD, block, CreateParams{}); }, "of ",
+                                         "rank 1 holds layers");
+}
+
+TEST(MpiCreate, more_ranks_than_slabs_are_refused) {
+  if (ranks() < 3) GTEST_SKIP() << "needs 3 ranks or more";
+  Scene scene = example("four_spheres.json", 4); // 2 slabs
+  expect_every_rank_throws<InvalidInput>([&] { mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{}); }, "rank 0",
+                                         "slabs of the lattice");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  // Only rank 0 prints the report; the others print their failures.
+  if (rank() != 0) {
+    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  int failed = RUN_ALL_TESTS();
+  int any = 0;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return any;
+}
