@@ -8,7 +8,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/validate.hpp"
 
-#include <tbb/parallel_for.h>
+#include "detail/parallel.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -107,7 +107,7 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
 Extraction extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
                    int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs,
                    CreateStats& stats) {
-  tbb::parallel_for(0, lattice.num_slabs(), [&](int s) {
+  detail::parallel_for(0, lattice.num_slabs(), [&](int s) {
     if (!recut[size_t(s)]) return;
     slabs[size_t(s)] = SlabResult{};
     cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);

@@ -2,10 +2,10 @@
 
 #include "voronoimesh/errors.hpp"
 
+#include "detail/parallel.hpp"
 #include "detail/top_k.hpp"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -79,7 +79,7 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
   std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
 
   // One task range = rows of nodes along x; every node is written by one task only.
-  tbb::parallel_for(tbb::blocked_range<int64_t>(0, nodes[1] * nodes[2]), [&](const auto& rows) {
+  detail::parallel_for(tbb::blocked_range<int64_t>(0, nodes[1] * nodes[2]), [&](const auto& rows) {
     for (int64_t row = rows.begin(); row != rows.end(); ++row) {
       const int64_t j = row % nodes[1], kz = row / nodes[1];
       for (int64_t i = 0; i < nodes[0]; ++i) {
