@@ -3,10 +3,9 @@
 #   asan  AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, every test (build-asan/)
 #   tsan  ThreadSanitizer, every test (build-tsan/): each parallel pass runs on TBB's
 #         threads in the create, improve, sample, guard, flip and determinism tests.
-#         Not clean yet: Debian's libtbb is uninstrumented, so TSan does not see the
-#         hand-off of tasks between threads and reports every parallel loop (README,
-#         "Reliability"); it needs a oneTBB built with -fsanitize=thread.
-#   all   both
+#         Debian's libtbb is not instrumented; the library's parallel calls tell TSan
+#         what TBB guarantees instead (libvoronoimesh/src/detail/tbb_sanitizer.hpp).
+#   all   both, ASan first
 # Any finding aborts the test that triggers it, so a clean run is a green ctest.
 # Usage: scripts/test_sanitizers.sh [asan (default)|tsan|all] [extra ctest arguments, e.g. -R Improve]
 set -euo pipefail

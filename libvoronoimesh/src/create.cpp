@@ -10,7 +10,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/validate.hpp"
 
-#include <tbb/parallel_for.h>
+#include "detail/parallel.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -128,7 +128,7 @@ void append_triangles(const SlabResult& s, const std::vector<int32_t>& global, C
 CreatePart extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
                    int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs, SlabRange owned,
                    SlabRange cut, CreateStats& stats) {
-  tbb::parallel_for(cut[0], cut[1] + 1, [&](int s) {
+  detail::parallel_for(cut[0], cut[1] + 1, [&](int s) {
     if (!recut[size_t(s)]) return;
     slabs[size_t(s)] = SlabResult{};
     cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);

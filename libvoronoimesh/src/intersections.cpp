@@ -8,10 +8,10 @@
 #include "voronoimesh/errors.hpp"
 
 #include "detail/box_pairs.hpp"
+#include "detail/parallel.hpp"
 #include "detail/triangle_pair.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -98,7 +98,7 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
   std::sort(covered.begin(), covered.end());
   covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
   std::vector<uint8_t> keep(nt, 0);
-  tbb::parallel_for(size_t(0), nt, [&](size_t t) {
+  detail::parallel_for(size_t(0), nt, [&](size_t t) {
     bool near = false;
     const bool listed = cells(box_of(t), [&](uint64_t k) {
       near = near || std::binary_search(covered.begin(), covered.end(), k);
@@ -148,7 +148,7 @@ IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<con
 
   std::vector<Bounds> boxes(nt);
   std::vector<int8_t> axis(nt);
-  tbb::parallel_for(size_t(0), nt, [&](size_t t) {
+  detail::parallel_for(size_t(0), nt, [&](size_t t) {
     const auto& tri = m.triangles[t];
     boxes[t] = detail::triangle_bounds(m.points, tri);
     axis[t] = detail::projection_axis(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
@@ -156,7 +156,7 @@ IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<con
   const std::vector<detail::BoxPair> candidates = detail::overlapping_box_pairs(boxes, involved);
 
   tbb::enumerable_thread_specific<Found> found;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
     Found& f = found.local();
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto [t, s] = candidates[i];

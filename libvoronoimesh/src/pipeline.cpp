@@ -4,7 +4,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/stats.hpp"
 
-#include <tbb/parallel_for.h>
+#include "detail/parallel.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -90,7 +90,7 @@ std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   const size_t n = om.n_faces(), chunk = 8192, chunks = (n + chunk - 1) / chunk;
   std::vector<double> lo(chunks, std::numeric_limits<double>::infinity()), sum(chunks, 0.0);
   const auto& pos = mesh.positions();
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+  detail::parallel_for(size_t(0), chunks, [&](size_t c) {
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
       const auto t = mesh.face_nodes(OMesh::FaceHandle(int(f)));
       const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);

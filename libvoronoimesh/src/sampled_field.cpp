@@ -2,10 +2,10 @@
 
 #include "voronoimesh/errors.hpp"
 
+#include "detail/parallel.hpp"
 #include "detail/top_k.hpp"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -90,7 +90,7 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
 
   // One task range = rows of nodes along x; every node is written by one task only.
   const int64_t first_row = layers[0] * nodes[1], end_row = (layers[1] + 1) * nodes[1];
-  tbb::parallel_for(tbb::blocked_range<int64_t>(first_row, end_row), [&](const auto& rows) {
+  detail::parallel_for(tbb::blocked_range<int64_t>(first_row, end_row), [&](const auto& rows) {
     for (int64_t row = rows.begin(); row != rows.end(); ++row) {
       const int64_t j = row % nodes[1], kz = row / nodes[1];
       for (int64_t i = 0; i < nodes[0]; ++i) {

@@ -10,6 +10,7 @@
 #include "voronoimesh/validate.hpp"
 #include "voronoimesh/errors.hpp"
 
+#include "detail/parallel.hpp"
 #include "detail/problem_log.hpp"
 #include "detail/validate_part.hpp"
 #include "detail/topology.hpp"
@@ -17,8 +18,6 @@
 
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,7 +69,7 @@ constexpr size_t kNodeGrain = 4096;
 std::vector<uint8_t> box_faces(const NodeMesh& m) {
   const double tol = 1e-9 * (m.domain.max - m.domain.min).norm();
   std::vector<uint8_t> mask(m.points.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, m.points.size(), kNodeGrain), [&](const auto& nodes) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, m.points.size(), kNodeGrain), [&](const auto& nodes) {
     for (size_t n = nodes.begin(); n < nodes.end(); ++n)
       for (int a = 0; a < 3; ++a) {
         if (std::abs(m.points[n][a] - m.domain.min[a]) <= tol) mask[n] |= uint8_t(1u << (2 * a));
@@ -394,16 +393,16 @@ void check_node_mesh(const NodeMesh& m, size_t checked, ProblemLog& log) {
   if (m.pairs.size() != num_tris)
     log.add({}, [&] { return cat("size mismatch: ", num_tris, " triangles but ", m.pairs.size(), " phase pairs"); });
   Tables tables(m, checked);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, num_tris, kTriangleGrain), [&](const auto& tris) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, num_tris, kTriangleGrain), [&](const auto& tris) {
     for (size_t t = tris.begin(); t < tris.end(); ++t)
       tables.usable[t] = detail::well_formed(m.triangles[t], num_nodes);
   });
   // Building the node-triangle table is serial, so it runs alongside the triangle checks.
-  tbb::parallel_invoke([&] { tables.nt = detail::node_triangles(num_nodes, m.triangles, &tables.usable); },
-                       [&] {
-                         tables.on_box = box_faces(m);
-                         check_triangles(tables, log);
-                       });
+  detail::parallel_invoke([&] { tables.nt = detail::node_triangles(num_nodes, m.triangles, &tables.usable); },
+                          [&] {
+                            tables.on_box = box_faces(m);
+                            check_triangles(tables, log);
+                          });
   check_nodes(tables, log);
 }
 

@@ -4,10 +4,10 @@
 
 #include "detail/box_pairs.hpp"
 
+#include "detail/parallel.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -111,7 +111,7 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
   const Grid grid(boxes);
   std::vector<int8_t> level(n);
   std::vector<size_t> offset(n + 1, 0);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+  detail::parallel_for(size_t(0), n, [&](size_t t) {
     level[t] = int8_t(grid.level(boxes[t]));
     size_t cells = 0;
     grid.for_cells(boxes[t], level[t], [&](uint64_t, uint8_t) { ++cells; });
@@ -119,13 +119,13 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
   });
   for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
   std::vector<Entry> entries(offset[n]);
-  tbb::parallel_for(size_t(0), n, [&](size_t t) {
+  detail::parallel_for(size_t(0), n, [&](size_t t) {
     size_t e = offset[t];
     grid.for_cells(boxes[t], level[t],
                    [&](uint64_t key, uint8_t first) { entries[e++] = {key, int32_t(t), first, is_involved(t)}; });
   });
-  tbb::parallel_sort(entries.begin(), entries.end(),
-                     [](const Entry& x, const Entry& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
+  detail::parallel_sort(entries.begin(), entries.end(),
+                        [](const Entry& x, const Entry& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
   std::vector<size_t> cell_start;
   for (size_t e = 0; e < entries.size(); ++e)
     if (e == 0 || entries[e].key != entries[e - 1].key) cell_start.push_back(e);
@@ -140,7 +140,7 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
     if (boxes[size_t(t)].overlaps(boxes[size_t(s)])) out.push_back({std::min(t, s), std::max(t, s)});
   };
   // Pairs of one level, in their common cell.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_start.size() - 1), [&](const tbb::blocked_range<size_t>& r) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, cell_start.size() - 1), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found.local();
     for (size_t c = r.begin(); c != r.end(); ++c)
       // Each involved entry meets every other, but an involved one before it
@@ -154,7 +154,7 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
   });
   // Pairs across levels: each box looks up the cells it covers in every higher level.
   if (top_level > 0)
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+    detail::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
       auto& out = found.local();
       for (size_t t = r.begin(); t != r.end(); ++t)
         for (int l = level[t] + 1; l <= top_level; ++l) {

@@ -1,7 +1,8 @@
 #include "detail/node_values.hpp"
 
+#include "detail/parallel.hpp"
+
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,7 +43,7 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
   // around a node are triangles validate() takes for non-degenerate.
   const int64_t untie = std::clamp<int64_t>(std::llround(untie_eps * scale), 1024, int64_t(1) << 19);
 
-  snapped_nodes_ = tbb::parallel_reduce(
+  snapped_nodes_ = detail::parallel_reduce(
       tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
       [&](const tbb::blocked_range<int64_t>& rows, uint64_t snapped) {
         int32_t by_id[16];

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/parallel_for.h>
+#include "detail/parallel.hpp"
 
 namespace vm::detail {
 
@@ -68,8 +68,8 @@ template <size_t Kinds, class Check>
 void check_in_chunks(size_t n, size_t grain, ProblemLog& log, const Check& check) {
   const size_t chunks = (n + grain - 1) / grain;
   std::vector<std::array<ValidationReport, Kinds>> parts(chunks);
-  tbb::parallel_for(size_t(0), chunks,
-                    [&](size_t c) { check(c * grain, std::min(n, (c + 1) * grain), parts[c]); });
+  detail::parallel_for(size_t(0), chunks,
+                       [&](size_t c) { check(c * grain, std::min(n, (c + 1) * grain), parts[c]); });
   for (size_t k = 0; k < Kinds; ++k)
     for (auto& part : parts) log.append(std::move(part[k]));
 }
