@@ -3,6 +3,7 @@
 #include "voronoimesh/collapse.hpp"
 #include "voronoimesh/intersections.hpp"
 #include "voronoimesh/stats.hpp"
+#include "voronoimesh/validate.hpp"
 
 #include "detail/field_orientation.hpp"
 #include "detail/parallel.hpp"
@@ -67,6 +68,10 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
              &vl = pos[size_t(nodes[3])];
   const double after = std::min(triangle_quality(vi, vl, vk), triangle_quality(vl, vj, vk));
   if (after <= before && !ear) return -1;
+  // An ear flips even when that lowers the pair's quality, but never into a
+  // triangle validate() calls zero-area (three nodes on one line, as planes
+  // through lattice nodes make them).
+  if (ear && (has_zero_area(vi, vl, vk) || has_zero_area(vl, vj, vk))) return -1;
   const Vec3 n3 = (vl - vi).cross(vk - vi), n4 = (vk - vj).cross(vl - vj);
   if (n3.dot(n4) <= 0) return -1; // the new pair would fold
   // Nor may it turn the pair over: both new normals agree with the old ones.

@@ -95,10 +95,10 @@ struct Tables {
 void check_area(const NodeMesh& m, size_t t, ProblemLog& log) {
   const auto& tri = m.triangles[t];
   const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-  if (area > 1e-12 * longest2 && std::isfinite(area) && std::isfinite(longest2)) return;
+  if (!has_zero_area(a, b, c)) return;
   log.add({tri[0], tri[1], tri[2]}, [&] {
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
     const bool finite = a.allFinite() && b.allFinite() && c.allFinite();
     return finite ? cat("zero area: triangle ", t, " ", str(tri), ": area ", area, ", longest edge ",
                         std::sqrt(longest2))
@@ -439,6 +439,16 @@ void require_valid(const NodeMesh& m, const std::string& what) {
   if (!report.ok())
     throw TopologyError(what + " failed validation (" + std::to_string(report.problem_count) +
                         " problems; please report this with the input), first: " + report.problems.front());
+}
+
+} // namespace vm
+
+namespace vm {
+
+bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return !(area > 1e-12 * longest2 && std::isfinite(area) && std::isfinite(longest2));
 }
 
 } // namespace vm

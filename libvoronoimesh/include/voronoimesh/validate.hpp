@@ -24,6 +24,11 @@ struct ValidationReport {
   std::string summary() const;
 };
 
+/// True when triangle (a, b, c) is what validate() calls zero-area: area at most
+/// 1e-12 times its longest edge squared, or a coordinate not finite. Passes
+/// that make triangles (flips) refuse to make such a one.
+bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Checks a node-level interface mesh:
 ///  - node ids in range; no triangle with a repeated node; no zero-area triangle
 ///    (area <= 1e-12 x longest edge squared); no two triangles on the same three nodes;
