@@ -1,6 +1,7 @@
 #include "voronoimesh/guard.hpp"
 
 #include "voronoimesh/intersections.hpp"
+#include "voronoimesh/validate.hpp"
 
 #include "detail/field_orientation.hpp"
 #include "detail/parallel.hpp"
@@ -35,11 +36,14 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     // Only triangles changed since the last check can have started to cross.
     // Clamping keeps triangles from turning over, but for triangles a millionth
     // of the mesh size its planes are round-off: any triangle whose normal
-    // turned by 90 degrees or more is undone as well.
+    // turned by 90 degrees or more, or that became one validate() calls
+    // zero-area, is undone as well.
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
       const auto& tri = m.triangles[t];
       involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
-      inverted[t] = involved[t] && normal(m.points, tri).dot(normal(before, tri)) <= 0;
+      inverted[t] = involved[t] && (normal(m.points, tri).dot(normal(before, tri)) <= 0 ||
+                                    has_zero_area(m.points[size_t(tri[0])], m.points[size_t(tri[1])],
+                                                  m.points[size_t(tri[2])]));
     });
     detail::parallel_for_each_index(watched.size(), [&](size_t i) {
       turned[i] = agreed[i] && !detail::agrees_with_field(m, size_t(watched[i]), *field);

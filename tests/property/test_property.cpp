@@ -43,13 +43,15 @@ INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
 /// must keep passing. Seed 1, cases 5412 and 5570: a triangle 10^-6 of the
 /// mesh size turned by 93 degrees in the moving passes, clamping's planes
 /// being round-off at that size; the crossing guard now undoes such moves.
-/// Cases 9020, 24525, 24940 and 26940: snapped label fields and thin slabs whose
+/// Cases 9020, 24525, 24940, 26940 and 40138: snapped label fields and thin slabs whose
 /// pinches moved on with every local repair; create now repairs every node
 /// after kLocalRepairRounds. Cases 10559 and 24719: planes through lattice
 /// nodes, where an ear flipped into a zero-area triangle; ears now flip only
-/// into triangles validate() accepts.
-constexpr std::array<std::array<uint64_t, 2>, 8> kLongTierRegressions = {
-    {{1, 5412}, {1, 5570}, {1, 9020}, {1, 10559}, {1, 24525}, {1, 24719}, {1, 24940}, {1, 26940}}};
+/// into triangles validate() accepts. Case 33466: moving passes shrank a
+/// triangle 10^-4 across to area 9e-13 x L^2; the guard undoes that too.
+constexpr std::array<std::array<uint64_t, 2>, 10> kLongTierRegressions = {
+    {{1, 5412}, {1, 5570}, {1, 9020}, {1, 10559}, {1, 24525}, {1, 24719}, {1, 24940}, {1, 26940}, {1, 33466},
+     {1, 40138}}};
 
 TEST(PropertyLongTier, cases_it_found_failing_pass) {
   for (const auto& [seed, index] : kLongTierRegressions) {

@@ -36,8 +36,9 @@ struct GuardReport {
 /// (grad phi_second - grad phi_first at its centroid, where that is clear) are
 /// undone too: clamping cannot see that, and near close quadruple points such
 /// triangles could stand across their surface for a few iterations. So are the
-/// moves that turn any triangle's normal by 90 degrees or more: clamping rules
-/// that out, but not in round-off for triangles a millionth of the mesh's size.
+/// moves that turn any triangle's normal by 90 degrees or more, or shrink it to
+/// what validate() calls zero area: clamping rules that out, but not in
+/// round-off for triangles a millionth of the mesh's size.
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
                                      const PhaseField* field = nullptr);
 
