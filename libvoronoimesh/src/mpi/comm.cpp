@@ -112,29 +112,17 @@ void Comm::fail(std::exception_ptr error) {
   throw_agreed(rank_, kind, message); // not reached: agree() throws when any rank failed
 }
 
-uint64_t Comm::sum(uint64_t value) {
+template <class T> T Comm::all_reduce(T value, MPI_Datatype type, MPI_Op op) {
   check_in();
-  uint64_t total = 0;
+  T result{};
   Timed t(mpi_seconds_);
-  MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
-  return total;
+  MPI_Allreduce(&value, &result, 1, type, op, comm_);
+  return result;
 }
 
-double Comm::min(double value) {
-  check_in();
-  double least = 0;
-  Timed t(mpi_seconds_);
-  MPI_Allreduce(&value, &least, 1, MPI_DOUBLE, MPI_MIN, comm_);
-  return least;
-}
-
-double Comm::max(double value) {
-  check_in();
-  double most = 0;
-  Timed t(mpi_seconds_);
-  MPI_Allreduce(&value, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
-  return most;
-}
+uint64_t Comm::sum(uint64_t value) { return all_reduce(value, MPI_UINT64_T, MPI_SUM); }
+double Comm::min(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MIN); }
+double Comm::max(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MAX); }
 
 uint64_t Comm::exclusive_sum(uint64_t value) {
   check_in();

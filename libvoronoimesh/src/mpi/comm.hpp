@@ -92,6 +92,8 @@ private:
   }
   std::vector<char> all_gather_bytes(std::span<const char> bytes);
   std::vector<char> gather_bytes(std::span<const char> bytes);
+  /// One agreed, timed MPI_Allreduce of a single value.
+  template <class T> T all_reduce(T value, MPI_Datatype type, MPI_Op op);
   /// One agreement: every rank passes its failure kind (0: none); throws the
   /// failure of the lowest failed rank, if any.
   void agree(int kind, const std::string& message);
