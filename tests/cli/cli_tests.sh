@@ -213,6 +213,12 @@ printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file"
 printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "gone.nrrd"}]}\n' >grids/missing.json
 printf '{"phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "grid", "file": "short.nrrd"}]}\n' >grids/other.json
 printf '{"domain": {"min": [0, 0, 0], "max": [20, 1, 1]}, "phases": [{"kind": "grid", "file": "p0.nrrd"}, {"kind": "sphere", "center": [5, 5, 5], "radius": 2}]}\n' >grids/domain.json
+# Command-line mistakes: one line naming the option, exit 2.
+expect_error "unknown option" 2 "The following argument was not expected: --bogus \(see --help\)" -- "$vm" mesh --bogus -o out.ply
+expect_error "option without its value" 2 "--grid.*\(see --help\)" -- "$vm" mesh -o out.ply --grid
+expect_error "option value not a number" 2 "--snap.*abc.*\(see --help\)" -- "$vm" mesh --snap abc -o out.ply
+expect_error "output option missing" 2 "--output is required \(see --help\)" -- "$vm" mesh
+expect_error "no subcommand" 2 "subcommand.*\(see --help\)" -- "$vm"
 # Options for volumes are refused where they would be ignored, naming the input and the option.
 expect_error "volume option on a scene" 2 "grids/scene\.json: --voxels-per-cell applies only to volumes, and this is a scene" -- "$vm" create grids/scene.json --voxels-per-cell 2 -o out.ply
 expect_error "label option on a distance grid" 2 "all\.nrrd: --smoothing applies only to label volumes, and this is a distance grid" -- "$vm" create all.nrrd --smoothing 2 -o out.ply

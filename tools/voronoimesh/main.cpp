@@ -51,7 +51,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e); // --help, --version
+    // One line and exit 2, as for every other bad input (CLI11 prints two and
+    // exits with its own codes, 105 to 109).
+    std::fprintf(stderr, "voronoimesh: %s (see --help)\n", e.what());
+    return 2;
   }
   return exit_code;
 }
