@@ -2,6 +2,7 @@
 
 #include "voronoimesh/errors.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstdio>
@@ -189,7 +190,7 @@ std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<ch
   allocate(out, total, comm_);
   for (int q = 0, at = 0; q < size_; at += send_counts[size_t(q)], ++q) {
     send_offsets[size_t(q)] = at;
-    std::memcpy(out.data() + at, send[size_t(q)].data(), send[size_t(q)].size());
+    std::copy(send[size_t(q)].begin(), send[size_t(q)].end(), out.begin() + at); // not memcpy: empty vectors hold null
   }
   count(total);
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
@@ -204,7 +205,7 @@ std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<ch
   std::vector<std::vector<char>> by_rank(static_cast<size_t>(size_));
   for (int q = 0; q < size_; ++q) {
     allocate(by_rank[size_t(q)], size_t(recv_counts[size_t(q)]), comm_);
-    std::memcpy(by_rank[size_t(q)].data(), in.data() + recv_offsets[size_t(q)], size_t(recv_counts[size_t(q)]));
+    std::copy_n(in.begin() + recv_offsets[size_t(q)], recv_counts[size_t(q)], by_rank[size_t(q)].begin());
   }
   return by_rank;
 }
