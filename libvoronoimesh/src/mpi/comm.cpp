@@ -121,6 +121,17 @@ template <class T> T Comm::all_reduce(T value, MPI_Datatype type, MPI_Op op) {
   return result;
 }
 
+int Comm::ranks_on_node() {
+  check_in();
+  Timed t(mpi_seconds_);
+  MPI_Comm node;
+  MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  int ranks = 1;
+  MPI_Comm_size(node, &ranks);
+  MPI_Comm_free(&node);
+  return ranks;
+}
+
 uint64_t Comm::sum(uint64_t value) { return all_reduce(value, MPI_UINT64_T, MPI_SUM); }
 double Comm::min(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MIN); }
 double Comm::max(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MAX); }
