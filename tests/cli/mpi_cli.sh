@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `voronoimesh mesh --mpi` under mpirun: pieces with a ParaView index, the
+# `voronoimesh mesh --mpi` (and `create --mpi`) under mpirun: pieces with a ParaView index, the
 # assembled file equal to the one of one process, and a failure on one rank
 # (bad input, too little memory) ending every rank with one message and its exit code.
 # Usage: mpi_cli.sh MPIRUN VORONOIMESH EXAMPLES_DIR WORK_DIR
@@ -27,6 +27,15 @@ for iterations in 0 2; do
   elif ! cmp -s alone_$iterations.ply ranks_$iterations.ply; then fail "assembled, $iterations iterations: differs"
   else pass; fi
 done
+
+# `create --mpi` is `mesh --mpi --iterations 0`.
+run create "$scene" --grid 16 --mpi --threads 1 -q -o created.ply 2>stderr.txt
+if [ $? -ne 0 ]; then fail "create --mpi: $(cat stderr.txt)"
+elif ! cmp -s alone_0.ply created.ply; then fail "create --mpi: differs from one process"
+else pass; fi
+run create "$scene" --grid 16 --mpi --threads 1 -q -o created.pvtu 2>stderr.txt
+if [ $? -ne 0 ] || [ ! -s created_0.vtu ] || [ ! -s created_1.vtu ]; then fail "create --mpi, pvtu: $(cat stderr.txt)"
+else pass; fi
 
 # NaN in the top layers, which rank 1 samples: every rank exits 2, one message.
 cat >nan.json <<'JSON'
