@@ -145,8 +145,11 @@ if [ -n "$mpirun" ]; then
     -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON || finish
   ok "build the MPI consumer" -- cmake --build mpi_consumer || finish
   loads_installed "the MPI consumer" ./mpi_consumer/mpi_consumer
-  # Under TSan the ranks, not mpirun, get the runtime preloaded (see run above).
-  if timeout 120 "$mpirun" -np 2 --oversubscribe ${tsan_runtime:+-x LD_PRELOAD="$tsan_runtime"} \
+  # Its ranks, not mpirun, get the sanitizer runtime of an instrumented library preloaded
+  # (see run above), ASan's too: linked after voronoimesh_mpi and MPI, libOpenMeshCore's
+  # static constructors allocate before the ASan runtime is set up, a crash before main.
+  sanitizer_runtime=$(ldd "$libdir/libvoronoimesh.so.$version" | awk '$1 ~ /^lib[at]san/ {print $3}')
+  if timeout 120 "$mpirun" -np 2 --oversubscribe ${sanitizer_runtime:+-x LD_PRELOAD="$sanitizer_runtime"} \
     ./mpi_consumer/mpi_consumer mpi.ply >mpi.txt 2>&1; then pass
   else fail "MPI consumer: $(cat mpi.txt)"; fi
   cat mpi.txt
