@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 namespace vm {
 namespace {
@@ -55,7 +56,11 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
                  std::array<int32_t, 4>& nodes) {
   const OMesh& om = mesh.omesh();
   if (om.is_boundary(eh)) return -1; // junction or domain edge: never flips
-  const auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  // Judged from its lower node to its higher one, whichever way OpenMesh stores
+  // the edge: the result must depend on the nodes alone, not on the history of
+  // the mesh's halfedges (a part of the mesh built afresh must judge alike).
+  auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  if (mesh.node(om.from_vertex_handle(h0)) > mesh.node(om.to_vertex_handle(h0))) std::swap(h0, h1);
   const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
   const bool ear = is_ear_across(om, h0) || is_ear_across(om, h1);
   if (before >= p.skip_quality && !ear) return -1;
@@ -111,9 +116,13 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
     for (const Candidate& c : judged)
       if (c.gain > 0) found.push_back(c);
     if (found.empty()) break;
-    // Best gain first (ties by edge id, as `edges` is sorted); flips in one round
-    // share no node, so every judgement above stays true until its own flip.
-    std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.gain > b.gain; });
+    // Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
+    // order depends on the mesh alone); flips in one round share no node, so
+    // every judgement above stays true until its own flip.
+    std::sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.gain != b.gain) return a.gain > b.gain;
+      return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
+    });
     OMesh& om = mesh.omesh_for_topology();
     edges.clear();
     for (const Candidate& c : found) {

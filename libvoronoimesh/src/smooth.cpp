@@ -1,5 +1,6 @@
 #include "voronoimesh/smooth.hpp"
 
+#include "detail/fixed_point_sum.hpp"
 #include "detail/parallel.hpp"
 
 #include <algorithm>
@@ -33,23 +34,25 @@ double rms_edge_length(const InterfaceMesh& mesh) {
   auto on_box_surface = [&](int32_t v, int32_t w) {
     return outside >= 0 && mesh.has_phase(v, outside) && mesh.has_phase(w, outside);
   };
-  // Partial sums over fixed chunks of nodes, added in order: deterministic.
+  // Fixed-point partial sums over chunks of nodes: the total does not depend on
+  // the chunks, the threads or the node numbering (detail/fixed_point_sum.hpp).
+  const double unit = (mesh.domain().max - mesh.domain().min).squaredNorm();
   const size_t n = mesh.num_nodes(), chunk = 4096, chunks = (n + chunk - 1) / chunk;
-  std::vector<double> sum(chunks, 0.0);
+  std::vector<detail::FixedPointSum> sum(chunks, detail::FixedPointSum(unit));
   std::vector<size_t> count(chunks, 0);
   const auto& pos = mesh.positions();
   detail::parallel_for_each_index(chunks, [&](size_t c) {
     for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v)
       for (int32_t w : mesh.neighbours(int32_t(v)))
         if (size_t(w) > v && !on_box_surface(int32_t(v), w)) {
-          sum[c] += (pos[v] - pos[size_t(w)]).squaredNorm();
+          sum[c].add((pos[v] - pos[size_t(w)]).squaredNorm());
           ++count[c];
         }
   });
-  double total = 0;
+  detail::FixedPointSum total(unit);
   size_t edges = 0;
-  for (size_t c = 0; c < chunks; ++c) total += sum[c], edges += count[c];
-  return edges ? std::sqrt(total / double(edges)) : 0.0;
+  for (size_t c = 0; c < chunks; ++c) total.add_raw(sum[c].raw()), edges += count[c];
+  return edges ? std::sqrt(total.total() / double(edges)) : 0.0;
 }
 
 void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
