@@ -11,6 +11,8 @@
 #include "voronoimesh/scene.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "mpi_test_helpers.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -20,28 +22,11 @@
 namespace {
 
 using namespace vm;
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-
-Scene example(const std::string& name, int grid) {
-  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
-  scene.grid.cells = {grid, grid, grid};
-  return scene;
-}
+using namespace vm::test;
 
 /// The parts' global ids and owners agree with the assembled mesh: every
 /// vertex of a part is the assembled vertex of its id, each id owned by one
-/// rank, and the parts' triangles are the assembled ones from first_triangle on.
+/// rank, and each part triangle is the assembled triangle its id names.
 void expect_parts_match(const mpi::MeshPart& part, const NodeMesh& whole) {
   std::vector<double> rows; // id, owner, x, y, z per vertex; then -1, first triangle, 0, 0, 0
   for (size_t v = 0; v < part.points.size(); ++v)
@@ -67,7 +52,7 @@ void expect_parts_match(const mpi::MeshPart& part, const NodeMesh& whole) {
   for (size_t t = 0; t < part.triangles.size(); ++t)
     for (int c = 0; c < 3; ++c)
       EXPECT_EQ(part.global_ids[size_t(part.triangles[t][size_t(c)])],
-                whole.triangles[size_t(part.first_triangle) + t][size_t(c)]);
+                whole.triangles[size_t(part.triangle_ids[t])][size_t(c)]);
 }
 
 /// Creates `scene` on every rank together and in one process on rank 0, and
@@ -166,18 +151,6 @@ TEST(MpiCreate, blocks_of_samples_give_the_one_process_mesh) {
   EXPECT_EQ(together.pairs, alone.pairs);
 }
 
-/// Runs `f` on every rank and checks that every rank throws E naming `rank`.
-template <class E, class F> void expect_every_rank_throws(F&& f, const std::string& rank_text, const std::string& what) {
-  try {
-    f();
-    ADD_FAILURE() << "rank " << rank() << " did not throw";
-  } catch (const E& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(rank_text), std::string::npos) << message;
-    EXPECT_NE(message.find(what), std::string::npos) << message;
-  }
-}
-
 // A phase that is NaN in the top layers only: the rank sampling them fails,
 // and every rank throws its error.
 TEST(MpiCreate, nan_in_one_block_fails_every_rank) {
@@ -215,18 +188,3 @@ TEST(MpiCreate, more_ranks_than_slabs_are_refused) {
 }
 
 } // namespace
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  // Only rank 0 prints the report; the others print their failures.
-  if (rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  int failed = RUN_ALL_TESTS();
-  int any = 0;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
-}

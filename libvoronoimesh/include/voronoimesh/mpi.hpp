@@ -20,6 +20,7 @@
 
 #include "voronoimesh/meshing.hpp"
 #include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
 #include "voronoimesh/sampled_field.hpp"
 
 #include <mpi.h>
@@ -32,17 +33,19 @@
 
 namespace vm::mpi {
 
-/// One rank's part of a distributed mesh: the triangles of the tetrahedra it
-/// owns and every vertex they use. A vertex on the boundary between two ranks'
-/// slabs is in both parts, with the same global id; it is owned by the lower
-/// rank, which made it first.
+/// One rank's part of a distributed mesh: the triangles it owns and every
+/// vertex they use. After create_part() those are the triangles of the
+/// tetrahedra it owns; a vertex on the boundary between two ranks' slabs is in
+/// both parts, with the same global id, owned by the lower rank, which made it
+/// first. After improve_part() a vertex belongs to the rank whose band of z it
+/// lies in, and a triangle to the owner of its corner with the lowest id.
 struct MeshPart {
   std::vector<Vec3> points;                      ///< vertices, local ids
   std::vector<std::array<int32_t, 3>> triangles; ///< local vertex ids, oriented as in NodeMesh
   std::vector<PhasePair> pairs;                  ///< phase pair of each triangle
   std::vector<int64_t> global_ids;               ///< each vertex's id in the assembled mesh
   std::vector<int32_t> owners;                   ///< the rank owning each vertex
-  int64_t first_triangle = 0; ///< this part's triangles are first_triangle.. of the assembled mesh
+  std::vector<int64_t> triangle_ids;             ///< each triangle's index in the assembled mesh, ascending
   int64_t global_nodes = 0, global_triangles = 0; ///< of the whole mesh
   std::array<int, 2> slabs{0, -1}; ///< the slabs (tetrahedra) this rank owns
   Box domain;
@@ -75,6 +78,19 @@ MeshPart create_part(MPI_Comm comm, const Scene& scene, const MeshOptions& optio
 /// Throws TopologyError if the mesh fails validation after the repair rounds.
 MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParams& params,
                      DistributedStats* stats = nullptr);
+
+/// Runs `iterations` of `pipeline` on the distributed mesh (paper sect. 4.4),
+/// updating every rank's part: the mesh the ranks end with is the one
+/// Pipeline::run() makes in one process without the crossing guard, vertex for
+/// vertex (positions bit for bit) and triangle for triangle. The ranks split
+/// space into bands of z balanced by vertices; vertices belong to the band they
+/// lie in and migrate as they move, triangles to the owner of their lowest
+/// corner. For now only the moving passes are distributed (smooth, project,
+/// clamp): any other pass is refused with InvalidInput, and the crossing guard
+/// does not run. `field` is evaluated at the vertices of each rank's window, so
+/// every rank needs it around its band (a closed-form scene's field everywhere).
+void improve_part(MPI_Comm comm, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
+                  DistributedStats* stats = nullptr);
 
 /// The whole mesh on rank 0 (empty on the others): the mesh create_mesh()
 /// makes. Throws InvalidInput when it has more than 2^31 nodes or triangles.

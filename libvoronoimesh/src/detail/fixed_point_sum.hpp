@@ -26,6 +26,7 @@ public:
   /// Adds another partial sum over the same unit (another chunk, another rank).
   void add_raw(Raw other) { raw_ += other; }
   Raw raw() const { return raw_; }
+  double unit() const { return unit_; }
   double total() const { return std::ldexp(double(raw_), -kFractionBits) * unit_; }
 
 private:

@@ -35,17 +35,50 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
     if (part.global_nodes > INT_MAX || part.global_triangles > INT_MAX)
       throw InvalidInput("mpi: a mesh of " + std::to_string(part.global_nodes) + " nodes and " +
                          std::to_string(part.global_triangles) + " triangles is too large to assemble on one rank");
-    // Each rank's own vertices hold consecutive ids, in the order of its part.
-    std::vector<Vec3> own;
+    // Every vertex once, from its owner, and every triangle, each with its id.
+    struct Vertex {
+      int64_t id;
+      double xyz[3];
+    };
+    struct Triangle {
+      int64_t id;
+      int32_t corners[3];
+      PhasePair pair;
+    };
+    std::vector<Vertex> own;
     for (size_t v = 0; v < part.points.size(); ++v)
-      if (part.owners[v] == comm.rank()) own.push_back(part.points[v]);
-    std::vector<std::array<int32_t, 3>> triangles;
-    for (const auto& t : part.triangles)
-      triangles.push_back({int32_t(part.global_ids[size_t(t[0])]), int32_t(part.global_ids[size_t(t[1])]),
-                           int32_t(part.global_ids[size_t(t[2])])});
-    mesh.points = comm.gather(std::span<const Vec3>(own));
-    mesh.triangles = comm.gather(std::span<const std::array<int32_t, 3>>(triangles));
-    mesh.pairs = comm.gather(std::span<const PhasePair>(part.pairs));
+      if (part.owners[v] == comm.rank())
+        own.push_back({part.global_ids[v], {part.points[v].x(), part.points[v].y(), part.points[v].z()}});
+    std::vector<Triangle> triangles;
+    for (size_t t = 0; t < part.triangles.size(); ++t) {
+      const auto& tri = part.triangles[t];
+      triangles.push_back({part.triangle_ids[t],
+                           {int32_t(part.global_ids[size_t(tri[0])]), int32_t(part.global_ids[size_t(tri[1])]),
+                            int32_t(part.global_ids[size_t(tri[2])])},
+                           part.pairs[t]});
+    }
+    const std::vector<Vertex> vertices = comm.gather(std::span<const Vertex>(own));
+    const std::vector<Triangle> all = comm.gather(std::span<const Triangle>(triangles));
+    if (comm.rank() == 0) {
+      if (vertices.size() != size_t(part.global_nodes) || all.size() != size_t(part.global_triangles))
+        throw Error("mpi: internal error: the parts hold " + std::to_string(vertices.size()) + " vertices and " +
+                    std::to_string(all.size()) + " triangles of " + std::to_string(part.global_nodes) + " and " +
+                    std::to_string(part.global_triangles) + " (please report this with the input)");
+      auto check = [&](int64_t id, size_t size) {
+        if (id < 0 || size_t(id) >= size)
+          throw Error("mpi: internal error: id " + std::to_string(id) + " out of range (please report this with the input)");
+        return size_t(id);
+      };
+      mesh.points.resize(vertices.size());
+      for (const Vertex& v : vertices) mesh.points[check(v.id, vertices.size())] = Vec3(v.xyz[0], v.xyz[1], v.xyz[2]);
+      mesh.triangles.resize(all.size());
+      mesh.pairs.resize(all.size());
+      for (const Triangle& t : all) {
+        const size_t at = check(t.id, all.size());
+        mesh.triangles[at] = {t.corners[0], t.corners[1], t.corners[2]};
+        mesh.pairs[at] = t.pair;
+      }
+    }
     if (comm.rank() != 0) return;
     mesh.domain = part.domain;
     mesh.phase_names = part.phase_names;

@@ -1,0 +1,61 @@
+// Distributed improvement (mpi.hpp, improve_part()), run under mpirun with 2
+// and 4 ranks: after 20 iterations of the moving passes the ranks' mesh is the
+// one one process makes, positions bit for bit, and it is valid; passes that
+// are not distributed yet are refused on every rank.
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/meshing.hpp"
+#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/registry.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include "mpi_test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace vm;
+using namespace vm::test;
+
+constexpr const char* kMovingPasses = "smooth,project,clamp";
+
+void expect_same_as_one_process(const Scene& scene, int iterations) {
+  MeshOptions o;
+  o.threads = 1; // ranks share two cores
+  const Pipeline pipeline = Pipeline::parse(kMovingPasses, builtin_registry());
+  mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, o);
+  mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations);
+  const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
+  if (rank() != 0) return;
+  InterfaceMesh alone = InterfaceMesh::from_node_mesh(create_mesh(scene, o));
+  RunOptions run;
+  run.iterations = iterations;
+  run.guard_crossings = false;
+  pipeline.run(alone, scene.field.get(), run);
+  const NodeMesh expected = alone.to_node_mesh();
+  ASSERT_EQ(together.points.size(), expected.points.size());
+  EXPECT_EQ(together.points, expected.points);
+  EXPECT_EQ(together.triangles, expected.triangles);
+  EXPECT_EQ(together.pairs, expected.pairs);
+  const ValidationReport report = validate(together);
+  EXPECT_TRUE(report.ok()) << report.summary();
+}
+
+TEST(MpiImprove, four_spheres_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(example("four_spheres.json", 32), 20);
+}
+
+TEST(MpiImprove, voronoi30_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(example("voronoi30.json", 36), 20);
+}
+
+TEST(MpiImprove, passes_not_yet_distributed_are_refused_on_every_rank) {
+  const Scene scene = example("four_spheres.json", 16);
+  mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{});
+  const Pipeline pipeline = Pipeline::parse("smooth,project,clamp,flip", builtin_registry());
+  expect_every_rank_throws<InvalidInput>(
+      [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", "'flip' is not distributed");
+}
+
+} // namespace
