@@ -10,7 +10,8 @@
 
 namespace vm {
 
-GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field) {
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
+                                     const AgreeOnUndone& agree) {
   GuardReport report;
   NodeMesh m = mesh.to_node_mesh(); // positions before the move, until they are swapped out below
   std::vector<int32_t> watched;
@@ -66,6 +67,11 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
           changed[size_t(n)] = 1;
           undo.push_back(n);
         }
+    if (agree) {
+      agree(undo); // every rank's, so other ranks' culprits are put back here too
+      std::erase_if(undo, [&](int32_t n) { return !moved[size_t(n)] && !changed[size_t(n)]; });
+      for (int32_t n : undo) moved[size_t(n)] = 0, changed[size_t(n)] = 1;
+    }
     if (undo.empty()) break; // clean, or only what the mesh had before the move
     std::vector<Vec3> back(undo.size());
     for (size_t i = 0; i < undo.size(); ++i) {

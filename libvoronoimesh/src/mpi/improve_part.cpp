@@ -18,6 +18,7 @@
 #include "mpi/comm.hpp"
 #include "voronoimesh/clamp.hpp"
 #include "voronoimesh/errors.hpp"
+#include "voronoimesh/guard.hpp"
 #include "voronoimesh/project.hpp"
 #include "voronoimesh/smooth.hpp"
 
@@ -158,6 +159,29 @@ double global_rms_edge_length(Comm& comm, const InterfaceMesh& mesh, const std::
   return edges ? std::sqrt(total.total() / double(edges)) : 0.0;
 }
 
+/// Gives every vertex of the window its owner's move: each rank sends the moves
+/// of its own vertices to the ranks whose windows reach them.
+void share_moves(Comm& comm, const Window& w, const std::vector<uint8_t>& own, const Bands& bands, double reach,
+                 std::vector<Vec3>& delta) {
+  std::vector<std::vector<char>> out(size_t(comm.size()));
+  for (size_t v = 0; v < own.size(); ++v)
+    if (own[v])
+      for (int r = 0; r < comm.size(); ++r)
+        if (bands.near(r, w.mesh.points[v].z(), reach))
+          append_bytes(out[size_t(r)], VertexRecord{w.vertex_ids[v], {delta[v].x(), delta[v].y(), delta[v].z()}});
+  size_t given = 0;
+  for (const auto& bytes : comm.all_to_all(out))
+    for (const VertexRecord& r : from_bytes<VertexRecord>(bytes)) {
+      const auto at = std::lower_bound(w.vertex_ids.begin(), w.vertex_ids.end(), r.id);
+      if (at == w.vertex_ids.end() || *at != r.id) continue;
+      delta[size_t(at - w.vertex_ids.begin())] = Vec3(r.xyz[0], r.xyz[1], r.xyz[2]);
+      ++given;
+    }
+  if (given != delta.size())
+    throw Error("mpi: internal error: " + std::to_string(delta.size() - given) +
+                " vertices of a window got no move from their owner (please report this)");
+}
+
 /// The moving passes this function distributes, with their parameters.
 void check_pipeline(const Pipeline& pipeline) {
   for (const Pipeline::Step& s : pipeline.steps())
@@ -209,7 +233,7 @@ void rebuild_part(MeshPart& part, const std::vector<TriangleRecord>& triangles,
 } // namespace
 
 void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
-                  DistributedStats* stats) {
+                  bool guard_crossings, DistributedStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
   comm.collectively([&] {
@@ -261,12 +285,30 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
       for (size_t v = 0; v < own.size(); ++v)
         if (own[v]) moved = std::max(moved, delta[v].norm());
       moved = comm.max(moved);
-      mesh.move_nodes(delta);
-
-      // The moved vertices go to every rank whose next window may use them:
-      // edges grow by at most the two ends' moves.
+      // Edges grow by at most the two ends' moves.
       edge += 2 * moved;
       const double reach = 3 * edge + 2 * tolerance;
+      if (guard_crossings) {
+        // The guard looks at every triangle of the window: each vertex takes its
+        // owner's move, and the ranks agree on every round's undone moves.
+        share_moves(comm, w, own, bands, reach, delta);
+        commit_without_crossings(mesh, delta, &field, [&](std::vector<int32_t>& undone) {
+          std::vector<int64_t> ids;
+          for (int32_t v : undone) ids.push_back(w.vertex_ids[size_t(v)]);
+          std::vector<int64_t> all = comm.all_gather(std::span<const int64_t>(ids));
+          std::sort(all.begin(), all.end());
+          undone.clear();
+          for (int64_t id : all) {
+            const auto at = std::lower_bound(w.vertex_ids.begin(), w.vertex_ids.end(), id);
+            if (at != w.vertex_ids.end() && *at == id) undone.push_back(int32_t(at - w.vertex_ids.begin()));
+          }
+          undone.erase(std::unique(undone.begin(), undone.end()), undone.end());
+        });
+      } else {
+        mesh.move_nodes(delta);
+      }
+
+      // The moved vertices go to every rank whose next window may use them.
       for (auto& bytes : out) bytes.clear();
       const auto& pos = mesh.positions();
       for (size_t v = 0; v < own.size(); ++v)
