@@ -44,8 +44,9 @@ struct GuardReport {
 /// In a distributed run each rank passes its window of the mesh (moves of every
 /// node in it, exact) and `agree`, called once per round with the nodes this
 /// rank would put back: it replaces them with those of every rank (the ones in
-/// this window), so every rank undoes the same moves and stops at the same round.
-using AgreeOnUndone = std::function<void(std::vector<int32_t>& undone)>;
+/// this window) and returns whether any rank put a node back, so every rank
+/// undoes the same moves and stops at the same round.
+using AgreeOnUndone = std::function<bool(std::vector<int32_t>& undone)>;
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
                                      const PhaseField* field = nullptr, const AgreeOnUndone& agree = {});
 
