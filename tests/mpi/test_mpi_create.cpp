@@ -91,25 +91,7 @@ TEST(MpiCreate, closed_cube6_four_spheres_is_the_one_process_mesh) {
 
 TEST(MpiCreate, voronoi30_is_the_one_process_mesh) { expect_same_as_one_process(example("voronoi30.json", 36), {}); }
 
-TEST(MpiCreate, label_volume_is_the_one_process_mesh) {
-  // Grains: a label per node from the nearest of 12 random seeds.
-  GridSpec grid;
-  grid.cells = {24, 22, 26};
-  std::mt19937_64 rng(8);
-  std::vector<Vec3> seeds;
-  for (int s = 0; s < 12; ++s) seeds.push_back(Vec3(double(rng() % 1000), double(rng() % 1000), double(rng() % 1000)) / 1000);
-  std::vector<int32_t> labels(size_t(grid.node_count()));
-  for (int64_t k = 0; k <= grid.cells[2]; ++k)
-    for (int64_t j = 0; j <= grid.cells[1]; ++j)
-      for (int64_t i = 0; i <= grid.cells[0]; ++i) {
-        const Vec3 x = grid.node_position(i, j, k);
-        int best = 0;
-        for (int s = 1; s < 12; ++s)
-          if ((x - seeds[size_t(s)]).norm() < (x - seeds[size_t(best)]).norm()) best = s;
-        labels[size_t(grid.node_index(i, j, k))] = 10 * best;
-      }
-  expect_same_as_one_process(scene_from_labels(grid, labels), {});
-}
+TEST(MpiCreate, label_volume_is_the_one_process_mesh) { expect_same_as_one_process(grains(), {}); }
 
 // Integer values tie everywhere: create needs repair rounds, and every rank
 // must make the repairs one process makes (test_create_ties.cpp).

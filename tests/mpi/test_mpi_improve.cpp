@@ -1,7 +1,7 @@
 // Distributed improvement (mpi.hpp, improve_part()), run under mpirun with 2
-// and 4 ranks: after 20 iterations of the moving passes (with and without the
-// crossing guard) and of the paper's pipeline with flips, the ranks' mesh is
-// the one one process makes, positions bit for bit, and it is valid; passes that
+// and 4 ranks: after 20 iterations of the default pipeline (and of the moving
+// passes alone, with and without the crossing guard) the ranks' mesh is the one
+// one process makes, positions bit for bit, and it is valid; passes that
 // are not distributed yet are refused on every rank.
 
 #include "voronoimesh/errors.hpp"
@@ -20,8 +20,6 @@ using namespace vm;
 using namespace vm::test;
 
 constexpr const char* kMovingPasses = "smooth,project,clamp";
-// The paper's pipeline; collapses (not in the paper) are not distributed yet.
-constexpr const char* kWithFlips = "smooth,project,clamp,flip:collapse_below=0";
 
 void expect_same_as_one_process(const Scene& scene, int iterations, bool guard_crossings,
                                 const char* passes = kMovingPasses) {
@@ -46,37 +44,34 @@ void expect_same_as_one_process(const Scene& scene, int iterations, bool guard_c
   EXPECT_TRUE(report.ok()) << report.summary();
 }
 
+// The default pipeline: flips near a cut are decided in sub-rounds
+// (mpi/flip_peers.hpp), crossing checks and the guard agree on culprits, and
+// collapses are chosen from every rank's slivers (mpi/collapse_peers.hpp).
 TEST(MpiImprove, four_spheres_after_20_iterations_is_the_one_process_mesh) {
-  expect_same_as_one_process(example("four_spheres.json", 32), 20, true);
+  expect_same_as_one_process(example("four_spheres.json", 32), 20, true, kDefaultPipeline);
 }
 
-// voronoi30 has quadruple points closer than a grid cell: the guard undoes moves
-// there in the first iterations (test_improve.cpp), across the ranks' cuts too.
+// Quadruple points closer than a grid cell: the guard undoes moves and flips in
+// the first iterations (test_improve.cpp).
 TEST(MpiImprove, voronoi30_after_20_iterations_is_the_one_process_mesh) {
-  expect_same_as_one_process(example("voronoi30.json", 36), 20, true);
+  expect_same_as_one_process(example("voronoi30.json", 36), 20, true, kDefaultPipeline);
 }
 
-TEST(MpiImprove, without_the_guard_too) { expect_same_as_one_process(example("voronoi30.json", 36), 20, false); }
-
-// Flips near a cut are decided in sub-rounds (mpi/flip_peers.hpp): the ranks
-// flip what one process flips, and the crossing checks agree on culprits.
-TEST(MpiImprove, four_spheres_with_flips_is_the_one_process_mesh) {
-  expect_same_as_one_process(example("four_spheres.json", 32), 20, true, kWithFlips);
+// Grain maps have junction slivers that only collapses remove (test_collapse.cpp).
+TEST(MpiImprove, label_volume_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(grains(), 20, true, kDefaultPipeline);
 }
 
-TEST(MpiImprove, voronoi30_with_flips_is_the_one_process_mesh) {
-  expect_same_as_one_process(example("voronoi30.json", 36), 20, true, kWithFlips);
+TEST(MpiImprove, moving_passes_alone_with_and_without_the_guard) {
+  for (bool guard : {true, false}) expect_same_as_one_process(example("voronoi30.json", 24), 20, guard);
 }
 
 TEST(MpiImprove, passes_not_yet_distributed_are_refused_on_every_rank) {
   const Scene scene = example("four_spheres.json", 16);
   mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{});
-  for (auto [passes, problem] : {std::pair{"smooth,project,clamp,flip", "collapses are not distributed"},
-                                 {"smooth,stats", "'stats' is not distributed"}}) {
-    const Pipeline pipeline = Pipeline::parse(passes, builtin_registry());
-    expect_every_rank_throws<InvalidInput>(
-        [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", problem);
-  }
+  const Pipeline pipeline = Pipeline::parse("smooth,stats", builtin_registry());
+  expect_every_rank_throws<InvalidInput>(
+      [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", "'stats' is not distributed");
 }
 
 } // namespace

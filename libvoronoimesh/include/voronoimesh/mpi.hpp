@@ -82,16 +82,20 @@ MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParam
 /// Runs `iterations` of `pipeline` on the distributed mesh (paper sect. 4.4),
 /// updating every rank's part: the mesh the ranks end with is the one
 /// Pipeline::run() makes in one process (with RunOptions::guard_crossings as
-/// given), vertex for vertex (positions bit for bit) and triangle for triangle.
-/// The ranks split space into bands of z balanced by vertices; vertices belong
-/// to the band they lie in and migrate as they move, triangles to the owner of
-/// their lowest corner. For now only the moving passes are distributed (smooth,
-/// project, clamp, and the crossing guard that commits their moves): any other
-/// pass is refused with InvalidInput. `field` is evaluated at the vertices of
-/// each rank's window, so every rank needs it around its band (a closed-form
-/// scene's field everywhere).
+/// given), vertex for vertex (positions bit for bit) and triangle for triangle,
+/// once assemble() has closed the gaps collapses leave in the ids. The ranks
+/// split space into bands of z balanced by vertices; vertices belong to the
+/// band they lie in and migrate as they move, triangles to the owner of their
+/// lowest corner. The built-in passes smooth, project, clamp and flip (with its
+/// collapses) are distributed, and the crossing guard; any other pass is
+/// refused with InvalidInput (distributes() says beforehand). `field` is
+/// evaluated around each rank's band, so every rank needs it there (a
+/// closed-form scene's field everywhere; a sampled field whole, for now).
 void improve_part(MPI_Comm comm, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
                   bool guard_crossings = true, DistributedStats* stats = nullptr);
+
+/// True when improve_part() can run every pass of `pipeline`.
+bool distributes(const Pipeline& pipeline);
 
 /// The whole mesh on rank 0 (empty on the others): the mesh create_mesh()
 /// makes. Throws InvalidInput when it has more than 2^31 nodes or triangles.

@@ -8,6 +8,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <filesystem>
 
@@ -36,13 +37,15 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
       throw InvalidInput("mpi: a mesh of " + std::to_string(part.global_nodes) + " nodes and " +
                          std::to_string(part.global_triangles) + " triangles is too large to assemble on one rank");
     // Every vertex once, from its owner, and every triangle, each with its id.
+    // Ids ascend as the assembled mesh's indices do; after collapses they have
+    // gaps, which the assembled mesh closes (as one process renumbers).
     struct Vertex {
       int64_t id;
       double xyz[3];
     };
     struct Triangle {
       int64_t id;
-      int32_t corners[3];
+      int64_t corners[3];
       PhasePair pair;
     };
     std::vector<Vertex> own;
@@ -53,33 +56,40 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
     for (size_t t = 0; t < part.triangles.size(); ++t) {
       const auto& tri = part.triangles[t];
       triangles.push_back({part.triangle_ids[t],
-                           {int32_t(part.global_ids[size_t(tri[0])]), int32_t(part.global_ids[size_t(tri[1])]),
-                            int32_t(part.global_ids[size_t(tri[2])])},
+                           {part.global_ids[size_t(tri[0])], part.global_ids[size_t(tri[1])],
+                            part.global_ids[size_t(tri[2])]},
                            part.pairs[t]});
     }
-    const std::vector<Vertex> vertices = comm.gather(std::span<const Vertex>(own));
-    const std::vector<Triangle> all = comm.gather(std::span<const Triangle>(triangles));
-    if (comm.rank() == 0) {
-      if (vertices.size() != size_t(part.global_nodes) || all.size() != size_t(part.global_triangles))
-        throw Error("mpi: internal error: the parts hold " + std::to_string(vertices.size()) + " vertices and " +
-                    std::to_string(all.size()) + " triangles of " + std::to_string(part.global_nodes) + " and " +
-                    std::to_string(part.global_triangles) + " (please report this with the input)");
-      auto check = [&](int64_t id, size_t size) {
-        if (id < 0 || size_t(id) >= size)
-          throw Error("mpi: internal error: id " + std::to_string(id) + " out of range (please report this with the input)");
-        return size_t(id);
-      };
-      mesh.points.resize(vertices.size());
-      for (const Vertex& v : vertices) mesh.points[check(v.id, vertices.size())] = Vec3(v.xyz[0], v.xyz[1], v.xyz[2]);
-      mesh.triangles.resize(all.size());
-      mesh.pairs.resize(all.size());
-      for (const Triangle& t : all) {
-        const size_t at = check(t.id, all.size());
-        mesh.triangles[at] = {t.corners[0], t.corners[1], t.corners[2]};
-        mesh.pairs[at] = t.pair;
-      }
-    }
+    std::vector<Vertex> vertices = comm.gather(std::span<const Vertex>(own));
+    std::vector<Triangle> all = comm.gather(std::span<const Triangle>(triangles));
     if (comm.rank() != 0) return;
+    auto internal_error = [](const std::string& what) {
+      return Error("mpi: internal error: " + what + " (please report this with the input)");
+    };
+    if (vertices.size() != size_t(part.global_nodes) || all.size() != size_t(part.global_triangles))
+      throw internal_error("the parts hold " + std::to_string(vertices.size()) + " vertices and " +
+                           std::to_string(all.size()) + " triangles of " + std::to_string(part.global_nodes) +
+                           " and " + std::to_string(part.global_triangles));
+    std::sort(vertices.begin(), vertices.end(), [](const Vertex& a, const Vertex& b) { return a.id < b.id; });
+    std::sort(all.begin(), all.end(), [](const Triangle& a, const Triangle& b) { return a.id < b.id; });
+    std::vector<int64_t> ids;
+    for (const Vertex& v : vertices) {
+      if (!ids.empty() && ids.back() == v.id) throw internal_error("vertex " + std::to_string(v.id) + " has two owners");
+      ids.push_back(v.id);
+      mesh.points.push_back(Vec3(v.xyz[0], v.xyz[1], v.xyz[2]));
+    }
+    for (const Triangle& t : all) {
+      std::array<int32_t, 3> corners{};
+      for (int c = 0; c < 3; ++c) {
+        const auto at = std::lower_bound(ids.begin(), ids.end(), t.corners[c]);
+        if (at == ids.end() || *at != t.corners[c])
+          throw internal_error("triangle " + std::to_string(t.id) + " uses vertex " + std::to_string(t.corners[c]) +
+                               ", which no rank owns");
+        corners[size_t(c)] = int32_t(at - ids.begin());
+      }
+      mesh.triangles.push_back(corners);
+      mesh.pairs.push_back(t.pair);
+    }
     mesh.domain = part.domain;
     mesh.phase_names = part.phase_names;
     mesh.phase_labels = part.phase_labels;

@@ -17,9 +17,11 @@
 #include "voronoimesh/mpi.hpp"
 
 #include "detail/edge_lengths.hpp"
+#include "mpi/collapse_peers.hpp"
 #include "mpi/flip_peers.hpp"
 #include "mpi/window.hpp"
 #include "voronoimesh/clamp.hpp"
+#include "voronoimesh/collapse.hpp"
 #include "voronoimesh/flip.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/guard.hpp"
@@ -96,15 +98,31 @@ bool agree_on_undone(Comm& comm, const Window& w, std::vector<int32_t>& undone) 
 
 bool is_flip(const Pipeline::Step& s) { return s.info.name == "flip"; }
 
-/// The passes this function distributes.
-void check_pipeline(const Pipeline& pipeline) {
-  for (const Pipeline::Step& s : pipeline.steps()) {
-    if (s.info.name != "smooth" && s.info.name != "project" && s.info.name != "clamp" && !is_flip(s))
-      throw InvalidInput("mpi: the pass '" + s.info.name +
-                         "' is not distributed; improve_part() runs smooth, project, clamp and flip");
-    if (is_flip(s) && s.params.at("collapse_below") > 0)
-      throw InvalidInput("mpi: collapses are not distributed yet; give the flip pass collapse_below=0");
+bool is_distributed(const Pipeline::Step& s) {
+  return s.info.name == "smooth" || s.info.name == "project" || s.info.name == "clamp" || is_flip(s);
+}
+
+/// The flip pass's collapses over the ranks; the window follows the nodes and
+/// triangles the rebuilt mesh keeps (its start positions and ownership too).
+void collapse(Comm& comm, InterfaceMesh& mesh, Window& w, std::vector<uint8_t>& own, const CollapseParams& params) {
+  detail::WindowCollapsePeers peers(comm, own);
+  vm::detail::CollapseKept kept;
+  if (vm::detail::collapse_junction_slivers(mesh, params, peers, w.vertex_ids, w.triangle_ids, kept) == 0) return;
+  std::vector<int64_t> vertex_ids, triangle_ids;
+  std::vector<Vec3> start;
+  std::vector<uint8_t> still_own;
+  for (int32_t v : kept.nodes) {
+    vertex_ids.push_back(w.vertex_ids[size_t(v)]);
+    start.push_back(w.mesh.points[size_t(v)]);
+    still_own.push_back(own[size_t(v)]);
   }
+  for (int32_t t : kept.triangles) triangle_ids.push_back(w.triangle_ids[size_t(t)]);
+  w.vertex_ids = std::move(vertex_ids);
+  w.triangle_ids = std::move(triangle_ids);
+  w.mesh.points = std::move(start);
+  w.mesh.triangles.clear(); // the rebuilt mesh has them
+  w.mesh.pairs.clear();
+  own = std::move(still_own);
 }
 
 /// How far a window must reach from its band for flips, when vertices have
@@ -140,12 +158,19 @@ void rebuild_part(MeshPart& part, const std::vector<TriangleRecord>& triangles,
 
 } // namespace
 
+bool distributes(const Pipeline& pipeline) {
+  return std::all_of(pipeline.steps().begin(), pipeline.steps().end(), is_distributed);
+}
+
 void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
                   bool guard_crossings, DistributedStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
   comm.collectively([&] {
-    check_pipeline(pipeline);
+    for (const Pipeline::Step& s : pipeline.steps())
+      if (!is_distributed(s))
+        throw InvalidInput("mpi: the pass '" + s.info.name +
+                           "' is not distributed; improve_part() runs smooth, project, clamp and flip");
     if (iterations <= 0) return;
     std::vector<double> own_z;
     for (size_t v = 0; v < part.points.size(); ++v)
@@ -214,6 +239,9 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
                                  FlipParams{s.params.at("skip_quality"), int(s.params.at("max_rounds")), 0.0,
                                             guard_crossings, &field},
                                  peers);
+          collapse(comm, mesh, w, own,
+                   CollapseParams{s.params.at("collapse_below"), CollapseParams{}.max_collapses, guard_crossings});
+          delta.assign(mesh.num_nodes(), Vec3::Zero());
         }
       }
       commit();
@@ -260,6 +288,11 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
       }
     }
     rebuild_part(part, sending, moved_to, bands, me);
+    // Collapses removed vertices and triangles.
+    uint64_t own_vertices = 0;
+    for (int32_t o : part.owners) own_vertices += o == me;
+    part.global_nodes = int64_t(comm.sum(own_vertices));
+    part.global_triangles = int64_t(comm.sum(part.triangles.size()));
   });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
