@@ -58,6 +58,10 @@ struct DistributedStats {
   CreateStats create;     ///< summed over ranks; seconds: the slowest rank's create
   double seconds = 0;     ///< this rank's wall time of the whole call, sampling included
   double mpi_seconds = 0; ///< of which inside MPI calls (waiting included)
+  uint64_t bytes_sent = 0;  ///< this rank's bytes sent to other ranks
+  uint64_t collectives = 0; ///< collective MPI calls this rank made (failure agreements included)
+  /// improve_part(): this rank's window and own triangles, summed over the iterations.
+  uint64_t window_triangles = 0, own_triangles = 0;
   std::vector<uint64_t> interface_tets; ///< per rank: tetrahedra with more than one winning phase at their nodes
   std::vector<std::array<int, 2>> slabs; ///< per rank: the slabs it owns
 };

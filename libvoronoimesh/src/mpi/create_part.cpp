@@ -210,6 +210,8 @@ void finish_stats(DistributedStats* stats, const Comm& comm, std::chrono::steady
   if (!stats) return;
   stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats->mpi_seconds = comm.mpi_seconds();
+  stats->bytes_sent = comm.bytes_sent();
+  stats->collectives = comm.collectives();
 }
 
 } // namespace

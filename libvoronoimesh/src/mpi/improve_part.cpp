@@ -166,6 +166,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
                   bool guard_crossings, DistributedStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
+  uint64_t window_triangles = 0, own_triangles = 0;
   comm.collectively([&] {
     for (const Pipeline::Step& s : pipeline.steps())
       if (!is_distributed(s))
@@ -196,6 +197,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
                                       }),
                                       part);
       InterfaceMesh mesh = InterfaceMesh::from_node_mesh(w.mesh);
+      window_triangles += w.triangle_ids.size();
       std::vector<uint8_t> own(mesh.num_nodes());
       for (size_t v = 0; v < own.size(); ++v) own[v] = bands.owner(w.mesh.points[v].z()) == me;
       // A window's vertices lie within a triangle's reach of the window.
@@ -286,6 +288,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
         }
         sending.push_back(r);
       }
+      own_triangles += sending.size();
     }
     rebuild_part(part, sending, moved_to, bands, me);
     // Collapses removed vertices and triangles.
@@ -297,6 +300,10 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->mpi_seconds = comm.mpi_seconds();
+    stats->bytes_sent = comm.bytes_sent();
+    stats->collectives = comm.collectives();
+    stats->window_triangles = window_triangles;
+    stats->own_triangles = own_triangles;
   }
 }
 
