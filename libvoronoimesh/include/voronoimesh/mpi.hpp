@@ -62,6 +62,9 @@ struct DistributedStats {
   uint64_t collectives = 0; ///< collective MPI calls this rank made (failure agreements included)
   /// improve_part(): this rank's window and own triangles, summed over the iterations.
   uint64_t window_triangles = 0, own_triangles = 0;
+  /// improve_part(): iterations run again on wider windows, their moves having
+  /// outgrown the guess the windows were built for (the same on every rank).
+  int wider_windows = 0;
   std::vector<uint64_t> interface_tets; ///< per rank: tetrahedra with more than one winning phase at their nodes
   std::vector<std::array<int, 2>> slabs; ///< per rank: the slabs it owns
 };

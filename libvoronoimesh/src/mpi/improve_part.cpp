@@ -156,6 +156,129 @@ void rebuild_part(MeshPart& part, const std::vector<TriangleRecord>& triangles,
   for (const Vec3& p : part.points) part.owners.push_back(bands.owner(p.z()));
 }
 
+/// What stays the same through a run of improve_part().
+struct Run {
+  Comm& comm;
+  const Bands& bands;
+  const Pipeline& pipeline;
+  const PhaseField& field;
+  bool guard_crossings;
+  const MeshPart& part; // domain and phases for the windows
+  double tolerance;
+  uint64_t window_triangles = 0, own_triangles = 0;
+  int wider_windows = 0;
+};
+
+/// The largest move of this rank's own vertices since the window was built.
+double largest_move(Comm& comm, const InterfaceMesh& mesh, const Window& w, const std::vector<uint8_t>& own) {
+  double moved = 0;
+  for (size_t v = 0; v < own.size(); ++v)
+    if (own[v]) moved = std::max(moved, (mesh.positions()[v] - w.mesh.points[v]).norm());
+  return comm.max(moved);
+}
+
+/// One iteration on windows reaching `margin` from the bands, edges up to
+/// `edge` long. Returns the largest move; or, when the moves turned out too
+/// large for the flips' window, minus that move, with nothing changed (the
+/// caller builds wider windows and runs the iteration again).
+double iterate(Run& run, double edge, double margin, std::vector<TriangleRecord>& sending,
+               std::unordered_map<int64_t, Vec3>& moved_to) {
+  Comm& comm = run.comm;
+  const Bands& bands = run.bands;
+  const int me = comm.rank();
+  Window w = detail::build_window(exchange(comm, sending, [&](const TriangleRecord& t, int r) {
+                                    return bands.near(r, t.xyz[0][2], margin) || bands.near(r, t.xyz[1][2], margin) ||
+                                           bands.near(r, t.xyz[2][2], margin);
+                                  }),
+                                  run.part);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(w.mesh);
+  std::vector<uint8_t> own(mesh.num_nodes());
+  for (size_t v = 0; v < own.size(); ++v) own[v] = bands.owner(w.mesh.points[v].z()) == me;
+  // A window's vertices lie within a triangle's reach of the window.
+  const double reach = margin + edge + run.tolerance;
+
+  // The passes as Pipeline::run() applies them: moves summed in pipeline
+  // order and committed before anything that looks at positions.
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+  bool pending = false;
+  auto commit = [&] {
+    if (!pending) return;
+    share_moves(comm, w, own, bands, reach, delta);
+    if (run.guard_crossings)
+      commit_without_crossings(mesh, delta, &run.field,
+                               [&](std::vector<int32_t>& undone) { return agree_on_undone(comm, w, undone); });
+    else
+      mesh.move_nodes(delta);
+    std::fill(delta.begin(), delta.end(), Vec3::Zero());
+    pending = false;
+  };
+  for (const Pipeline::Step& s : run.pipeline.steps()) {
+    if (s.info.name == "smooth") {
+      add_smoothing_forces_with_rest_length(
+          mesh, run.field, s.params.at("rest_factor") * global_rms_edge_length(comm, mesh, own), delta);
+      pending = true;
+    } else if (s.info.name == "project") {
+      add_projection(mesh, run.field, ProjectParams{s.params.at("min_gradient_gap")}, delta);
+      pending = true;
+    } else if (s.info.name == "clamp") {
+      if (pending) clamp_displacements(mesh, ClampParams{s.params.at("factor")}, delta);
+    } else {
+      commit();
+      const double moved = largest_move(comm, mesh, w, own);
+      if (flip_reach(edge, moved) > margin - run.tolerance) return -moved;
+      detail::WindowFlipPeers peers(comm, w, own, bands, reach);
+      vm::detail::flip_edges(mesh,
+                             FlipParams{s.params.at("skip_quality"), int(s.params.at("max_rounds")), 0.0,
+                                        run.guard_crossings, &run.field},
+                             peers);
+      collapse(comm, mesh, w, own,
+               CollapseParams{s.params.at("collapse_below"), CollapseParams{}.max_collapses, run.guard_crossings});
+      delta.assign(mesh.num_nodes(), Vec3::Zero());
+    }
+  }
+  commit();
+  run.window_triangles += w.triangle_ids.size();
+
+  // Where the vertices went: the owners send them to every window that may
+  // use them next (edges grow by at most their ends' moves, a flip's new
+  // diagonal is at most two edges).
+  const double moved = largest_move(comm, mesh, w, own);
+  if (moved >= margin)
+    throw Error("mpi: internal error: a vertex moved farther than the window reaches (please report this)");
+  const double next_reach = 3 * (edge + 2 * moved) + 2 * run.tolerance;
+  std::vector<VertexRecord> mine;
+  const auto& pos = mesh.positions();
+  for (size_t v = 0; v < own.size(); ++v)
+    if (own[v]) mine.push_back({w.vertex_ids[v], {pos[v].x(), pos[v].y(), pos[v].z()}});
+  moved_to.clear();
+  for (const VertexRecord& r : exchange(comm, mine, [&](const VertexRecord& r, int to) {
+         return bands.near(to, r.xyz[2], next_reach);
+       }))
+    moved_to[r.id] = Vec3(r.xyz[0], r.xyz[1], r.xyz[2]);
+
+  // This rank's triangles now: those whose lowest corner moved into its band.
+  // A vertex moves less than a window's margin, so they are all in this window.
+  const NodeMesh now = mesh.to_node_mesh(); // triangle t is still w's triangle t (flips keep faces)
+  sending.clear();
+  for (size_t t = 0; t < now.triangles.size(); ++t) {
+    const auto& tri = now.triangles[t];
+    const int32_t lowest = *std::min_element(tri.begin(), tri.end()); // local order is id order
+    const auto found = moved_to.find(w.vertex_ids[size_t(lowest)]);
+    if (found == moved_to.end() || bands.owner(found->second.z()) != me) continue;
+    TriangleRecord r{w.triangle_ids[t], {}, now.pairs[t], {}};
+    for (int k = 0; k < 3; ++k) {
+      r.corners[k] = w.vertex_ids[size_t(tri[size_t(k)])];
+      const auto corner = moved_to.find(r.corners[k]);
+      if (corner == moved_to.end())
+        throw Error("mpi: internal error: a triangle's corner is missing from its owner's window (please report this)");
+      for (int a = 0; a < 3; ++a) r.xyz[k][a] = corner->second[a];
+    }
+    sending.push_back(r);
+  }
+  run.own_triangles += sending.size();
+  return moved;
+}
+
 } // namespace
 
 bool distributes(const Pipeline& pipeline) {
@@ -167,6 +290,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
   uint64_t window_triangles = 0, own_triangles = 0;
+  int wider_windows = 0;
   comm.collectively([&] {
     for (const Pipeline::Step& s : pipeline.steps())
       if (!is_distributed(s))
@@ -177,125 +301,36 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     for (size_t v = 0; v < part.points.size(); ++v)
       if (part.owners[v] == comm.rank()) own_z.push_back(part.points[v].z());
     const Bands bands(comm, std::move(own_z));
-    const int me = comm.rank();
+    Run run{comm, bands, pipeline, field, guard_crossings, part, 1e-9 * (part.domain.max - part.domain.min).norm()};
     // The triangles this rank sends to windows: its created ones, then its own.
     std::vector<TriangleRecord> sending = detail::records_of(part);
     std::unordered_map<int64_t, Vec3> moved_to;
-    const double tolerance = 1e-9 * (part.domain.max - part.domain.min).norm();
     const bool flips = std::any_of(pipeline.steps().begin(), pipeline.steps().end(), is_flip);
-    double last_move = -1; // none yet
+    double expected_move = -1; // none yet
     for (int it = 1; it <= iterations; ++it) {
       const double edge = comm.max(detail::longest_edge(sending));
       // Moving passes look two edges away (a neighbour's phases come from its
       // own ring); flips farther, for moves guessed from the last iteration's
-      // (the first moves most: half an edge is far more than it was seen to).
-      const double expected_move = last_move < 0 ? 0.5 * edge : 1.5 * last_move;
-      const double margin = (flips ? flip_reach(edge, expected_move) : 2 * edge) + tolerance;
-      Window w = detail::build_window(exchange(comm, sending, [&](const TriangleRecord& t, int r) {
-                                        return bands.near(r, t.xyz[0][2], margin) || bands.near(r, t.xyz[1][2], margin) ||
-                                               bands.near(r, t.xyz[2][2], margin);
-                                      }),
-                                      part);
-      InterfaceMesh mesh = InterfaceMesh::from_node_mesh(w.mesh);
-      window_triangles += w.triangle_ids.size();
-      std::vector<uint8_t> own(mesh.num_nodes());
-      for (size_t v = 0; v < own.size(); ++v) own[v] = bands.owner(w.mesh.points[v].z()) == me;
-      // A window's vertices lie within a triangle's reach of the window.
-      const double reach = margin + edge + tolerance;
-
-      // The passes as Pipeline::run() applies them: moves summed in pipeline
-      // order and committed before anything that looks at positions.
-      std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
-      bool pending = false;
-      auto commit = [&] {
-        if (!pending) return;
-        share_moves(comm, w, own, bands, reach, delta);
-        if (guard_crossings)
-          commit_without_crossings(mesh, delta, &field,
-                                   [&](std::vector<int32_t>& undone) { return agree_on_undone(comm, w, undone); });
-        else
-          mesh.move_nodes(delta);
-        std::fill(delta.begin(), delta.end(), Vec3::Zero());
-        pending = false;
-      };
-      for (const Pipeline::Step& s : pipeline.steps()) {
-        if (s.info.name == "smooth") {
-          add_smoothing_forces_with_rest_length(
-              mesh, field, s.params.at("rest_factor") * global_rms_edge_length(comm, mesh, own), delta);
-          pending = true;
-        } else if (s.info.name == "project") {
-          add_projection(mesh, field, ProjectParams{s.params.at("min_gradient_gap")}, delta);
-          pending = true;
-        } else if (s.info.name == "clamp") {
-          if (pending) clamp_displacements(mesh, ClampParams{s.params.at("factor")}, delta);
-        } else {
-          commit();
-          double moved = 0;
-          for (size_t v = 0; v < own.size(); ++v)
-            if (own[v]) moved = std::max(moved, (mesh.positions()[v] - w.mesh.points[v]).norm());
-          moved = comm.max(moved);
-          if (flip_reach(edge, moved) > margin - tolerance)
-            throw Error("mpi: internal error: vertices moved farther than the flips' window allows (please report this)");
-          detail::WindowFlipPeers peers(comm, w, own, bands, reach);
-          vm::detail::flip_edges(mesh,
-                                 FlipParams{s.params.at("skip_quality"), int(s.params.at("max_rounds")), 0.0,
-                                            guard_crossings, &field},
-                                 peers);
-          collapse(comm, mesh, w, own,
-                   CollapseParams{s.params.at("collapse_below"), CollapseParams{}.max_collapses, guard_crossings});
-          delta.assign(mesh.num_nodes(), Vec3::Zero());
-        }
+      // (a quarter of an edge in the first, which moves most), and again wider
+      // in the rare iteration whose moves outgrow the guess.
+      if (expected_move < 0) expected_move = 0.25 * edge;
+      while (true) {
+        const double margin = (flips ? flip_reach(edge, expected_move) : 2 * edge) + run.tolerance;
+        const double moved = iterate(run, edge, margin, sending, moved_to);
+        expected_move = 1.5 * std::abs(moved);
+        if (moved >= 0) break;
+        ++run.wider_windows;
       }
-      commit();
-
-      // Where the vertices went: the owners send them to every window that may
-      // use them next (edges grow by at most their ends' moves, a flip's new
-      // diagonal is at most two edges).
-      double moved = 0;
-      for (size_t v = 0; v < own.size(); ++v)
-        if (own[v]) moved = std::max(moved, (mesh.positions()[v] - w.mesh.points[v]).norm());
-      moved = comm.max(moved);
-      last_move = moved;
-      if (moved >= margin)
-        throw Error("mpi: internal error: a vertex moved farther than the window reaches (please report this)");
-      const double next_reach = 3 * (edge + 2 * moved) + 2 * tolerance;
-      std::vector<VertexRecord> mine;
-      const auto& pos = mesh.positions();
-      for (size_t v = 0; v < own.size(); ++v)
-        if (own[v]) mine.push_back({w.vertex_ids[v], {pos[v].x(), pos[v].y(), pos[v].z()}});
-      moved_to.clear();
-      for (const VertexRecord& r : exchange(comm, mine, [&](const VertexRecord& r, int to) {
-             return bands.near(to, r.xyz[2], next_reach);
-           }))
-        moved_to[r.id] = Vec3(r.xyz[0], r.xyz[1], r.xyz[2]);
-
-      // This rank's triangles now: those whose lowest corner moved into its band.
-      // A vertex moves less than a window's margin, so they are all in this window.
-      const NodeMesh now = mesh.to_node_mesh(); // triangle t is still w's triangle t (flips keep faces)
-      sending.clear();
-      for (size_t t = 0; t < now.triangles.size(); ++t) {
-        const auto& tri = now.triangles[t];
-        const int32_t lowest = *std::min_element(tri.begin(), tri.end()); // local order is id order
-        const auto found = moved_to.find(w.vertex_ids[size_t(lowest)]);
-        if (found == moved_to.end() || bands.owner(found->second.z()) != me) continue;
-        TriangleRecord r{w.triangle_ids[t], {}, now.pairs[t], {}};
-        for (int k = 0; k < 3; ++k) {
-          r.corners[k] = w.vertex_ids[size_t(tri[size_t(k)])];
-          const auto corner = moved_to.find(r.corners[k]);
-          if (corner == moved_to.end())
-            throw Error("mpi: internal error: a triangle's corner is missing from its owner's window (please report this)");
-          for (int a = 0; a < 3; ++a) r.xyz[k][a] = corner->second[a];
-        }
-        sending.push_back(r);
-      }
-      own_triangles += sending.size();
     }
-    rebuild_part(part, sending, moved_to, bands, me);
+    rebuild_part(part, sending, moved_to, bands, comm.rank());
     // Collapses removed vertices and triangles.
     uint64_t own_vertices = 0;
-    for (int32_t o : part.owners) own_vertices += o == me;
+    for (int32_t o : part.owners) own_vertices += o == comm.rank();
     part.global_nodes = int64_t(comm.sum(own_vertices));
     part.global_triangles = int64_t(comm.sum(part.triangles.size()));
+    window_triangles = run.window_triangles;
+    own_triangles = run.own_triangles;
+    wider_windows = run.wider_windows;
   });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -304,6 +339,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     stats->collectives = comm.collectives();
     stats->window_triangles = window_triangles;
     stats->own_triangles = own_triangles;
+    stats->wider_windows = wider_windows;
   }
 }
 
