@@ -1,5 +1,7 @@
 #include "voronoimesh/collapse.hpp"
 
+#include "detail/collapse_peers.hpp"
+
 #include "voronoimesh/intersections.hpp"
 #include "voronoimesh/smooth.hpp"
 #include "voronoimesh/stats.hpp"
@@ -7,9 +9,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
 
 namespace vm {
 namespace {
+
+using detail::CollapsePeers;
+using detail::SliverCollapse;
 
 Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   const Vec3& a = m.points[size_t(t[0])];
@@ -19,7 +27,9 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
 /// triangles that lose a corner disappear. Appends to `turned` the corners of
 /// remaining triangles that would turn over.
-void merge(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned) {
+void merge(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
+           std::vector<int32_t>& kept_triangles) {
+  kept_triangles.clear();
   out.points = m.points;
   out.domain = m.domain;
   out.phase_names = m.phase_names;
@@ -35,11 +45,13 @@ void merge(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, s
     if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
     out.triangles.push_back(tri);
     out.pairs.push_back(m.pairs[t]);
+    kept_triangles.push_back(int32_t(t));
   }
 }
 
-/// Drops nodes no triangle uses and renumbers the rest in order.
-void drop_unused_nodes(NodeMesh& m) {
+/// Drops nodes no triangle uses and renumbers the rest in order; appends the
+/// old index of each kept node to `kept`.
+void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
   std::vector<int32_t> id(m.num_nodes(), -1);
   for (const auto& t : m.triangles)
     for (int32_t v : t) id[size_t(v)] = 0;
@@ -48,6 +60,7 @@ void drop_unused_nodes(NodeMesh& m) {
     if (id[v] == 0) {
       id[v] = int32_t(points.size());
       points.push_back(m.points[v]);
+      kept.push_back(int32_t(v));
     }
   for (auto& t : m.triangles)
     for (int32_t& v : t) v = id[size_t(v)];
@@ -59,7 +72,7 @@ void drop_unused_nodes(NodeMesh& m) {
 /// that cross a triangle of another surface. Returns false if it fails somewhere
 /// no node names (then nothing in the batch can be trusted).
 bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                   std::vector<int32_t>& nodes) {
+                   CollapsePeers* peers, std::vector<int32_t>& nodes) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -67,7 +80,7 @@ bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool
   // mesh around them is as it was (valid). Linear in the mesh only for scans.
   std::vector<uint8_t> target(trial.num_nodes(), 0), core(trial.num_nodes(), 0);
   for (int32_t a : into)
-    if (a >= 0) target[size_t(a)] = 1;
+    if (a >= 0 && (!peers || peers->answers_for(a))) target[size_t(a)] = 1; // another rank checks its own
   for (const auto& t : trial.triangles)
     if (target[size_t(t[0])] | target[size_t(t[1])] | target[size_t(t[2])])
       for (int32_t v : t) core[size_t(v)] = 1;
@@ -98,91 +111,142 @@ bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool
   return true;
 }
 
-} // namespace
+/// The collapses of one batch, chosen from every sliver worst first (ties by
+/// triangle), at most `max` of them, that share no triangle: each claims its
+/// two nodes and their rings. `claimed` gets the collapse claiming each id.
+std::vector<std::pair<int64_t, int64_t>> choose(std::vector<SliverCollapse> slivers, int max,
+                                                std::unordered_map<int64_t, int32_t>& claimed) {
+  std::sort(slivers.begin(), slivers.end(), [](const SliverCollapse& x, const SliverCollapse& y) {
+    return std::tie(x.quality, x.triangle) < std::tie(y.quality, y.triangle);
+  });
+  std::vector<std::pair<int64_t, int64_t>> chosen;
+  for (const SliverCollapse& s : slivers) {
+    if (int(chosen.size()) >= max) break;
+    if (s.a < 0 || std::any_of(s.claims.begin(), s.claims.end(), [&](int64_t n) { return claimed.count(n); }))
+      continue;
+    for (int64_t n : s.claims) claimed[n] = int32_t(chosen.size());
+    chosen.push_back({s.a, s.b});
+  }
+  return chosen;
+}
 
-size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params) {
-  if (params.below_quality <= 0) return 0;
-  // Candidates, worst first, found on the OpenMesh faces so that the common case
-  // (none) costs one pass and no copy. Face f is triangle f of to_node_mesh().
+/// The slivers this rank answers for, with the collapse each would make.
+std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers* peers,
+                                         std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids) {
+  // Found on the OpenMesh faces so that the common case (none) costs one pass
+  // and no copy. Face f is triangle f of to_node_mesh().
   const OMesh& om = mesh.omesh();
   const auto& pos = mesh.positions();
-  std::vector<std::pair<double, size_t>> slivers;
+  std::vector<SliverCollapse> slivers;
   for (auto f : om.faces()) {
     const std::array<int32_t, 3> c = mesh.face_nodes(f);
+    if (peers && !peers->answers_for(*std::min_element(c.begin(), c.end()))) continue;
     // Two corners on junctions can be an edge along a junction (a triple curve
     // with nodes bunched where a tiny face ends), which no flip may touch; a
     // sliver with fewer is the flips' to mend.
     if (std::count_if(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) >= 3; }) < 2) continue;
     const double q = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
-    if (q < params.below_quality) slivers.push_back({q, size_t(f.idx())});
-  }
-  if (slivers.empty()) return 0;
-  std::sort(slivers.begin(), slivers.end());
-  NodeMesh m = mesh.to_node_mesh();
-
-  // The edge (b -> a) each sliver would collapse: the shortest whose b has its
-  // constraints among a's. Node ids are those of `mesh` throughout (merged()
-  // keeps every node), so each choice is judged with the original phases.
-  struct Collapse {
-    int32_t a, b;
-  };
-  std::vector<Collapse> chosen;
-  // The collapse that claimed each node (its two nodes and their rings), or -1.
-  std::vector<int32_t> owner(m.num_nodes(), -1);
-  for (const auto& [q, t] : slivers) {
-    if (int(chosen.size()) >= params.max_collapses) break;
-    const auto& corners = m.triangles[t];
-    std::pair<double, Collapse> best{INFINITY, {-1, -1}};
+    if (q >= params.below_quality) continue;
+    // The edge (b -> a) to collapse: the shortest whose b has its constraints
+    // among a's, judged with the original phases.
+    std::pair<double, std::array<int32_t, 2>> best{INFINITY, {-1, -1}};
     for (int k = 0; k < 3; ++k) {
-      const int32_t u = corners[size_t(k)], w = corners[size_t((k + 1) % 3)];
-      const double len = (m.points[size_t(u)] - m.points[size_t(w)]).squaredNorm();
+      const int32_t u = c[size_t(k)], w = c[size_t((k + 1) % 3)];
+      const double len = (pos[size_t(u)] - pos[size_t(w)]).squaredNorm();
       if (len < best.first && mesh.constraints_within(w, u)) best = {len, {u, w}};
       else if (len < best.first && mesh.constraints_within(u, w)) best = {len, {w, u}};
     }
-    const Collapse c = best.second;
-    if (c.a < 0 || owner[size_t(c.a)] >= 0 || owner[size_t(c.b)] >= 0) continue;
-    // Collapses in one batch must not share a triangle: claim both rings.
-    bool clear = true;
-    for (int32_t n : {c.a, c.b})
-      for (int32_t w : mesh.neighbours(n)) clear = clear && owner[size_t(w)] < 0;
-    if (!clear) continue;
-    for (int32_t n : {c.a, c.b}) {
-      owner[size_t(n)] = int32_t(chosen.size());
-      for (int32_t w : mesh.neighbours(n)) owner[size_t(w)] = int32_t(chosen.size());
+    SliverCollapse s{q, triangle_ids[size_t(f.idx())], -1, -1, {}};
+    const auto [a, b] = best.second;
+    if (a >= 0) {
+      s.a = node_ids[size_t(a)];
+      s.b = node_ids[size_t(b)];
+      for (int32_t n : {a, b}) {
+        s.claims.push_back(node_ids[size_t(n)]);
+        for (int32_t w : mesh.neighbours(n)) s.claims.push_back(node_ids[size_t(w)]);
+      }
     }
-    chosen.push_back(c);
+    slivers.push_back(std::move(s));
   }
+  return slivers;
+}
+
+size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers* peers,
+                std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids, detail::CollapseKept& kept) {
+  if (params.below_quality <= 0) return 0;
+  std::vector<SliverCollapse> slivers = find_slivers(mesh, params, peers, node_ids, triangle_ids);
+  if (peers) slivers = peers->all(slivers);
+  if (slivers.empty()) return 0;
+  std::unordered_map<int64_t, int32_t> claimed; // id -> the collapse claiming it
+  const std::vector<std::pair<int64_t, int64_t>> chosen = choose(std::move(slivers), params.max_collapses, claimed);
+  // Ids back to this mesh's nodes (ids ascend with the nodes).
+  auto local = [&](int64_t id) {
+    const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
+    return at != node_ids.end() && *at == id ? int32_t(at - node_ids.begin()) : -1;
+  };
+  NodeMesh m = mesh.to_node_mesh();
 
   // All at once, checked once. Collapses in a batch share no triangle, so each
   // failing node belongs to one collapse's rings: those collapses are dropped
   // and the rest checked again (one or two whole-mesh checks, not one per collapse).
   std::vector<char> active(chosen.size(), 1);
-  std::vector<int32_t> into(m.num_nodes(), -1), failed;
+  std::vector<int32_t> into(m.num_nodes(), -1), failed, kept_triangles;
   NodeMesh trial;
   size_t done = 0;
   for (size_t left = chosen.size(); left > 0;) {
     std::fill(into.begin(), into.end(), -1);
     for (size_t i = 0; i < chosen.size(); ++i)
-      if (active[i]) into[size_t(chosen[i].b)] = chosen[i].a;
+      if (const int32_t a = local(chosen[i].first), b = local(chosen[i].second); active[i] && a >= 0 && b >= 0)
+        into[size_t(b)] = a;
     failed.clear();
-    merge(m, into, trial, failed);
-    const bool blamed = !failed.empty() || find_failures(trial, into, params.guard_crossings, failed);
-    if (blamed && failed.empty()) {
+    merge(m, into, trial, failed, kept_triangles);
+    if (peers) std::erase_if(failed, [&](int32_t n) { return !peers->answers_for(n); });
+    // Triangles that turn over are failures enough; only without them is the
+    // merged mesh validated (by every rank, if any rank saw them).
+    bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
+    if (!blamed) blamed = find_failures(trial, into, params.guard_crossings, peers, failed);
+    if (peers) blamed = !peers->any(!blamed);
+    std::vector<int64_t> failed_ids;
+    for (int32_t n : failed) failed_ids.push_back(node_ids[size_t(n)]);
+    if (peers) failed_ids = peers->all(failed_ids);
+    if (blamed && failed_ids.empty()) {
       m = std::move(trial);
       done = left;
       break;
     }
     size_t dropped = 0;
-    for (int32_t n : failed)
-      if (owner[size_t(n)] >= 0 && active[size_t(owner[size_t(n)])]) active[size_t(owner[size_t(n)])] = 0, ++dropped;
+    for (int64_t id : failed_ids)
+      if (const auto c = claimed.find(id); c != claimed.end() && active[size_t(c->second)])
+        active[size_t(c->second)] = 0, ++dropped;
     if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
     left -= dropped;
   }
   if (done) {
-    drop_unused_nodes(m);
+    kept.triangles = kept_triangles;
+    drop_unused_nodes(m, kept.nodes);
     mesh = InterfaceMesh::from_node_mesh(m);
   }
   return done;
 }
+
+} // namespace
+
+size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params) {
+  std::vector<int64_t> ids(std::max(mesh.num_nodes(), mesh.num_triangles()));
+  std::iota(ids.begin(), ids.end(), 0);
+  detail::CollapseKept kept;
+  return collapse(mesh, params, nullptr, std::span(ids).first(mesh.num_nodes()),
+                  std::span(ids).first(mesh.num_triangles()), kept);
+}
+
+namespace detail {
+
+size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers& peers,
+                                 std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
+                                 CollapseKept& kept) {
+  return collapse(mesh, params, &peers, node_ids, triangle_ids, kept);
+}
+
+} // namespace detail
 
 } // namespace vm

@@ -1,25 +1,25 @@
 #include "voronoimesh/flip.hpp"
 
 #include "voronoimesh/collapse.hpp"
+#include "voronoimesh/errors.hpp"
 #include "voronoimesh/intersections.hpp"
 #include "voronoimesh/stats.hpp"
 #include "voronoimesh/validate.hpp"
 
 #include "detail/field_orientation.hpp"
+#include "detail/flip_peers.hpp"
 #include "detail/parallel.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 namespace vm {
 namespace {
 
-struct Candidate {
-  double gain;
-  int32_t edge;
-  std::array<int32_t, 4> nodes; // i, j (the edge), k, l (opposite)
-};
+using detail::FlipCandidate;
+using detail::FlipPeers;
 
 /// Quality of every face, kept current across flips.
 class FaceQuality {
@@ -55,7 +55,11 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
                  std::array<int32_t, 4>& nodes) {
   const OMesh& om = mesh.omesh();
   if (om.is_boundary(eh)) return -1; // junction or domain edge: never flips
-  const auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  // Judged from its lower node to its higher one, whichever way OpenMesh stores
+  // the edge: the result must depend on the nodes alone, not on the history of
+  // the mesh's halfedges (a part of the mesh built afresh must judge alike).
+  auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  if (mesh.node(om.from_vertex_handle(h0)) > mesh.node(om.to_vertex_handle(h0))) std::swap(h0, h1);
   const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
   const bool ear = is_ear_across(om, h0) || is_ear_across(om, h1);
   if (before >= p.skip_quality && !ear) return -1;
@@ -88,43 +92,62 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   return ear ? 1 + (after - before) : after - before;
 }
 
+/// One process's choice among `found` (best first): each candidate whose nodes
+/// no better candidate took. Flips in one round share no node, so every
+/// judgement stays true until its own flip.
+void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>& found, std::vector<uint8_t>& take) {
+  std::vector<char> taken(mesh.num_nodes(), 0);
+  for (size_t c = 0; c < found.size(); ++c) {
+    const auto& nodes = found[c].nodes;
+    take[c] = std::none_of(nodes.begin(), nodes.end(), [&](int32_t n) { return taken[size_t(n)]; });
+    if (take[c])
+      for (int32_t n : nodes) taken[size_t(n)] = 1;
+  }
+}
+
 /// The rounds of Algorithm 5, never flipping a `banned` edge. Appends every
-/// flipped edge to `log`, in order.
+/// flipped edge to `log`, in order, with its nodes before the flip to `flipped`.
 FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
-                      std::vector<int32_t>& log) {
+                      std::vector<int32_t>& log, std::vector<std::array<int32_t, 2>>& flipped, FlipPeers* peers) {
   FlipStats stats;
   FaceQuality quality(mesh);
-  std::vector<char> taken(mesh.num_nodes(), 0);
   // Round 1 judges every edge; later rounds only the edges of faces a flip changed
   // and the candidates that lost to a neighbouring flip.
   std::vector<int32_t> edges(mesh.omesh().n_edges());
   std::iota(edges.begin(), edges.end(), 0);
-  std::vector<Candidate> judged, found;
-  for (int round = 0; round < params.max_rounds && !edges.empty(); ++round) {
-    judged.assign(edges.size(), Candidate{-1, -1, {}});
+  std::vector<FlipCandidate> judged, found;
+  std::vector<uint8_t> take;
+  for (int round = 0; round < params.max_rounds; ++round) {
+    judged.assign(edges.size(), FlipCandidate{-1, -1, {}});
     detail::parallel_for_each_index(edges.size(), [&](size_t i) {
       judged[i].edge = edges[i];
       if (banned[size_t(edges[i])]) return;
       judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
     });
     found.clear();
-    for (const Candidate& c : judged)
+    for (const FlipCandidate& c : judged)
       if (c.gain > 0) found.push_back(c);
-    if (found.empty()) break;
-    // Best gain first (ties by edge id, as `edges` is sorted); flips in one round
-    // share no node, so every judgement above stays true until its own flip.
-    std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) { return a.gain > b.gain; });
+    if (peers ? !peers->any(!found.empty()) : found.empty()) break;
+    // Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
+    // order depends on the mesh alone).
+    std::sort(found.begin(), found.end(), [](const FlipCandidate& a, const FlipCandidate& b) {
+      if (a.gain != b.gain) return a.gain > b.gain;
+      return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
+    });
+    take.assign(found.size(), 0);
+    if (peers) peers->choose(found, take);
+    else choose_greedily(mesh, found, take);
     OMesh& om = mesh.omesh_for_topology();
     edges.clear();
-    for (const Candidate& c : found) {
-      if (std::any_of(c.nodes.begin(), c.nodes.end(), [&](int32_t n) { return taken[size_t(n)]; })) {
-        edges.push_back(c.edge); // lost to a better flip nearby: judge it again next round
+    for (size_t c = 0; c < found.size(); ++c) {
+      if (!take[c]) {
+        edges.push_back(found[c].edge); // lost to a better flip nearby: judge it again next round
         continue;
       }
-      for (int32_t n : c.nodes) taken[size_t(n)] = 1;
-      const OMesh::EdgeHandle eh(c.edge);
+      const OMesh::EdgeHandle eh(found[c].edge);
       om.flip(eh);
-      log.push_back(c.edge);
+      log.push_back(found[c].edge);
+      flipped.push_back({found[c].nodes[0], found[c].nodes[1]});
       ++stats.flips;
       for (int side = 0; side < 2; ++side) {
         const auto f = om.face_handle(om.halfedge_handle(eh, side));
@@ -132,8 +155,6 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
         for (auto e : om.fe_range(f)) edges.push_back(e.idx());
       }
     }
-    for (const Candidate& c : found)
-      for (int32_t n : c.nodes) taken[size_t(n)] = 0;
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
@@ -145,7 +166,8 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
 /// The flipped edges whose faces now cross another triangle, or (with a field)
 /// face against their phase pair's direction at a junction; each is charged to
 /// the last flip that made the face.
-std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const PhaseField* field) {
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const PhaseField* field,
+                                    FlipPeers* peers) {
   const OMesh& om = mesh.omesh();
   std::vector<int32_t> last_flip(om.n_faces(), -1);
   std::vector<uint8_t> involved(om.n_faces(), 0);
@@ -156,6 +178,9 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
       involved[f] = 1;
     }
   const NodeMesh m = mesh.to_node_mesh();
+  if (peers) // another rank answers for the rest
+    for (size_t f = 0; f < last_flip.size(); ++f)
+      if (last_flip[f] >= 0 && !peers->answers_for(m.triangles[f])) last_flip[f] = -1;
   const IntersectionReport found = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
   std::vector<int32_t> culprits;
   for (const auto& pair : found.pairs)
@@ -176,9 +201,8 @@ void undo_flips(InterfaceMesh& mesh, const std::vector<int32_t>& log) {
   mesh.topology_changed();
 }
 
-} // namespace
-
-FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+/// flip_edges() without the collapses, with or without peers.
+FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
   // A flip moves no node but can still push the new diagonal through a
   // neighbouring surface where a phase is thinner than the quad. Such flips are
   // found after the rounds, all flips are undone, the culprits banned, and the
@@ -187,18 +211,48 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
   FlipStats stats;
   for (int attempt = 0;; ++attempt) {
     std::vector<int32_t> log;
-    stats = flip_rounds(mesh, params, banned, log);
-    if (log.empty() || !params.guard_crossings) break;
-    const std::vector<int32_t> culprits = crossing_flips(mesh, log, params.field);
-    if (culprits.empty()) break;
+    std::vector<std::array<int32_t, 2>> flipped;
+    stats = flip_rounds(mesh, params, banned, log, flipped, peers);
+    if (!params.guard_crossings) break;
+    std::vector<int32_t> culprits = log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params.field, peers);
+    if (peers) {
+      // The ranks' culprits, as nodes; mapped back to the edges this rank flipped.
+      std::vector<std::array<int32_t, 2>> nodes;
+      for (int32_t e : culprits)
+        nodes.push_back(flipped[size_t(std::find(log.begin(), log.end(), e) - log.begin())]);
+      const bool any = peers->agree_on_culprits(nodes);
+      culprits.clear();
+      for (size_t i = 0; i < log.size(); ++i)
+        if (std::find(nodes.begin(), nodes.end(), flipped[i]) != nodes.end()) culprits.push_back(log[i]);
+      if (!any) break;
+    } else if (culprits.empty()) {
+      break;
+    }
     undo_flips(mesh, log);
     stats = {};
     if (attempt == kMaxFlipAttempts) break;
     for (int32_t e : culprits) banned[size_t(e)] = 1;
   }
+  return stats;
+}
+
+} // namespace
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+  FlipStats stats = flip_all_rounds(mesh, params, nullptr);
   stats.collapses = collapse_junction_slivers(
       mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings});
   return stats;
 }
+
+namespace detail {
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params, FlipPeers& peers) {
+  if (params.collapse_below > 0)
+    throw InvalidInput("mpi: collapses are not distributed yet; give the flip pass collapse_below=0");
+  return flip_all_rounds(mesh, params, &peers);
+}
+
+} // namespace detail
 
 } // namespace vm

@@ -10,7 +10,8 @@
 
 namespace vm {
 
-GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field) {
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
+                                     const AgreeOnUndone& agree) {
   GuardReport report;
   NodeMesh m = mesh.to_node_mesh(); // positions before the move, until they are swapped out below
   std::vector<int32_t> watched;
@@ -66,7 +67,14 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
           changed[size_t(n)] = 1;
           undo.push_back(n);
         }
-    if (undo.empty()) break; // clean, or only what the mesh had before the move
+    // Clean, or only what the mesh had before the move: done. Ranks go on while
+    // any of them undoes something, with every rank's culprits put back here too.
+    const bool any = agree ? agree(undo) : !undo.empty();
+    if (!any) break;
+    if (agree) {
+      std::erase_if(undo, [&](int32_t n) { return !moved[size_t(n)] && !changed[size_t(n)]; });
+      for (int32_t n : undo) moved[size_t(n)] = 0, changed[size_t(n)] = 1;
+    }
     std::vector<Vec3> back(undo.size());
     for (size_t i = 0; i < undo.size(); ++i) {
       back[i] = before[size_t(undo[i])];

@@ -4,6 +4,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/stats.hpp"
 
+#include "detail/fixed_point_sum.hpp"
 #include "detail/parallel.hpp"
 
 #include <chrono>
@@ -88,19 +89,23 @@ std::string Pipeline::describe() const {
 std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   const OMesh& om = mesh.omesh();
   const size_t n = om.n_faces(), chunk = 8192, chunks = (n + chunk - 1) / chunk;
-  std::vector<double> lo(chunks, std::numeric_limits<double>::infinity()), sum(chunks, 0.0);
+  std::vector<double> lo(chunks, std::numeric_limits<double>::infinity());
+  // Qualities lie in [0, 1]; a fixed-point sum makes the mean independent of the
+  // face order (detail/fixed_point_sum.hpp), as the stopping rule must be.
+  std::vector<detail::FixedPointSum> sum(chunks, detail::FixedPointSum(1.0));
   const auto& pos = mesh.positions();
   detail::parallel_for(size_t(0), chunks, [&](size_t c) {
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
       const auto t = mesh.face_nodes(OMesh::FaceHandle(int(f)));
       const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);
       lo[c] = std::min(lo[c], q);
-      sum[c] += q;
+      sum[c].add(q);
     }
   });
-  double min_q = n ? std::numeric_limits<double>::infinity() : 0, total = 0;
-  for (size_t c = 0; c < chunks; ++c) min_q = std::min(min_q, lo[c]), total += sum[c];
-  return {min_q, n ? total / double(n) : 0};
+  double min_q = n ? std::numeric_limits<double>::infinity() : 0;
+  detail::FixedPointSum total(1.0);
+  for (size_t c = 0; c < chunks; ++c) min_q = std::min(min_q, lo[c]), total.add_raw(sum[c].raw());
+  return {min_q, n ? total.total() / double(n) : 0};
 }
 
 int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions& options) const {

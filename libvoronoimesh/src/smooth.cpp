@@ -1,5 +1,6 @@
 #include "voronoimesh/smooth.hpp"
 
+#include "detail/edge_lengths.hpp"
 #include "detail/parallel.hpp"
 
 #include <algorithm>
@@ -26,35 +27,51 @@ void constrain_to_box(Vec3& d, uint8_t box_faces) {
     if (box_faces >> (2 * a) & 3u) d[a] = 0;
 }
 
-double rms_edge_length(const InterfaceMesh& mesh) {
+namespace detail {
+
+SquaredEdgeLengths squared_edge_lengths(const InterfaceMesh& mesh, std::span<const uint8_t> counted) {
   // The box faces of a closed mesh are not interfaces: their triangles are the
   // lattice's faces, about twice the interface edges, and would set l0 too long.
   const int32_t outside = mesh.outside_phase();
   auto on_box_surface = [&](int32_t v, int32_t w) {
     return outside >= 0 && mesh.has_phase(v, outside) && mesh.has_phase(w, outside);
   };
-  // Partial sums over fixed chunks of nodes, added in order: deterministic.
+  // Fixed-point partial sums over chunks of nodes: the total does not depend on
+  // the chunks, the threads or the node numbering (detail/fixed_point_sum.hpp).
+  const double unit = (mesh.domain().max - mesh.domain().min).squaredNorm();
   const size_t n = mesh.num_nodes(), chunk = 4096, chunks = (n + chunk - 1) / chunk;
-  std::vector<double> sum(chunks, 0.0);
-  std::vector<size_t> count(chunks, 0);
+  std::vector<FixedPointSum> sum(chunks, FixedPointSum(unit));
+  std::vector<uint64_t> count(chunks, 0);
   const auto& pos = mesh.positions();
-  detail::parallel_for_each_index(chunks, [&](size_t c) {
-    for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v)
+  parallel_for_each_index(chunks, [&](size_t c) {
+    for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v) {
+      if (!counted.empty() && !counted[v]) continue;
       for (int32_t w : mesh.neighbours(int32_t(v)))
         if (size_t(w) > v && !on_box_surface(int32_t(v), w)) {
-          sum[c] += (pos[v] - pos[size_t(w)]).squaredNorm();
+          sum[c].add((pos[v] - pos[size_t(w)]).squaredNorm());
           ++count[c];
         }
+    }
   });
-  double total = 0;
-  size_t edges = 0;
-  for (size_t c = 0; c < chunks; ++c) total += sum[c], edges += count[c];
-  return edges ? std::sqrt(total / double(edges)) : 0.0;
+  SquaredEdgeLengths total{FixedPointSum(unit), 0};
+  for (size_t c = 0; c < chunks; ++c) total.sum.add_raw(sum[c].raw()), total.edges += count[c];
+  return total;
+}
+
+} // namespace detail
+
+double rms_edge_length(const InterfaceMesh& mesh) {
+  const detail::SquaredEdgeLengths s = detail::squared_edge_lengths(mesh, {});
+  return s.edges ? std::sqrt(s.sum.total() / double(s.edges)) : 0.0;
 }
 
 void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
                           std::vector<Vec3>& delta) {
-  const double l0 = params.rest_factor * rms_edge_length(mesh);
+  add_smoothing_forces_with_rest_length(mesh, field, params.rest_factor * rms_edge_length(mesh), delta);
+}
+
+void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const PhaseField& field, double l0,
+                                           std::vector<Vec3>& delta) {
   const auto& pos = mesh.positions();
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t vi) {
     const int32_t v = int32_t(vi);

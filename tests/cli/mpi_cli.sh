@@ -19,8 +19,9 @@ elif [ "$(grep -c '<Piece Source=' pieces.pvtu)" -ne 2 ]; then fail "pvtu: index
 elif ! grep -q "create (mpi, 2 ranks)" stderr.txt; then fail "pvtu: no summary: $(cat stderr.txt)"
 else pass; fi
 
-# The same file as one process, created and also (for now on rank 0) improved.
-for iterations in 0 2; do
+# The same file as one process, created, and improved over the ranks (the
+# default pipeline) or on rank 0 (a pass that is not distributed: stats).
+for iterations in 0 5; do
   "$vm" mesh "$scene" --grid 16 --iterations $iterations --threads 1 -q -o alone_$iterations.ply
   run mesh "$scene" --grid 16 --mpi --iterations $iterations --threads 1 -q -o ranks_$iterations.ply 2>stderr.txt
   if [ $? -ne 0 ]; then fail "assembled, $iterations iterations: $(cat stderr.txt)"
@@ -61,10 +62,24 @@ elif [ "$(grep -c "$want" stderr.txt)" -ne 1 ]; then fail "node memory: message:
 elif [ -e small.ply ]; then fail "node memory: wrote a file"
 else pass; fi
 
-run mesh "$scene" --grid 16 --mpi -o improved.pvtu 2>stderr.txt
+run mesh "$scene" --grid 16 --mpi --iterations 5 --threads 1 -o improved.ply 2>stderr.txt
+if ! grep -q "improve (mpi): 5 iterations" stderr.txt; then fail "not improved over the ranks: $(cat stderr.txt)"
+else pass; fi
+"$vm" mesh "$scene" --grid 16 --iterations 5 --pipeline smooth,project,clamp,flip,stats --threads 1 -q -o alone_stats.ply
+run mesh "$scene" --grid 16 --mpi --iterations 5 --pipeline smooth,project,clamp,flip,stats --threads 1 \
+  -o ranks_stats.ply 2>stderr.txt
+if [ $? -ne 0 ] || ! grep -q "on rank 0 alone" stderr.txt; then fail "stats pass: $(cat stderr.txt)"
+elif ! cmp -s alone_stats.ply ranks_stats.ply; then fail "stats pass on rank 0: differs"
+else pass; fi
+
+# Pieces after a distributed improvement; refused when it would be on rank 0.
+run mesh "$scene" --grid 16 --mpi --iterations 5 --threads 1 -q -o improved.pvtu 2>stderr.txt
+if [ $? -ne 0 ] || [ ! -s improved_1.vtu ]; then fail "improved pieces: $(cat stderr.txt)"
+else pass; fi
+run mesh "$scene" --grid 16 --mpi --stop-when-converged -o converged.pvtu 2>stderr.txt
 code=$?
-if [ $code -ne 2 ] || ! grep -q "pieces per rank (.pvtu) need --iterations 0" stderr.txt; then
-  fail "pvtu with iterations: exit $code: $(cat stderr.txt)"
+if [ $code -ne 2 ] || ! grep -q "pieces per rank (.pvtu) need a distributed improvement" stderr.txt; then
+  fail "pvtu with rank-0 improvement: exit $code: $(cat stderr.txt)"
 else pass; fi
 
 echo "mpi cli: $passed passed, $failed failed"

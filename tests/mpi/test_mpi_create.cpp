@@ -11,6 +11,8 @@
 #include "voronoimesh/scene.hpp"
 #include "voronoimesh/validate.hpp"
 
+#include "mpi_test_helpers.hpp"
+
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -21,28 +23,11 @@
 namespace {
 
 using namespace vm;
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-
-Scene example(const std::string& name, int grid) {
-  Scene scene = load_scene(std::string(VM_EXAMPLES_DIR) + "/" + name);
-  scene.grid.cells = {grid, grid, grid};
-  return scene;
-}
+using namespace vm::test;
 
 /// The parts' global ids and owners agree with the assembled mesh: every
 /// vertex of a part is the assembled vertex of its id, each id owned by one
-/// rank, and the parts' triangles are the assembled ones from first_triangle on.
+/// rank, and each part triangle is the assembled triangle its id names.
 void expect_parts_match(const mpi::MeshPart& part, const NodeMesh& whole) {
   std::vector<double> rows; // id, owner, x, y, z per vertex; then -1, first triangle, 0, 0, 0
   for (size_t v = 0; v < part.points.size(); ++v)
@@ -68,7 +53,7 @@ void expect_parts_match(const mpi::MeshPart& part, const NodeMesh& whole) {
   for (size_t t = 0; t < part.triangles.size(); ++t)
     for (int c = 0; c < 3; ++c)
       EXPECT_EQ(part.global_ids[size_t(part.triangles[t][size_t(c)])],
-                whole.triangles[size_t(part.first_triangle) + t][size_t(c)]);
+                whole.triangles[size_t(part.triangle_ids[t])][size_t(c)]);
 }
 
 /// Creates `scene` on every rank together and in one process on rank 0, and
@@ -107,25 +92,7 @@ TEST(MpiCreate, closed_cube6_four_spheres_is_the_one_process_mesh) {
 
 TEST(MpiCreate, voronoi30_is_the_one_process_mesh) { expect_same_as_one_process(example("voronoi30.json", 36), {}); }
 
-TEST(MpiCreate, label_volume_is_the_one_process_mesh) {
-  // Grains: a label per node from the nearest of 12 random seeds.
-  GridSpec grid;
-  grid.cells = {24, 22, 26};
-  std::mt19937_64 rng(8);
-  std::vector<Vec3> seeds;
-  for (int s = 0; s < 12; ++s) seeds.push_back(Vec3(double(rng() % 1000), double(rng() % 1000), double(rng() % 1000)) / 1000);
-  std::vector<int32_t> labels(size_t(grid.node_count()));
-  for (int64_t k = 0; k <= grid.cells[2]; ++k)
-    for (int64_t j = 0; j <= grid.cells[1]; ++j)
-      for (int64_t i = 0; i <= grid.cells[0]; ++i) {
-        const Vec3 x = grid.node_position(i, j, k);
-        int best = 0;
-        for (int s = 1; s < 12; ++s)
-          if ((x - seeds[size_t(s)]).norm() < (x - seeds[size_t(best)]).norm()) best = s;
-        labels[size_t(grid.node_index(i, j, k))] = 10 * best;
-      }
-  expect_same_as_one_process(scene_from_labels(grid, labels), {});
-}
+TEST(MpiCreate, label_volume_is_the_one_process_mesh) { expect_same_as_one_process(grains(), {}); }
 
 // Integer values tie everywhere: create needs repair rounds, and every rank
 // must make the repairs one process makes (test_create_ties.cpp).
@@ -165,18 +132,6 @@ TEST(MpiCreate, blocks_of_samples_give_the_one_process_mesh) {
   EXPECT_EQ(together.points, alone.points);
   EXPECT_EQ(together.triangles, alone.triangles);
   EXPECT_EQ(together.pairs, alone.pairs);
-}
-
-/// Runs `f` on every rank and checks that every rank throws E naming `rank`.
-template <class E, class F> void expect_every_rank_throws(F&& f, const std::string& rank_text, const std::string& what) {
-  try {
-    f();
-    ADD_FAILURE() << "rank " << rank() << " did not throw";
-  } catch (const E& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(rank_text), std::string::npos) << message;
-    EXPECT_NE(message.find(what), std::string::npos) << message;
-  }
 }
 
 // A phase that is NaN in the top layers only: the rank sampling them fails,
@@ -272,18 +227,3 @@ TEST(MpiCreate, a_malformed_node_memory_is_refused_on_every_rank) {
 }
 
 } // namespace
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  // Only rank 0 prints the report; the others print their failures.
-  if (rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  int failed = RUN_ALL_TESTS();
-  int any = 0;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return any;
-}

@@ -72,6 +72,34 @@ constexpr const char* kCrowdedSpheres = R"({"grid": 32, "phases": [{"kind": "con
   {"kind": "sphere", "center": [0.2640, 0.4607, 0.2895], "radius": 0.3112},
   {"kind": "sphere", "center": [0.3769, 0.4719, 0.7996], "radius": 0.3131}]})";
 
+// In a distributed run the ranks agree on each round's undone moves (guard.hpp):
+// a node another rank puts back (here the harmless far move, added by the
+// hook as another rank's culprit would be) is put back here too, the rounds go
+// on while any rank undoes something, and the hook sees every round.
+TEST(Guard, undoes_the_moves_the_other_ranks_undo) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  const auto [v, w] = nodes_on_two_surfaces(mesh);
+  ASSERT_GE(v, 0);
+  const std::vector<Vec3> before = mesh.positions();
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+  delta[size_t(v)] = before[size_t(w)] - before[size_t(v)];
+  const int32_t far = int32_t(mesh.num_nodes()) - 1 == v ? 0 : int32_t(mesh.num_nodes()) - 1;
+  delta[size_t(far)] = Vec3(1e-6, 0, 0);
+  std::vector<std::vector<int32_t>> rounds;
+  const GuardReport report = commit_without_crossings(mesh, delta, nullptr, [&](std::vector<int32_t>& undone) {
+    rounds.push_back(undone);
+    if (rounds.size() == 1) undone.push_back(far); // "another rank's" culprit, in the first round
+    return !undone.empty();
+  });
+  EXPECT_EQ(rounds.size(), 2u);                         // the round that undid something, then the clean one
+  EXPECT_EQ(rounds[0], std::vector<int32_t>{v});        // this rank's own culprit
+  EXPECT_TRUE(rounds[1].empty());
+  EXPECT_EQ(report.undone_nodes, 2u);
+  EXPECT_EQ(mesh.positions()[size_t(far)], before[size_t(far)]);
+  EXPECT_TRUE(delta[size_t(far)].isZero(0));
+  EXPECT_EQ(mesh.positions()[size_t(v)], before[size_t(v)]);
+}
+
 TEST(Guard, the_default_pipeline_never_crosses_where_the_unguarded_one_does) {
   const Scene scene = parse_scene(kCrowdedSpheres, "crowded spheres");
   const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());

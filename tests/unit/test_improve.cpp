@@ -160,6 +160,33 @@ TEST(Improve, output_is_identical_for_any_thread_count) {
   }
 }
 
+// A distributed run improves parts of the mesh built afresh, whose triangles
+// come in another order (so OpenMesh numbers edges and orients halfedges
+// differently); the result may depend only on the nodes and triangles
+// themselves. Checked here with every triangle in reverse order: the same
+// positions bit for bit and the same triangles.
+TEST(Improve, result_does_not_depend_on_the_order_of_the_triangles) {
+  Scene scene = example("voronoi30.json", 32);
+  const NodeMesh created = test::created_mesh(scene);
+  NodeMesh reversed = created;
+  std::reverse(reversed.triangles.begin(), reversed.triangles.end());
+  std::reverse(reversed.pairs.begin(), reversed.pairs.end());
+  auto improved = [&](const NodeMesh& m) {
+    InterfaceMesh mesh = InterfaceMesh::from_node_mesh(m);
+    Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(8));
+    return mesh.to_node_mesh();
+  };
+  const NodeMesh a = improved(created), b = improved(reversed);
+  auto triangle_set = [](const NodeMesh& m) {
+    std::set<std::pair<std::array<int32_t, 3>, PhasePair>> out;
+    for (size_t t = 0; t < m.num_triangles(); ++t) out.insert({m.triangles[t], m.pairs[t]});
+    return out;
+  };
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(triangle_set(a), triangle_set(b));
+}
+
 // Algorithm 3 and eq. 5: whatever the three corners do, each within half its own
 // clamp, the triangle does not invert.
 TEST(Clamp, no_triangle_inverts_whatever_its_corners_do) {
@@ -233,6 +260,43 @@ TEST(Flip, improves_quality_and_never_touches_junctions) {
     return out;
   };
   EXPECT_EQ(junction_edges(after), junction_edges(before));
+}
+
+// A strip of identical parallelograms, each split along its long diagonal:
+// every diagonal gains the same from a flip, and neighbouring quads share two
+// nodes, so which of them flip is decided by the tie-break alone. It must come
+// from the nodes, not from OpenMesh's edge ids (which follow the triangle
+// order): reversing the triangles' order must not change the result. (Breaking
+// ties by edge id flipped quads 0, 2, 4, 7 one way and 0, 3, 5, 7 the other.)
+TEST(Flip, ties_are_broken_by_the_nodes_not_by_the_triangle_order) {
+  NodeMesh strip;
+  strip.domain = {Vec3(-1, -1, 0), Vec3(10, 2, 1)};
+  const int n = 8;
+  // Coordinates in quarters: every quad's gain is bitwise the same.
+  for (int i = 0; i <= n; ++i) strip.points.push_back(Vec3(i, 0, 0.5));        // bottom node i
+  for (int i = 0; i <= n; ++i) strip.points.push_back(Vec3(i + 0.75, 1, 0.5)); // top node n + 1 + i
+  for (int i = 0; i < n; ++i) {
+    const int32_t b0 = i, b1 = i + 1, t0 = n + 1 + i, t1 = n + 2 + i;
+    strip.triangles.push_back({b0, b1, t1});
+    strip.triangles.push_back({b0, t1, t0});
+  }
+  strip.pairs.assign(strip.triangles.size(), PhasePair{0, 1});
+  NodeMesh reversed = strip;
+  std::reverse(reversed.triangles.begin(), reversed.triangles.end());
+  auto flipped = [](const NodeMesh& m) {
+    InterfaceMesh mesh = InterfaceMesh::from_node_mesh(m);
+    FlipParams params;
+    params.collapse_below = 0;
+    params.max_rounds = 1; // the greedy choice among equals, nothing after it
+    EXPECT_EQ(flip_edges(mesh, params).flips, 4u);
+    std::set<std::array<int32_t, 3>> out;
+    for (auto t : mesh.to_node_mesh().triangles) {
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      out.insert(t);
+    }
+    return out;
+  };
+  EXPECT_EQ(flipped(strip), flipped(reversed));
 }
 
 TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {

@@ -29,10 +29,11 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   add_common_options(cmd, o->common, true);
   cmd->add_flag("--mpi", o->mpi,
                 "Run under mpirun: create distributed over the ranks, each sampling and meshing its share of the "
-                "grid's slabs (balanced by interface tetrahedra). With --iterations 0, -o FILE.pvtu writes one .vtu "
-                "piece per rank and a ParaView index; other formats are assembled and written by rank 0. With "
-                "iterations, for now (temporary, until improvement is distributed) the mesh is assembled on rank 0 "
-                "and improved there");
+                "grid's slabs (balanced by interface tetrahedra), then improve distributed, each rank moving and "
+                "flipping in its band of z (the same mesh as one process). -o FILE.pvtu writes one .vtu piece per "
+                "rank and a ParaView index; other formats are assembled and written by rank 0. Pipelines with "
+                "other passes than smooth, project, clamp and flip, --stop-when-converged and --history improve "
+                "on rank 0 alone");
   cmd->callback([o, &exit_code] {
     if (o->mpi) {
       exit_code = mesh_with_mpi(*o);

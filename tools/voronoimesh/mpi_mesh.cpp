@@ -8,10 +8,12 @@
 #include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/mpi.hpp"
+#include "voronoimesh/validate.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace vmcli {
 
@@ -59,25 +61,42 @@ int mesh_with_mpi(const MeshCommandOptions& o) {
         vm::Scene scene;
         vm::PassRegistry registry;
         vm::MeshOptions options;
+        bool distributed = false; // improved over the ranks, not on rank 0
+        std::optional<vm::Pipeline> pipeline;
         vm::mpi::run_collectively(MPI_COMM_WORLD, [&] {
+          registry = pass_registry(o.improve.plugins, quiet);
+          check_improve_options(o.improve, registry);
+          pipeline = vm::Pipeline::parse(o.improve.pipeline, registry);
+          distributed = o.improve.iterations > 0 && vm::mpi::distributes(*pipeline) &&
+                        !o.improve.stop_when_converged && o.improve.history.empty();
           if (pieces) {
-            if (o.improve.iterations > 0)
-              throw vm::InvalidInput("-o " + o.output.path +
-                                     ": pieces per rank (.pvtu) need --iterations 0 until improvement is distributed");
+            if (o.improve.iterations > 0 && !distributed)
+              throw vm::InvalidInput("-o " + o.output.path + ": pieces per rank (.pvtu) need a distributed " +
+                                     "improvement (passes smooth, project, clamp, flip; no --stop-when-converged " +
+                                     "or --history) or --iterations 0");
             if (!o.output.per_phase.empty()) throw vm::InvalidInput("--per-phase: not with pieces per rank (.pvtu)");
             check_writable(o.output.path);
           } else {
             check_outputs(o.output);
           }
-          registry = pass_registry(o.improve.plugins, quiet);
-          check_improve_options(o.improve, registry);
           options = mesh_options(o);
           Progress silent(false);
           scene = read_input(o.input, o.input_options, o.create.top_k, silent, quiet);
         });
         vm::mpi::DistributedStats stats;
-        const vm::mpi::MeshPart part = vm::mpi::create_part(MPI_COMM_WORLD, scene, options, &stats);
+        vm::mpi::MeshPart part = vm::mpi::create_part(MPI_COMM_WORLD, scene, options, &stats);
         if (!quiet) print_summary(part, stats);
+        const auto phases = o.create.close ? vm::with_outside_phase(scene.field, part.domain) : scene.field;
+        if (distributed) {
+          auto limit = thread_limit(o.common);
+          vm::mpi::DistributedStats improved;
+          vm::mpi::improve_part(MPI_COMM_WORLD, part, *phases, *pipeline, o.improve.iterations, !o.improve.unguarded,
+                                &improved);
+          if (!quiet)
+            std::fprintf(stderr, "improve (mpi): %d iterations of %s; rank 0: %.3f s, %.0f%% in MPI\n",
+                         o.improve.iterations, o.improve.pipeline.c_str(), improved.seconds,
+                         improved.seconds > 0 ? 100 * improved.mpi_seconds / improved.seconds : 0.0);
+        }
         if (pieces) {
           vm::mpi::write_pvtu(MPI_COMM_WORLD, part, o.output.path);
           return kOk;
@@ -85,9 +104,12 @@ int mesh_with_mpi(const MeshCommandOptions& o) {
         vm::NodeMesh mesh = vm::mpi::assemble(MPI_COMM_WORLD, part);
         vm::mpi::run_collectively(MPI_COMM_WORLD, [&] {
           if (rank != 0) return;
-          if (o.improve.iterations > 0) { // temporary: improvement on rank 0 alone
+          if (distributed) {
+            vm::require_valid(mesh, "the improved mesh");
+          } else if (o.improve.iterations > 0) {
+            // Passes, stopping rules or histories that are not distributed: rank 0 alone.
+            if (!quiet) std::fprintf(stderr, "improve: on rank 0 alone (the pipeline or options are not distributed)\n");
             auto limit = thread_limit(o.common);
-            const auto phases = o.create.close ? vm::with_outside_phase(scene.field, mesh.domain) : scene.field;
             Progress progress(!o.common.quiet);
             improve_stage(mesh, phases.get(), o.improve, registry, o.common, progress);
           }

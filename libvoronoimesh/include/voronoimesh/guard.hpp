@@ -13,6 +13,7 @@
 #include "voronoimesh/mesh.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace vm {
@@ -39,7 +40,14 @@ struct GuardReport {
 /// moves that turn any triangle's normal by 90 degrees or more, or shrink it to
 /// what validate() calls zero area: clamping rules that out, but not in
 /// round-off for triangles a millionth of the mesh's size.
+///
+/// In a distributed run each rank passes its window of the mesh (moves of every
+/// node in it, exact) and `agree`, called once per round with the nodes this
+/// rank would put back: it replaces them with those of every rank (the ones in
+/// this window) and returns whether any rank put a node back, so every rank
+/// undoes the same moves and stops at the same round.
+using AgreeOnUndone = std::function<bool(std::vector<int32_t>& undone)>;
 GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta,
-                                     const PhaseField* field = nullptr);
+                                     const PhaseField* field = nullptr, const AgreeOnUndone& agree = {});
 
 } // namespace vm

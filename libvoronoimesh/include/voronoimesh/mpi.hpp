@@ -28,6 +28,7 @@
 
 #include "voronoimesh/meshing.hpp"
 #include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/pipeline.hpp"
 #include "voronoimesh/sampled_field.hpp"
 
 #include <mpi.h>
@@ -40,17 +41,19 @@
 
 namespace vm::mpi {
 
-/// One rank's part of a distributed mesh: the triangles of the tetrahedra it
-/// owns and every vertex they use. A vertex on the boundary between two ranks'
-/// slabs is in both parts, with the same global id; it is owned by the lower
-/// rank, which made it first.
+/// One rank's part of a distributed mesh: the triangles it owns and every
+/// vertex they use. After create_part() those are the triangles of the
+/// tetrahedra it owns; a vertex on the boundary between two ranks' slabs is in
+/// both parts, with the same global id, owned by the lower rank, which made it
+/// first. After improve_part() a vertex belongs to the rank whose band of z it
+/// lies in, and a triangle to the owner of its corner with the lowest id.
 struct MeshPart {
   std::vector<Vec3> points;                      ///< vertices, local ids
   std::vector<std::array<int32_t, 3>> triangles; ///< local vertex ids, oriented as in NodeMesh
   std::vector<PhasePair> pairs;                  ///< phase pair of each triangle
   std::vector<int64_t> global_ids;               ///< each vertex's id in the assembled mesh
   std::vector<int32_t> owners;                   ///< the rank owning each vertex
-  int64_t first_triangle = 0; ///< this part's triangles are first_triangle.. of the assembled mesh
+  std::vector<int64_t> triangle_ids;             ///< each triangle's index in the assembled mesh, ascending
   int64_t global_nodes = 0, global_triangles = 0; ///< of the whole mesh
   std::array<int, 2> slabs{0, -1}; ///< the slabs (tetrahedra) this rank owns
   Box domain;
@@ -63,6 +66,13 @@ struct DistributedStats {
   CreateStats create;     ///< summed over ranks; seconds: the slowest rank's create
   double seconds = 0;     ///< this rank's wall time of the whole call, sampling included
   double mpi_seconds = 0; ///< of which inside MPI calls (waiting included)
+  uint64_t bytes_sent = 0;  ///< this rank's bytes sent to other ranks
+  uint64_t collectives = 0; ///< collective MPI calls this rank made (failure agreements included)
+  /// improve_part(): this rank's window and own triangles, summed over the iterations.
+  uint64_t window_triangles = 0, own_triangles = 0;
+  /// improve_part(): iterations run again on wider windows, their moves having
+  /// outgrown the guess the windows were built for (the same on every rank).
+  int wider_windows = 0;
   std::vector<uint64_t> interface_tets; ///< per rank: tetrahedra with more than one winning phase at their nodes
   std::vector<std::array<int, 2>> slabs; ///< per rank: the slabs it owns
 };
@@ -85,6 +95,24 @@ MeshPart create_part(MPI_Comm comm, const Scene& scene, const MeshOptions& optio
 /// InvalidInput when a rank's window exceeds its share of its node's memory.
 MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParams& params,
                      DistributedStats* stats = nullptr);
+
+/// Runs `iterations` of `pipeline` on the distributed mesh (paper sect. 4.4),
+/// updating every rank's part: the mesh the ranks end with is the one
+/// Pipeline::run() makes in one process (with RunOptions::guard_crossings as
+/// given), vertex for vertex (positions bit for bit) and triangle for triangle,
+/// once assemble() has closed the gaps collapses leave in the ids. The ranks
+/// split space into bands of z balanced by vertices; vertices belong to the
+/// band they lie in and migrate as they move, triangles to the owner of their
+/// lowest corner. The built-in passes smooth, project, clamp and flip (with its
+/// collapses) are distributed, and the crossing guard; any other pass is
+/// refused with InvalidInput (distributes() says beforehand). `field` is
+/// evaluated around each rank's band, so every rank needs it there (a
+/// closed-form scene's field everywhere; a sampled field whole, for now).
+void improve_part(MPI_Comm comm, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
+                  bool guard_crossings = true, DistributedStats* stats = nullptr);
+
+/// True when improve_part() can run every pass of `pipeline`.
+bool distributes(const Pipeline& pipeline);
 
 /// The whole mesh on rank 0 (empty on the others): the mesh create_mesh()
 /// makes. Throws InvalidInput when it has more than 2^31 nodes or triangles.

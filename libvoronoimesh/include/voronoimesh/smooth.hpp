@@ -18,7 +18,7 @@ struct SmoothParams {
 
 /// RMS edge length over all node-level edges (eq. 3 without the factor), except
 /// the edges on the box faces of a closed mesh (closed_domain.hpp).
-/// Summed in a fixed order, so it is the same for any thread count.
+/// The same for any thread count and node numbering (a fixed-point sum).
 double rms_edge_length(const InterfaceMesh& mesh);
 
 /// Number of constraints on node n: its phases plus the domain box faces it lies
@@ -41,5 +41,10 @@ void constrain_to_box(Vec3& d, uint8_t box_faces);
 ///  `field`), and every force is kept on the node's box faces.
 void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
                           std::vector<Vec3>& delta);
+
+/// The same with the rest length l0 given: a distributed run takes the RMS edge
+/// length over the whole mesh, not over one rank's part of it.
+void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const PhaseField& field, double rest_length,
+                                           std::vector<Vec3>& delta);
 
 } // namespace vm

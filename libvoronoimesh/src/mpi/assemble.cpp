@@ -8,6 +8,7 @@
 #include "voronoimesh/errors.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <filesystem>
 
@@ -35,18 +36,60 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
     if (part.global_nodes > INT_MAX || part.global_triangles > INT_MAX)
       throw InvalidInput("mpi: a mesh of " + std::to_string(part.global_nodes) + " nodes and " +
                          std::to_string(part.global_triangles) + " triangles is too large to assemble on one rank");
-    // Each rank's own vertices hold consecutive ids, in the order of its part.
-    std::vector<Vec3> own;
+    // Every vertex once, from its owner, and every triangle, each with its id.
+    // Ids ascend as the assembled mesh's indices do; after collapses they have
+    // gaps, which the assembled mesh closes (as one process renumbers).
+    struct Vertex {
+      int64_t id;
+      double xyz[3];
+    };
+    struct Triangle {
+      int64_t id;
+      int64_t corners[3];
+      PhasePair pair;
+    };
+    std::vector<Vertex> own;
     for (size_t v = 0; v < part.points.size(); ++v)
-      if (part.owners[v] == comm.rank()) own.push_back(part.points[v]);
-    std::vector<std::array<int32_t, 3>> triangles;
-    for (const auto& t : part.triangles)
-      triangles.push_back({int32_t(part.global_ids[size_t(t[0])]), int32_t(part.global_ids[size_t(t[1])]),
-                           int32_t(part.global_ids[size_t(t[2])])});
-    mesh.points = comm.gather(std::span<const Vec3>(own));
-    mesh.triangles = comm.gather(std::span<const std::array<int32_t, 3>>(triangles));
-    mesh.pairs = comm.gather(std::span<const PhasePair>(part.pairs));
+      if (part.owners[v] == comm.rank())
+        own.push_back({part.global_ids[v], {part.points[v].x(), part.points[v].y(), part.points[v].z()}});
+    std::vector<Triangle> triangles;
+    for (size_t t = 0; t < part.triangles.size(); ++t) {
+      const auto& tri = part.triangles[t];
+      triangles.push_back({part.triangle_ids[t],
+                           {part.global_ids[size_t(tri[0])], part.global_ids[size_t(tri[1])],
+                            part.global_ids[size_t(tri[2])]},
+                           part.pairs[t]});
+    }
+    std::vector<Vertex> vertices = comm.gather(std::span<const Vertex>(own));
+    std::vector<Triangle> all = comm.gather(std::span<const Triangle>(triangles));
     if (comm.rank() != 0) return;
+    auto internal_error = [](const std::string& what) {
+      return Error("mpi: internal error: " + what + " (please report this with the input)");
+    };
+    if (vertices.size() != size_t(part.global_nodes) || all.size() != size_t(part.global_triangles))
+      throw internal_error("the parts hold " + std::to_string(vertices.size()) + " vertices and " +
+                           std::to_string(all.size()) + " triangles of " + std::to_string(part.global_nodes) +
+                           " and " + std::to_string(part.global_triangles));
+    std::sort(vertices.begin(), vertices.end(), [](const Vertex& a, const Vertex& b) { return a.id < b.id; });
+    std::sort(all.begin(), all.end(), [](const Triangle& a, const Triangle& b) { return a.id < b.id; });
+    std::vector<int64_t> ids;
+    for (const Vertex& v : vertices) {
+      if (!ids.empty() && ids.back() == v.id) throw internal_error("vertex " + std::to_string(v.id) + " has two owners");
+      ids.push_back(v.id);
+      mesh.points.push_back(Vec3(v.xyz[0], v.xyz[1], v.xyz[2]));
+    }
+    for (const Triangle& t : all) {
+      std::array<int32_t, 3> corners{};
+      for (int c = 0; c < 3; ++c) {
+        const auto at = std::lower_bound(ids.begin(), ids.end(), t.corners[c]);
+        if (at == ids.end() || *at != t.corners[c])
+          throw internal_error("triangle " + std::to_string(t.id) + " uses vertex " + std::to_string(t.corners[c]) +
+                               ", which no rank owns");
+        corners[size_t(c)] = int32_t(at - ids.begin());
+      }
+      mesh.triangles.push_back(corners);
+      mesh.pairs.push_back(t.pair);
+    }
     mesh.domain = part.domain;
     mesh.phase_names = part.phase_names;
     mesh.phase_labels = part.phase_labels;

@@ -63,6 +63,7 @@ void Comm::agree(int kind, const std::string& message) {
   int lowest = size_;
   {
     Timed t(mpi_seconds_);
+    ++collectives_;
     MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, comm_);
   }
   if (lowest == size_) return;
@@ -117,6 +118,7 @@ template <class T> T Comm::all_reduce(T value, MPI_Datatype type, MPI_Op op) {
   check_in();
   T result{};
   Timed t(mpi_seconds_);
+  ++collectives_;
   MPI_Allreduce(&value, &result, 1, type, op, comm_);
   return result;
 }
@@ -140,6 +142,7 @@ uint64_t Comm::exclusive_sum(uint64_t value) {
   check_in();
   uint64_t below = 0;
   Timed t(mpi_seconds_);
+  ++collectives_;
   MPI_Exscan(&value, &below, 1, MPI_UINT64_T, MPI_SUM, comm_);
   return rank_ == 0 ? 0 : below; // MPI leaves rank 0's result undefined
 }
@@ -154,6 +157,8 @@ std::vector<char> Comm::all_gather_bytes(std::span<const char> bytes) {
   std::vector<char> all;
   allocate(all, size_t(offsets.back()) + size_t(counts.back()), comm_);
   MPI_Allgatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
+  collectives_ += 2;
+  bytes_sent_ += bytes.size() * size_t(size_ - 1);
   return all;
 }
 
@@ -172,6 +177,8 @@ std::vector<char> Comm::gather_bytes(std::span<const char> bytes) {
     allocate(all, total, comm_);
   }
   MPI_Gatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0, comm_);
+  collectives_ += 2;
+  if (rank_ != 0) bytes_sent_ += bytes.size();
   return all;
 }
 
@@ -184,6 +191,9 @@ void Comm::all_to_all_in_place(const char* send, std::span<const int> send_count
   MPI_Type_contiguous(count(unit_bytes), MPI_BYTE, &unit);
   MPI_Type_commit(&unit);
   MPI_Alltoallv(send, send_count.data(), send_at.data(), unit, recv, recv_count.data(), recv_at.data(), unit, comm_);
+  ++collectives_;
+  for (int q = 0; q < size_; ++q)
+    if (q != rank_) bytes_sent_ += size_t(send_count[size_t(q)]) * unit_bytes;
   MPI_Type_free(&unit);
 }
 
@@ -213,6 +223,8 @@ std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<ch
   allocate(in, received, comm_);
   MPI_Alltoallv(out.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(), recv_counts.data(),
                 recv_offsets.data(), MPI_BYTE, comm_);
+  collectives_ += 2;
+  bytes_sent_ += total - send[size_t(rank_)].size();
   std::vector<std::vector<char>> by_rank(static_cast<size_t>(size_));
   for (int q = 0; q < size_; ++q) {
     allocate(by_rank[size_t(q)], size_t(recv_counts[size_t(q)]), comm_);

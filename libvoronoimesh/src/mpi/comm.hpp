@@ -29,6 +29,10 @@ public:
   int size() const { return size_; }
   /// Seconds spent inside MPI calls so far.
   double mpi_seconds() const { return mpi_seconds_; }
+  /// Bytes this rank sent to other ranks so far, and collective calls made
+  /// (agreements included): the volume and latency terms of communication.
+  uint64_t bytes_sent() const { return bytes_sent_; }
+  uint64_t collectives() const { return collectives_; }
 
   /// Agrees that every rank is well, or throws the agreed failure (see fail()).
   /// Ends every distributed call, so no rank can fail after the others returned.
@@ -107,6 +111,7 @@ private:
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
   double mpi_seconds_ = 0;
+  uint64_t bytes_sent_ = 0, collectives_ = 0;
   bool agreed_failure_ = false;
 };
 

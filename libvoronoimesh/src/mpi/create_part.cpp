@@ -188,7 +188,8 @@ MeshPart number(Comm& comm, const CreatePart& part, SlabRange owned) {
     out.triangles.push_back({local[size_t(tri[0])], local[size_t(tri[1])], local[size_t(tri[2])]});
     out.pairs.push_back(part.pairs[t]);
   }
-  out.first_triangle = int64_t(comm.exclusive_sum(out.triangles.size()));
+  const auto first_triangle = int64_t(comm.exclusive_sum(out.triangles.size()));
+  for (size_t t = 0; t < out.triangles.size(); ++t) out.triangle_ids.push_back(first_triangle + int64_t(t));
   out.global_triangles = int64_t(comm.sum(out.triangles.size()));
   return out;
 }
@@ -240,6 +241,8 @@ void finish_stats(DistributedStats* stats, const Comm& comm, std::chrono::steady
   if (!stats) return;
   stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats->mpi_seconds = comm.mpi_seconds();
+  stats->bytes_sent = comm.bytes_sent();
+  stats->collectives = comm.collectives();
 }
 
 } // namespace

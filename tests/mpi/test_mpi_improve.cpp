@@ -1,0 +1,90 @@
+// Distributed improvement (mpi.hpp, improve_part()), run under mpirun with 2
+// and 4 ranks: after 20 iterations of the default pipeline (and of the moving
+// passes alone, with and without the crossing guard) the ranks' mesh is the one
+// one process makes, positions bit for bit, and it is valid; passes that
+// are not distributed yet are refused on every rank.
+
+#include "voronoimesh/errors.hpp"
+#include "voronoimesh/meshing.hpp"
+#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/registry.hpp"
+#include "voronoimesh/validate.hpp"
+
+#include "mpi_test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace vm;
+using namespace vm::test;
+
+constexpr const char* kMovingPasses = "smooth,project,clamp";
+
+/// Improves `scene`'s mesh over the ranks and in one process on rank 0, and
+/// compares. Returns what the distributed improvement did.
+mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterations, bool guard_crossings,
+                                                 const char* passes = kMovingPasses) {
+  MeshOptions o;
+  o.threads = 1; // ranks share two cores
+  const Pipeline pipeline = Pipeline::parse(passes, builtin_registry());
+  mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, o);
+  mpi::DistributedStats stats;
+  mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations, guard_crossings, &stats);
+  const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
+  if (rank() != 0) return stats;
+  InterfaceMesh alone = InterfaceMesh::from_node_mesh(create_mesh(scene, o));
+  RunOptions run;
+  run.iterations = iterations;
+  run.guard_crossings = guard_crossings;
+  pipeline.run(alone, scene.field.get(), run);
+  const NodeMesh expected = alone.to_node_mesh();
+  EXPECT_EQ(together.points.size(), expected.points.size());
+  EXPECT_EQ(together.points, expected.points);
+  EXPECT_EQ(together.triangles, expected.triangles);
+  EXPECT_EQ(together.pairs, expected.pairs);
+  const ValidationReport report = validate(together);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  return stats;
+}
+
+// The default pipeline: flips near a cut are decided in sub-rounds
+// (mpi/flip_peers.hpp), crossing checks and the guard agree on culprits, and
+// collapses are chosen from every rank's slivers (mpi/collapse_peers.hpp).
+TEST(MpiImprove, four_spheres_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(example("four_spheres.json", 32), 20, true, kDefaultPipeline);
+}
+
+// Quadruple points closer than a grid cell: the guard undoes moves and flips in
+// the first iterations (test_improve.cpp).
+TEST(MpiImprove, voronoi30_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(example("voronoi30.json", 36), 20, true, kDefaultPipeline);
+}
+
+// Grain maps have junction slivers that only collapses remove (test_collapse.cpp).
+TEST(MpiImprove, label_volume_after_20_iterations_is_the_one_process_mesh) {
+  expect_same_as_one_process(grains(), 20, true, kDefaultPipeline);
+}
+
+// On coarse grids the first iterations move vertices farther than the flips'
+// windows were built for; those iterations run again on wider windows.
+TEST(MpiImprove, iterations_whose_moves_outgrow_the_windows_run_again_wider) {
+  int wider = 0;
+  for (auto [name, grid] : {std::pair{"four_spheres.json", 20}, {"split_sphere.json", 12}, {"voronoi30.json", 8}})
+    wider += expect_same_as_one_process(example(name, grid), 20, true, kDefaultPipeline).wider_windows;
+  EXPECT_GT(wider, 0);
+}
+
+TEST(MpiImprove, moving_passes_alone_with_and_without_the_guard) {
+  for (bool guard : {true, false}) expect_same_as_one_process(example("voronoi30.json", 24), 20, guard);
+}
+
+TEST(MpiImprove, passes_not_yet_distributed_are_refused_on_every_rank) {
+  const Scene scene = example("four_spheres.json", 16);
+  mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{});
+  const Pipeline pipeline = Pipeline::parse("smooth,stats", builtin_registry());
+  expect_every_rank_throws<InvalidInput>(
+      [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", "'stats' is not distributed");
+}
+
+} // namespace
