@@ -6,6 +6,8 @@
 #         Debian's libtbb is not instrumented; the library's parallel calls tell TSan
 #         what TBB guarantees instead (libvoronoimesh/src/detail/tbb_sanitizer.hpp).
 #   all   both, ASan first
+# Both builds have VM_MPI=ON, so the distributed create (voronoimesh_mpi) and its tests
+# under mpirun run instrumented too (scripts/setup.sh --mpi installs OpenMPI).
 # Any finding aborts the test that triggers it, so a clean run is a green ctest.
 # Usage: scripts/test_sanitizers.sh [asan (default)|tsan|all] [extra ctest arguments, e.g. -R Improve]
 set -euo pipefail
@@ -22,7 +24,7 @@ run() {
   # RelWithDebInfo: optimised enough for the suite to finish, with line numbers in reports.
   # The benchmarks are left out: they test speed, which sanitizers distort.
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVM_SANITIZE="$sanitizers" \
-    -DVORONOIMESH_BUILD_BENCH=OFF >/dev/null
+    -DVM_MPI=ON -DVORONOIMESH_BUILD_BENCH=OFF >/dev/null
   cmake --build "$dir" -j"$jobs"
   ctest --test-dir "$dir" --output-on-failure -j"$jobs" --timeout 1200 "$@"
 }

@@ -253,13 +253,26 @@ GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice) {
   return g;
 }
 
+namespace {
+
+uint64_t saturated(double bytes) { return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes); }
+
+double sample_bytes(const GridSpec& grid, int k, std::array<int32_t, 2> layers) {
+  const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(layers[1] - layers[0] + 1);
+  return nodes * (12.0 * k + 8); // id (4 B) + value (8 B) per slot, floor 8 B
+}
+
+} // namespace
+
+uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t, 2> layers) {
+  return saturated(sample_bytes(grid, k, layers));
+}
+
 uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
   const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
   const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
-  // SampledField: id (4 B) + value (8 B) per slot, floor 8 B; NodeValues: id and
-  // quantized value per slot (8 B), floor and label 8 B.
-  const double bytes = nodes * (12.0 * k + 8) + lattice_nodes * (8.0 * k + 8);
-  return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes);
+  // NodeValues: id and quantized value per slot (8 B), floor and label 8 B.
+  return saturated(sample_bytes(grid, k, {0, grid.cells[2]}) + lattice_nodes * (8.0 * k + 8));
 }
 
 namespace {

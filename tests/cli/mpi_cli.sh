@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# `voronoimesh mesh --mpi` under mpirun: pieces with a ParaView index, the
+# `voronoimesh mesh --mpi` (and `create --mpi`) under mpirun: pieces with a ParaView index, the
 # assembled file equal to the one of one process, and a failure on one rank
-# ending every rank with one message and its exit code.
+# (bad input, too little memory) ending every rank with one message and its exit code.
 # Usage: mpi_cli.sh MPIRUN VORONOIMESH EXAMPLES_DIR WORK_DIR
 set -uo pipefail
 mpirun=$1 vm=$2 examples=$3 work=$4
@@ -29,6 +29,15 @@ for iterations in 0 5; do
   else pass; fi
 done
 
+# `create --mpi` is `mesh --mpi --iterations 0`.
+run create "$scene" --grid 16 --mpi --threads 1 -q -o created.ply 2>stderr.txt
+if [ $? -ne 0 ]; then fail "create --mpi: $(cat stderr.txt)"
+elif ! cmp -s alone_0.ply created.ply; then fail "create --mpi: differs from one process"
+else pass; fi
+run create "$scene" --grid 16 --mpi --threads 1 -q -o created.pvtu 2>stderr.txt
+if [ $? -ne 0 ] || [ ! -s created_0.vtu ] || [ ! -s created_1.vtu ]; then fail "create --mpi, pvtu: $(cat stderr.txt)"
+else pass; fi
+
 # NaN in the top layers, which rank 1 samples: every rank exits 2, one message.
 cat >nan.json <<'JSON'
 {"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 16, "phases": [
@@ -40,6 +49,17 @@ code=$?
 if [ $code -ne 2 ]; then fail "nan: exit $code, expected 2: $(cat stderr.txt)"
 elif [ "$(grep -c 'voronoimesh: rank 1 of 2: .*NaN' stderr.txt)" -ne 1 ]; then fail "nan: message: $(cat stderr.txt)"
 elif [ -e nan.ply ]; then fail "nan: wrote a file"
+else pass; fi
+
+# Too little memory on the node for the ranks' blocks (VORONOIMESH_NODE_MEMORY
+# stands in for MemAvailable): refused before sampling; every rank exits 2, one message.
+VORONOIMESH_NODE_MEMORY=200K timeout 60 "$mpirun" -np 2 --oversubscribe "$vm" mesh "$scene" --grid 16 --mpi \
+  --iterations 0 -o small.ply 2>stderr.txt
+code=$?
+want="voronoimesh: rank 0 of 2: grid: layers 0\.\.7 of a 16x16x16 grid needs about 0\.12 MiB on this rank, its share of its node's memory is 0\.10 MiB (0\.20 MiB VORONOIMESH_NODE_MEMORY, 2 ranks)"
+if [ $code -ne 2 ]; then fail "node memory: exit $code, expected 2: $(cat stderr.txt)"
+elif [ "$(grep -c "$want" stderr.txt)" -ne 1 ]; then fail "node memory: message: $(cat stderr.txt)"
+elif [ -e small.ply ]; then fail "node memory: wrote a file"
 else pass; fi
 
 run mesh "$scene" --grid 16 --mpi --iterations 5 --threads 1 -o improved.ply 2>stderr.txt

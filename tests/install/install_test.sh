@@ -3,10 +3,13 @@
 # installed layout (versioned shared library, public headers only, CMake package,
 # pkg-config file, plugin folder), then builds the consumer in consumer/ against it
 # twice -- with find_package only, and with pkg-config only -- runs both and checks
-# their meshes with the installed CLI. Finally moves the prefix and runs the CLI again.
-# Usage: install_test.sh BUILD_DIR CONSUMER_DIR WORK_DIR VERSION SOVERSION CXX
+# their meshes with the installed CLI. With MPIRUN (a build with VM_MPI), also the MPI
+# component: voronoimesh_mpi and mpi.hpp installed, and mpi_consumer/ built against
+# voronoimesh::voronoimesh_mpi and run on 2 ranks. Finally moves the prefix and runs the
+# CLI again.
+# Usage: install_test.sh BUILD_DIR CONSUMER_DIR WORK_DIR VERSION SOVERSION CXX [MPIRUN]
 set -uo pipefail
-build=$1 consumer=$2 work=$3 version=$4 soversion=$5 cxx=$6
+build=$1 consumer=$2 work=$3 version=$4 soversion=$5 cxx=$6 mpirun=${7:-}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 prefix=$work/prefix
 passed=0 failed=0
@@ -65,14 +68,21 @@ for f in cmake/voronoimesh/voronoimeshConfig.cmake cmake/voronoimesh/voronoimesh
 done
 if [ -d "$libdir/voronoimesh/plugins" ]; then pass; else fail "no plugin folder $libdir/voronoimesh/plugins"; fi
 
+# mpi.hpp comes with the MPI component only.
+installed=no mpi_build=no
+[ -f "$include/mpi.hpp" ] && installed=yes
+[ -n "$mpirun" ] && mpi_build=yes
+if [ "$installed" = "$mpi_build" ]; then pass; else fail "mpi.hpp installed: $installed, MPI build: $mpi_build"; fi
+
 # Every installed header together, with only the installed tree and the public
-# dependencies on the include path.
+# dependencies on the include path (mpi.hpp also needs MPI's: the MPI consumer below
+# compiles it).
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 cflags=$(pkg-config --cflags voronoimesh) && libs=$(pkg-config --libs voronoimesh) || fail "pkg-config voronoimesh"
 if [ "$(pkg-config --modversion voronoimesh)" = "$version" ]; then pass; else fail "pkg-config --modversion"; fi
 if [ "$(realpath "$(pkg-config --variable=plugindir voronoimesh)")" = "$libdir/voronoimesh/plugins" ]; then pass
 else fail "pkg-config plugindir $(pkg-config --variable=plugindir voronoimesh)"; fi
-(cd "$include" && find . -name '*.hpp' | sort | sed 's|^\./|#include <voronoimesh/|; s|$|>|') >all_headers.cpp
+(cd "$include" && find . -name '*.hpp' ! -name mpi.hpp | sort | sed 's|^\./|#include <voronoimesh/|; s|$|>|') >all_headers.cpp
 ok "all installed headers compile" -- "$cxx" -std=c++20 -fsyntax-only $cflags all_headers.cpp
 
 # check_output NAME MESH: the installed CLI reads the consumer's mesh back and finds
@@ -124,7 +134,30 @@ else fail "host: $(cat host.txt)"; fi
 check_output "plugin host" host.ply
 if (cd example_cpp && run ./grains >grains.txt 2>&1); then pass; else fail "examples/cpp: $(cat example_cpp/grains.txt)"; fi
 
-# 4. The installed tree still works after the prefix is moved: the CLI finds its
+# 4. The MPI component: the library (versioned like the core, linking the installed
+# core), and a program that knows only find_package(voronoimesh CONFIG COMPONENTS mpi),
+# run on 2 ranks.
+if [ -n "$mpirun" ]; then
+  mpi_lib=$libdir/libvoronoimesh_mpi.so.$version
+  soname=$(objdump -p "$mpi_lib" 2>/dev/null | awk '$1 == "SONAME" {print $2}')
+  if [ "$soname" = "libvoronoimesh_mpi.so.$soversion" ]; then pass; else fail "voronoimesh_mpi SONAME '$soname'"; fi
+  ok "configure the MPI consumer" -- cmake -S "$consumer/../mpi_consumer" -B mpi_consumer -DCMAKE_PREFIX_PATH="$prefix" \
+    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON || finish
+  ok "build the MPI consumer" -- cmake --build mpi_consumer || finish
+  loads_installed "the MPI consumer" ./mpi_consumer/mpi_consumer
+  # Under TSan the ranks, not mpirun, get the runtime preloaded (see run above).
+  if timeout 120 "$mpirun" -np 2 --oversubscribe ${tsan_runtime:+-x LD_PRELOAD="$tsan_runtime"} \
+    ./mpi_consumer/mpi_consumer mpi.ply >mpi.txt 2>&1; then pass
+  else fail "MPI consumer: $(cat mpi.txt)"; fi
+  cat mpi.txt
+  check_output "MPI consumer" mpi.ply
+elif cmake -S "$consumer/../mpi_consumer" -B mpi_consumer -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_COMPILER="$cxx" \
+  -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >mpi.txt 2>&1; then
+  fail "a package built without MPI offers the component mpi"
+elif grep -q "no component mpi: this voronoimesh was built without MPI" mpi.txt; then pass
+else fail "asking a package without MPI for the component mpi: $(tail -5 mpi.txt)"; fi
+
+# 5. The installed tree still works after the prefix is moved: the CLI finds its
 # library relative to itself, and the library its plugin folder beside itself.
 mv "$prefix" "$work/moved" && libdir=${libdir/#$prefix/$work/moved} && prefix=$work/moved
 loads_installed "the moved CLI" "$prefix/bin/voronoimesh"

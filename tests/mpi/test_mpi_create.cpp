@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -167,6 +168,62 @@ TEST(MpiCreate, more_ranks_than_slabs_are_refused) {
   Scene scene = example("four_spheres.json", 4); // 2 slabs
   expect_every_rank_throws<InvalidInput>([&] { mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{}); }, "rank 0",
                                          "slabs of the lattice");
+}
+
+/// Sets VORONOIMESH_NODE_MEMORY (the node memory create_part() counts on) on
+/// this rank while alive.
+class NodeMemory {
+public:
+  explicit NodeMemory(const char* bytes) { setenv("VORONOIMESH_NODE_MEMORY", bytes, 1); }
+  ~NodeMemory() { unsetenv("VORONOIMESH_NODE_MEMORY"); }
+  NodeMemory(const NodeMemory&) = delete;
+  NodeMemory& operator=(const NodeMemory&) = delete;
+};
+
+// 200 KiB per node, shared by every rank of this one node: the first rank's
+// block of a 16^3 grid (17 x 17 x 8 nodes of 56 B on 2 ranks, x 4 on 4) is
+// refused before sampling.
+TEST(MpiCreate, a_block_beyond_the_node_memory_is_refused_on_every_rank) {
+  MeshOptions o;
+  o.threads = 1;
+  {
+    const NodeMemory limit("200K");
+    expect_every_rank_throws<InvalidInput>(
+        [&] { mpi::create_part(MPI_COMM_WORLD, example("four_spheres.json", 16), o); }, "rank 0 of " + std::to_string(ranks()),
+        "grid: layers 0.." );
+    try {
+      mpi::create_part(MPI_COMM_WORLD, example("four_spheres.json", 16), o);
+    } catch (const InvalidInput& e) {
+      // Each rank counts on its share: the node's memory over the ranks on it.
+      EXPECT_NE(std::string(e.what()).find("(0.20 MiB VORONOIMESH_NODE_MEMORY, " + std::to_string(ranks()) + " ranks)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  // Enough for each rank's share: the same job goes through.
+  const NodeMemory limit("1G");
+  const mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, example("four_spheres.json", 16), o);
+  EXPECT_GT(mpi::assemble(MPI_COMM_WORLD, part).num_triangles() + size_t(rank()), 0u);
+}
+
+// Blocks already sampled: the window each rank would receive is refused before
+// it moves.
+TEST(MpiCreate, a_window_beyond_the_node_memory_is_refused_on_every_rank) {
+  const Scene scene = example("four_spheres.json", 16);
+  const GridSpec grid = grid_for_lattice(scene.grid, Lattice::bcc);
+  const int layers = grid.cells[2] + 1;
+  const SampledField block = SampledField::sample(*scene.field, grid, 4,
+                                                  {rank() * layers / ranks(), (rank() + 1) * layers / ranks() - 1});
+  const NodeMemory limit("100K");
+  expect_every_rank_throws<InvalidInput>([&] { mpi::create_part(MPI_COMM_WORLD, block, CreateParams{}); },
+                                         "rank 0 of " + std::to_string(ranks()), "grid: slabs 0..");
+}
+
+TEST(MpiCreate, a_malformed_node_memory_is_refused_on_every_rank) {
+  const NodeMemory limit("lots");
+  expect_every_rank_throws<InvalidInput>(
+      [&] { mpi::create_part(MPI_COMM_WORLD, example("four_spheres.json", 16), MeshOptions{}); }, "rank 0 of ",
+      "VORONOIMESH_NODE_MEMORY: expected a positive number of bytes");
 }
 
 } // namespace

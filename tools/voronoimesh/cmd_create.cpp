@@ -5,14 +5,9 @@
 namespace vmcli {
 
 void add_create_command(CLI::App& app, int& exit_code) {
-  struct Options {
-    std::string input;
-    OutputOptions output;
-    CreateOptions create;
-    InputCliOptions input_options;
-    CommonOptions common;
-  };
-  auto o = std::make_shared<Options>();
+  // mesh's options without improvement, so that `create --mpi` is `mesh --mpi --iterations 0`.
+  auto o = std::make_shared<MeshCommandOptions>();
+  o->improve.iterations = 0;
   CLI::App* cmd = app.add_subcommand(
       "create", "Create the initial mesh of the Voronoi interface (paper Algorithm 2) and write it (PLY, OBJ, STL, "
                 "MSH, VTU, VTP or MEDIT).");
@@ -22,7 +17,15 @@ void add_create_command(CLI::App& app, int& exit_code) {
   add_create_options(cmd, o->create);
   add_input_options(cmd, o->input_options);
   add_common_options(cmd, o->common, true);
+  cmd->add_flag("--mpi", o->mpi,
+                "Run under mpirun: create distributed over the ranks, as `mesh --mpi --iterations 0` (-o FILE.pvtu "
+                "writes one .vtu piece per rank and a ParaView index; other formats are assembled and written by "
+                "rank 0)");
   cmd->callback([o, &exit_code] {
+    if (o->mpi) {
+      exit_code = mesh_with_mpi(*o);
+      return;
+    }
     exit_code = run_guarded([&] {
       check_outputs(o->output);
       auto limit = thread_limit(o->common);

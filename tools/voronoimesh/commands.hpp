@@ -141,8 +141,8 @@ struct MeshCommandOptions {
   CommonOptions common;
   bool mpi = false;
 };
-/// `mesh --mpi`, under mpirun (mpi_mesh.cpp): returns the exit code, the same
-/// on every rank; rank 0 prints.
+/// `mesh --mpi` and `create --mpi` (iterations 0), under mpirun (mpi_mesh.cpp):
+/// returns the exit code, the same on every rank; rank 0 prints.
 int mesh_with_mpi(const MeshCommandOptions& o);
 
 void add_create_command(CLI::App& app, int& exit_code);

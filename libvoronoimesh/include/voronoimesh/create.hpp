@@ -71,6 +71,11 @@ GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice);
 /// usually far smaller). Used to refuse impossible sizes before starting.
 uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice);
 
+/// Bytes that sampling grid layers layers[0]..layers[1] of `grid` with `k`
+/// phases per node takes (SampledField::sample()): the first part of
+/// estimate_create_memory(), for one rank's block of a distributed create.
+uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t, 2> layers);
+
 /// Extracts the Voronoi interface of the piecewise-linear interpolant of `field`
 /// on the chosen lattice, after snapping, into `out`. The result is consistent by
 /// construction: each vertex is made once per point it lies on, identified exactly

@@ -17,6 +17,14 @@
 /// Every call is collective over its communicator. A rank that fails (bad
 /// input in its block, out of memory, any exception) makes every rank throw:
 /// the same error class on all, with the message "rank R of N: <problem>".
+///
+/// Memory: before sampling its block and again before receiving its window of
+/// layers, each rank estimates what it will hold (samples, lattice node values,
+/// its part of the mesh) and refuses with InvalidInput if that exceeds its share
+/// of its node: the node's available memory (MemAvailable) divided by the ranks
+/// of the communicator on that node, or the environment variable
+/// VORONOIMESH_NODE_MEMORY (bytes, or with K, M, G or T) instead of MemAvailable,
+/// e.g. for a batch system's limit below the node's memory.
 
 #include "voronoimesh/meshing.hpp"
 #include "voronoimesh/node_mesh.hpp"
@@ -73,8 +81,9 @@ struct DistributedStats {
 /// on every rank of `comm` together; returns this rank's part. Each rank
 /// samples an equal share of the grid layers, then the slabs are balanced by
 /// interface tetrahedra (counted from the winning phase at each node). Throws
-/// as create_mesh(), and InvalidInput when there are more ranks than slabs
-/// (half the grid cells along z for bcc).
+/// as create_mesh(), InvalidInput when there are more ranks than slabs (half
+/// the grid cells along z for bcc) and when a rank's work exceeds its share of
+/// its node's memory (above).
 MeshPart create_part(MPI_Comm comm, const Scene& scene, const MeshOptions& options = {},
                      DistributedStats* stats = nullptr);
 
@@ -82,7 +91,8 @@ MeshPart create_part(MPI_Comm comm, const Scene& scene, const MeshOptions& optio
 /// samples (SampledField::sample() or from_samples() of some grid layers), the
 /// ranks' blocks cover the grid's layers once, in rank order. The grid must suit
 /// the lattice (grid_for_lattice()). Phase names and labels are left empty.
-/// Throws TopologyError if the mesh fails validation after the repair rounds.
+/// Throws TopologyError if the mesh fails validation after the repair rounds,
+/// InvalidInput when a rank's window exceeds its share of its node's memory.
 MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParams& params,
                      DistributedStats* stats = nullptr);
 

@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdlib>
+#include <fstream>
 #include <string>
 
 namespace vm::detail {
@@ -17,6 +19,17 @@ namespace vm::detail {
 /// Physical memory of this machine, in bytes.
 inline uint64_t physical_memory() {
   return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+}
+
+/// Memory that new allocations can get on this machine now, in bytes:
+/// MemAvailable of /proc/meminfo (free memory and what the kernel can
+/// reclaim without swapping), or the physical memory where it is not known.
+inline uint64_t available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  const std::string key = "MemAvailable:";
+  for (std::string line; std::getline(meminfo, line);)
+    if (line.compare(0, key.size(), key) == 0) return std::strtoull(line.c_str() + key.size(), nullptr, 10) * 1024;
+  return physical_memory();
 }
 
 /// Throws InvalidInput "<source>: <what> needs about X GiB, this machine has Y GiB"

@@ -2,6 +2,7 @@
 
 #include "voronoimesh/errors.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstdio>
@@ -122,6 +123,17 @@ template <class T> T Comm::all_reduce(T value, MPI_Datatype type, MPI_Op op) {
   return result;
 }
 
+int Comm::ranks_on_node() {
+  check_in();
+  Timed t(mpi_seconds_);
+  MPI_Comm node;
+  MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  int ranks = 1;
+  MPI_Comm_size(node, &ranks);
+  MPI_Comm_free(&node);
+  return ranks;
+}
+
 uint64_t Comm::sum(uint64_t value) { return all_reduce(value, MPI_UINT64_T, MPI_SUM); }
 double Comm::min(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MIN); }
 double Comm::max(double value) { return all_reduce(value, MPI_DOUBLE, MPI_MAX); }
@@ -199,7 +211,7 @@ std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<ch
   allocate(out, total, comm_);
   for (int q = 0, at = 0; q < size_; at += send_counts[size_t(q)], ++q) {
     send_offsets[size_t(q)] = at;
-    std::memcpy(out.data() + at, send[size_t(q)].data(), send[size_t(q)].size());
+    std::copy(send[size_t(q)].begin(), send[size_t(q)].end(), out.begin() + at); // not memcpy: empty vectors hold null
   }
   count(total);
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm_);
@@ -216,7 +228,7 @@ std::vector<std::vector<char>> Comm::all_to_all(const std::vector<std::vector<ch
   std::vector<std::vector<char>> by_rank(static_cast<size_t>(size_));
   for (int q = 0; q < size_; ++q) {
     allocate(by_rank[size_t(q)], size_t(recv_counts[size_t(q)]), comm_);
-    std::memcpy(by_rank[size_t(q)].data(), in.data() + recv_offsets[size_t(q)], size_t(recv_counts[size_t(q)]));
+    std::copy_n(in.begin() + recv_offsets[size_t(q)], recv_counts[size_t(q)], by_rank[size_t(q)].begin());
   }
   return by_rank;
 }

@@ -62,6 +62,8 @@ public:
     }
   }
 
+  /// How many ranks of this communicator share this rank's node (memory).
+  int ranks_on_node();
   uint64_t sum(uint64_t value);
   double min(double value);
   double max(double value);

@@ -11,6 +11,8 @@
 #include "mpi/balance.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/layers.hpp"
+#include "mpi/memory.hpp"
+#include "detail/text.hpp"
 #include "voronoimesh/closed_domain.hpp"
 #include "voronoimesh/errors.hpp"
 
@@ -101,6 +103,32 @@ std::vector<Layers> windows(const Plan& p, const GridSpec& grid, Lattice kind) {
   return w;
 }
 
+/// Bytes of a rank's part of the mesh per interface tetrahedron of its slabs:
+/// create's vertices with their exact keys, triangles and indices, then the
+/// MeshPart. One process's peak memory beyond estimate_create_memory() was
+/// 200-265 B per cut tetrahedron (the four spheres and voronoi30 at 64^3 to
+/// 192^3, `/usr/bin/time -f %M voronoimesh create`); the part adds its copy.
+constexpr double kMeshBytesPerInterfaceTet = 300;
+
+std::string grid_text(const GridSpec& grid) {
+  return vm::detail::cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid");
+}
+
+/// Refuses, before the windows move, a rank whose peak will not fit in its
+/// share of its node: its block and its window's samples (both held while
+/// the layers move), the window's lattice node values and its part of the mesh.
+void refuse_window_beyond_share(const detail::MemoryShare& share, const SampledField& block, Layers window,
+                                SlabRange slabs, uint64_t interface_tets, Lattice kind) {
+  GridSpec w = block.grid();
+  w.cells[2] = window[1] - window[0];
+  const double bytes = double(estimate_sample_memory(block.grid(), block.k(), block.layers())) +
+                       double(estimate_create_memory(w, block.k(), kind)) +
+                       kMeshBytesPerInterfaceTet * double(interface_tets);
+  detail::refuse_beyond_share(share, bytes,
+                              vm::detail::cat("grid: slabs ", slabs[0], "..", slabs[1], " (layers ", window[0], "..",
+                                              window[1], ") of ", grid_text(block.grid())));
+}
+
 /// Numbers the vertices of `part` as one process would and gives this rank's
 /// share: its own vertices are numbered after those of every lower rank, in
 /// order of first appearance; those the rank below made first get their ids
@@ -182,15 +210,18 @@ CreateStats sum_stats(Comm& comm, const CreateStats& mine) {
 /// Everything after sampling, for a block of samples that `release` may free
 /// once the layers have moved.
 template <class Release>
-MeshPart create_from_block(Comm& comm, const SampledField& block, const CreateParams& params, bool validate,
-                           DistributedStats* stats, Release&& release) {
+MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const SampledField& block,
+                           const CreateParams& params, bool validate, DistributedStats* stats, Release&& release) {
   const Plan p = plan(comm, block, params.lattice);
   const GridSpec grid = block.grid();
-  const SampledField window = detail::exchange_samples(comm, p.blocks, windows(p, grid, params.lattice), block);
+  const std::vector<Layers> wanted = windows(p, grid, params.lattice);
+  const SlabRange owned = p.slabs[size_t(comm.rank())];
+  refuse_window_beyond_share(share, block, wanted[size_t(comm.rank())], owned, p.interface_tets[size_t(comm.rank())],
+                             params.lattice);
+  const SampledField window = detail::exchange_samples(comm, p.blocks, wanted, block);
   release();
   MpiPeers peers(comm);
   CreatePart part;
-  const SlabRange owned = p.slabs[size_t(comm.rank())];
   const CreateStats mine = vm::detail::create_part(window, p.range, params, owned, peers, part);
   MeshPart out = number(comm, part, owned);
   out.domain = grid.domain;
@@ -219,7 +250,10 @@ void finish_stats(DistributedStats* stats, const Comm& comm, std::chrono::steady
 MeshPart create_part(MPI_Comm c, const SampledField& block, const CreateParams& params, DistributedStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
-  MeshPart part = comm.collectively([&] { return create_from_block(comm, block, params, true, stats, [] {}); });
+  MeshPart part = comm.collectively([&] {
+    const detail::MemoryShare share = detail::memory_share(comm);
+    return create_from_block(comm, share, block, params, true, stats, [] {});
+  });
   finish_stats(stats, comm, start);
   return part;
 }
@@ -238,8 +272,11 @@ MeshPart create_part(MPI_Comm c, const Scene& scene, const MeshOptions& o, Distr
     if (block[1] < block[0])
       throw InvalidInput("mpi: " + std::to_string(n) + " ranks need at least as many grid layers, the grid has " +
                          std::to_string(layers));
+    const detail::MemoryShare share = detail::memory_share(comm);
+    detail::refuse_beyond_share(share, double(estimate_sample_memory(grid, o.top_k, block)),
+                                vm::detail::cat("grid: layers ", block[0], "..", block[1], " of ", grid_text(grid)));
     std::optional<SampledField> samples = SampledField::sample(*scene.field, grid, o.top_k, block);
-    MeshPart out = create_from_block(comm, *samples, params, o.validate, stats, [&] { samples.reset(); });
+    MeshPart out = create_from_block(comm, share, *samples, params, o.validate, stats, [&] { samples.reset(); });
     NodeMesh names;
     names.domain = grid.domain;
     name_phases(names, scene, o);
