@@ -10,9 +10,10 @@
 // rank's call spent inside MPI calls, waiting for slower ranks included.
 // With ITERATIONS, then one row for that many iterations of the default
 // pipeline over the ranks (improve_part):
-//   | scene | grid | ranks | triangles | seconds | work s max/min | peak MB per rank (max) | MPI % (max) | MB sent per rank per iteration (max) | collectives per iteration | window / own triangles (max) |
-// peak MB: the whole run's, create included; window / own: the triangles a
-// rank's window holds for those it owns (the redundant work of the halo).
+//   | scene | grid | ranks | triangles | seconds | work s max/min | CPU s (max) | peak MB per rank (max) | MPI % (max) | MB sent per rank per iteration (max) | collectives per iteration | window / own triangles (max) |
+// CPU s: a rank's CPU time, which shows its share of the work where ranks
+// share cores; peak MB: the whole run's, create included; window / own: the
+// triangles a rank's window holds for those it owns (the halo's redundant work).
 
 #include "voronoimesh/mpi.hpp"
 #include "voronoimesh/pipeline.hpp"
@@ -76,21 +77,24 @@ int main(int argc, char** argv) {
       MPI_Barrier(MPI_COMM_WORLD);
       vm::mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations, true, &improved);
       getrusage(RUSAGE_SELF, &usage);
+      const double improve_cpu = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                                 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) - cpu;
       const double improve_work = improved.seconds - improved.mpi_seconds;
-      double mine_i[5] = {improved.seconds, double(usage.ru_maxrss) / 1024.0,
+      double mine_i[6] = {improved.seconds, double(usage.ru_maxrss) / 1024.0,
                           100 * improved.mpi_seconds / improved.seconds, improve_work,
-                          double(improved.bytes_sent) / 1e6 / iterations};
-      double most_i[5], least_i = 0, halo = double(improved.window_triangles) / double(std::max<uint64_t>(1, improved.own_triangles)), most_halo = 0;
-      MPI_Reduce(mine_i, most_i, 5, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+                          double(improved.bytes_sent) / 1e6 / iterations, improve_cpu};
+      double most_i[6], least_i = 0, halo = double(improved.window_triangles) / double(std::max<uint64_t>(1, improved.own_triangles)), most_halo = 0;
+      MPI_Reduce(mine_i, most_i, 6, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
       MPI_Reduce(&improve_work, &least_i, 1, MPI_DOUBLE, MPI_MIN, 0, MPI_COMM_WORLD);
       MPI_Reduce(&halo, &most_halo, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-      std::fprintf(stderr, "rank %d: improve %.3f s, work %.3f s, %.1f %% in MPI, %.2f MB sent/iteration, "
+      std::fprintf(stderr, "rank %d: improve %.3f s, work %.3f s, cpu %.3f s, %.1f %% in MPI, %.2f MB sent/iteration, "
                            "%.1f collectives/iteration, window/own triangles %.2f\n",
-                   rank, mine_i[0], improve_work, mine_i[2], mine_i[4], double(improved.collectives) / iterations, halo);
+                   rank, mine_i[0], improve_work, improve_cpu, mine_i[2], mine_i[4],
+                   double(improved.collectives) / iterations, halo);
       if (rank == 0)
-        std::printf("| %s | %d^3 | %d | %lld | %.2f | %.2f / %.2f | %.0f | %.1f | %.2f | %.0f | %.2f |\n",
+        std::printf("| %s | %d^3 | %d | %lld | %.2f | %.2f / %.2f | %.2f | %.0f | %.1f | %.2f | %.0f | %.2f |\n",
                     std::filesystem::path(argv[1]).stem().c_str(), grid, ranks, (long long)part.global_triangles,
-                    most_i[0], most_i[3], least_i, most_i[1], most_i[2], most_i[4],
+                    most_i[0], most_i[3], least_i, most_i[5], most_i[1], most_i[2], most_i[4],
                     double(improved.collectives) / iterations, most_halo);
     }
   } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 
 #include "voronoimesh/array_input.hpp"
 #include "voronoimesh/scene.hpp"
+#include "voronoimesh/validate.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -50,6 +51,19 @@ inline Scene grains() {
         labels[size_t(grid.node_index(i, j, k))] = 10 * best;
       }
   return scene_from_labels(grid, labels);
+}
+
+/// The ranks' assembled mesh is the one-process mesh: the same nodes (positions
+/// bit for bit), triangles, pairs and phases, and it validates.
+inline void expect_same_mesh(const NodeMesh& together, const NodeMesh& alone) {
+  EXPECT_GT(alone.num_triangles(), 0u);
+  EXPECT_EQ(together.points, alone.points);
+  EXPECT_EQ(together.triangles, alone.triangles);
+  EXPECT_EQ(together.pairs, alone.pairs);
+  EXPECT_EQ(together.phase_names, alone.phase_names);
+  EXPECT_EQ(together.phase_labels, alone.phase_labels);
+  const ValidationReport report = validate(together);
+  EXPECT_TRUE(report.ok()) << report.summary();
 }
 
 /// Runs `f` on every rank and checks that every rank throws E naming `rank`.

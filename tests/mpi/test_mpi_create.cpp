@@ -67,15 +67,7 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, MeshOptions
   expect_parts_match(part, together);
   EXPECT_EQ(stats.slabs.size(), size_t(ranks()));
   if (rank() != 0) return stats;
-  const NodeMesh alone = create_mesh(scene, o);
-  EXPECT_GT(alone.num_triangles(), 0u);
-  EXPECT_EQ(together.points, alone.points);
-  EXPECT_EQ(together.triangles, alone.triangles);
-  EXPECT_EQ(together.pairs, alone.pairs);
-  EXPECT_EQ(together.phase_names, alone.phase_names);
-  EXPECT_EQ(together.phase_labels, alone.phase_labels);
-  const ValidationReport report = validate(together);
-  EXPECT_TRUE(report.ok()) << report.summary();
+  expect_same_mesh(together, create_mesh(scene, o));
   return stats;
 }
 

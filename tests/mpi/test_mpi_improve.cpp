@@ -38,13 +38,7 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterati
   run.iterations = iterations;
   run.guard_crossings = guard_crossings;
   pipeline.run(alone, scene.field.get(), run);
-  const NodeMesh expected = alone.to_node_mesh();
-  EXPECT_EQ(together.points.size(), expected.points.size());
-  EXPECT_EQ(together.points, expected.points);
-  EXPECT_EQ(together.triangles, expected.triangles);
-  EXPECT_EQ(together.pairs, expected.pairs);
-  const ValidationReport report = validate(together);
-  EXPECT_TRUE(report.ok()) << report.summary();
+  expect_same_mesh(together, alone.to_node_mesh());
   return stats;
 }
 
