@@ -18,10 +18,10 @@
 // The last column hashes the final mesh, so rows for 1 and 2 threads show
 // whether the output is identical.
 
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/input.hpp"
-#include "voronoimesh/pipeline.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
 
 #include <sys/resource.h>
 #include <tbb/global_control.h>

@@ -1,4 +1,4 @@
-// Distributed create and improvement (mpi.hpp): wall time, peak memory, time
+// Distributed create and improvement (mpi/distributed.hpp): wall time, peak memory, time
 // inside MPI and bytes sent per rank, and how evenly the work is shared.
 // Run under mpirun (bench/run_mpi.sh runs 1, 2 and 4 ranks):
 //   mpirun -np N bench_mpi SCENE.json GRID [THREADS [ITERATIONS]]
@@ -15,10 +15,10 @@
 // share cores; peak MB: the whole run's, create included; window / own: the
 // triangles a rank's window holds for those it owns (the halo's redundant work).
 
-#include "voronoimesh/mpi.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/registry.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/registry.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
 
 #include <mpi.h>
 #include <sys/resource.h>

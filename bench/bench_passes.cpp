@@ -1,7 +1,7 @@
 // Google Benchmark of every stage and pass on fixed meshes, to see which one a
 // change speeds up: sampling a scene, create (paper sect. 4.1), smoothing
 // (Alg. 4), projection (eq. 4), clamping (Alg. 3), the guarded commit
-// (guard.hpp), flipping (Alg. 5), the quality summary and a whole iteration.
+// (improve/guard.hpp), flipping (Alg. 5), the quality summary and a whole iteration.
 // Scenes: the seven-phase scene at grid 44 (~16k triangles, the paper's Fig. 8
 // size) and the four spheres at grid 128 (~70k triangles); the argument is the
 // thread count.
@@ -12,14 +12,14 @@
 // iterations of a run see (the first ones flip and move far more). Passes that
 // change the mesh get a fresh copy every iteration, made outside the timing.
 
-#include "voronoimesh/clamp.hpp"
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/flip.hpp"
-#include "voronoimesh/guard.hpp"
-#include "voronoimesh/input.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/project.hpp"
-#include "voronoimesh/smooth.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/improve/clamp.hpp"
+#include "voronoimesh/improve/flip.hpp"
+#include "voronoimesh/improve/guard.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/project.hpp"
+#include "voronoimesh/improve/smooth.hpp"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

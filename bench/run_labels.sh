@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fills the label-volume benchmark table of README.md: the whole main job
+# Prints the label-volume benchmark table of docs/benchmarks.md: the whole main job
 # (read, phase functions, create, 20 iterations, write) on
 #  - ct:          a CT-like segmentation, 512x512x96 voxels (25.2M), 4 labels
 #                 (make_label_volume ct), meshed at --voxels-per-cell 2.4, about

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fills the benchmark table of README.md (between the bench-table markers):
+# Fills the benchmark table of docs/benchmarks.md (between the bench-table markers):
 # bench_mesh on every case with 1 and 2 threads, one row each. The rows also go
 # to stdout as they come and to out/bench_table.md.
 #
@@ -77,10 +77,10 @@ python3 - "$table" "bench/run_table.sh${1:+ $1}" <<'PY'
 import sys, datetime
 table, command = open(sys.argv[1]).read(), sys.argv[2]
 begin, end = "<!-- bench-table:begin -->", "<!-- bench-table:end -->"
-readme = open("README.md").read()
+readme = open("docs/benchmarks.md").read()
 head, rest = readme.split(begin, 1)
 _, tail = rest.split(end, 1)
 when = datetime.date.today().isoformat()
-open("README.md", "w").write(f"{head}{begin}\n`{command}` ({when}):\n\n{table}{end}{tail}")
+open("docs/benchmarks.md", "w").write(f"{head}{begin}\n`{command}` ({when}):\n\n{table}{end}{tail}")
 PY
-echo "README.md: table written between the bench-table markers" >&2
+echo "docs/benchmarks.md: table written between the bench-table markers" >&2

@@ -1,27 +1,27 @@
 # Installation: the shared library, its public headers, the CLI, an exported CMake
 # package (find_package(voronoimesh CONFIG) -> voronoimesh::voronoimesh), a pkg-config
 # file and the (initially empty) plugin folder; with VM_MPI also voronoimesh_mpi and
-# mpi.hpp (find_package(voronoimesh CONFIG COMPONENTS mpi) -> voronoimesh::voronoimesh_mpi).
-# See README "Install and use the package".
+# mpi/distributed.hpp (find_package(voronoimesh CONFIG COMPONENTS mpi) -> voronoimesh::voronoimesh_mpi).
+# See docs/api.md "Install and use the package".
 include(CMakePackageConfigHelpers)
 
 set(VORONOIMESH_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/voronoimesh")
 
 install(TARGETS voronoimesh EXPORT voronoimeshTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-# mpi.hpp needs mpi.h and voronoimesh_mpi: a build without MPI installs neither.
+# mpi/distributed.hpp needs mpi.h and voronoimesh_mpi: a build without MPI installs neither.
 if(VM_MPI)
   install(TARGETS voronoimesh_mpi EXPORT voronoimeshTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   set(_vm_without_mpi_header "")
   set(VORONOIMESH_HAS_MPI TRUE) # the package's component mpi (voronoimeshConfig.cmake.in)
 else()
-  set(_vm_without_mpi_header PATTERN "mpi.hpp" EXCLUDE)
+  set(_vm_without_mpi_header PATTERN "mpi" EXCLUDE)
   set(VORONOIMESH_HAS_MPI FALSE)
 endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/libvoronoimesh/include/voronoimesh
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" ${_vm_without_mpi_header})
-install(FILES ${PROJECT_BINARY_DIR}/include/voronoimesh/version.hpp
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voronoimesh)
+install(FILES ${PROJECT_BINARY_DIR}/include/voronoimesh/core/version.hpp
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/voronoimesh/core)
 install(DIRECTORY DESTINATION ${VORONOIMESH_INSTALL_PLUGINDIR})
 
 # The CLI finds the library relative to itself, so a moved prefix still runs.

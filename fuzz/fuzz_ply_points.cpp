@@ -4,7 +4,7 @@
 
 #include "input_file.hpp"
 
-#include "detail/point_cloud.hpp"
+#include "fields/point_cloud.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return vm::fuzz::read_as_file(data, size, ".ply", [](const std::string& path) {

@@ -9,8 +9,8 @@
 #include "input_layouts.hpp"
 #include "process_folder.hpp"
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/scene.hpp"
 
 #include <cstdint>
 #include <cstdio>

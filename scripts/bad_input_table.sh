@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes README's table of bad inputs: every failure case of the command-line
+# Writes the table of bad inputs in docs/reliability.md: every failure case of the command-line
 # tests (tests/cli/cli_tests.sh, expect_error), with the exit code and the one
 # line the tool prints. The table comes from the tests themselves, so it cannot
 # drift from what they check (one line, the exit code, no output file left).
@@ -18,9 +18,9 @@ python3 - "$table" <<'PY'
 import sys
 table = open(sys.argv[1]).read()
 begin, end = "<!-- bad-inputs:begin -->", "<!-- bad-inputs:end -->"
-readme = open("README.md").read()
+readme = open("docs/reliability.md").read()
 head, rest = readme.split(begin, 1)
 _, tail = rest.split(end, 1)
-open("README.md", "w").write(f"{head}{begin}\n{table}{end}{tail}")
+open("docs/reliability.md", "w").write(f"{head}{begin}\n{table}{end}{tail}")
 PY
-echo "README.md: $(($(wc -l <"$table") - 2)) bad inputs written between the bad-inputs markers" >&2
+echo "docs/reliability.md: $(($(wc -l <"$table") - 2)) bad inputs written between the bad-inputs markers" >&2

@@ -35,7 +35,7 @@ def main():
     ap.add_argument("--seed", type=int, default=5)
     ap.add_argument("--iterations", type=int, default=20)
     ap.add_argument("--keep", help="write the scenes and meshes here instead of a temporary folder")
-    ap.add_argument("--guard", choices=["on", "off"], default="on", help="the crossing guard (guard.hpp)")
+    ap.add_argument("--guard", choices=["on", "off"], default="on", help="the crossing guard (improve/guard.hpp)")
     ap.add_argument("--close", action="store_true", help="close the domain (--close): box faces become surfaces")
     args = ap.parse_args()
     rng = random.Random(args.seed)

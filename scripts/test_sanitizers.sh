@@ -4,7 +4,7 @@
 #   tsan  ThreadSanitizer, every test (build-tsan/): each parallel pass runs on TBB's
 #         threads in the create, improve, sample, guard, flip and determinism tests.
 #         Debian's libtbb is not instrumented; the library's parallel calls tell TSan
-#         what TBB guarantees instead (libvoronoimesh/src/detail/tbb_sanitizer.hpp).
+#         what TBB guarantees instead (libvoronoimesh/src/core/tbb_sanitizer.hpp).
 #   all   both, ASan first
 # Both builds have VM_MPI=ON, so the distributed create (voronoimesh_mpi) and its tests
 # under mpirun run instrumented too (scripts/setup.sh --mpi installs OpenMPI).

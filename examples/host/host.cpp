@@ -7,15 +7,15 @@
 //   e.g. voronoimesh_host relax.so relax,project,clamp,flip out.ply
 // Prints one line per loaded plugin and a summary; exit 1 on any error.
 
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/plugins.hpp"
-#include "voronoimesh/sampled_field.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/plugin/plugins.hpp"
 
 #include <cstdio>
 

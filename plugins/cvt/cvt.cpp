@@ -9,7 +9,7 @@
 /// phase functions needed) and go to the displacement buffer, so the pipeline's
 /// clamp and crossing guard apply as for the built-in smooth.
 
-#include "voronoimesh/plugin_helpers.hpp"
+#include "voronoimesh/plugin/plugin_helpers.hpp"
 
 #include <vector>
 

@@ -14,7 +14,7 @@
 /// all with junctions=0), points never. The move is added to the displacement
 /// buffer, so the pipeline's clamp and crossing guard apply to it as to smooth.
 
-#include "voronoimesh/plugin_helpers.hpp"
+#include "voronoimesh/plugin/plugin_helpers.hpp"
 
 #include <vector>
 

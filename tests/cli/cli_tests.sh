@@ -24,7 +24,7 @@ expect_error() {
   elif ! grep -qE -e "$pattern" stderr.txt; then fail "$name: message '$(cat stderr.txt)' does not match '$pattern'"
   elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "$name: left an output file behind"
   else pass; fi
-  # scripts/bad_input_table.sh collects every case's message for README.
+  # scripts/bad_input_table.sh collects every case's message for docs/reliability.md.
   if [ -n "${BAD_INPUT_TABLE:-}" ]; then
     printf '| %s | %s | %s |\n' "$name" "$got" "$(sed -e "s#$work/##g" -e 's/|/\\|/g' stderr.txt)" >>"$BAD_INPUT_TABLE"
   fi
@@ -76,6 +76,9 @@ expect_error "grid 10^6" 2 "gridbig\.json: .*grid" -- "$vm" create gridbig.json 
 expect_error "--grid 0" 2 "--grid: must be between 1 and 4096" -- "$vm" create --grid 0 -o out.ply
 expect_error "--grid too big" 2 "--grid: .* needs about .* GiB" -- "$vm" create --grid 4096 -o out.ply
 expect_error "--snap 2" 2 "snap: must be between 0 and 0.5" -- "$vm" create --snap 2 -o out.ply
+# The library names its options (top_k); the tool names them as its command line does.
+expect_error "--top-k 0" 2 "^voronoimesh: --top-k: must be between 1 and 16, got 0" -- "$vm" create --top-k 0 -o out.ply
+expect_error "--iterations -1" 2 "^voronoimesh: --iterations: must be 0 or more" -- "$vm" mesh --iterations -1 -o out.ply
 expect_error "unwritable output" 3 "/nonexistent/out\.ply" -- "$vm" create --grid 8 -o /nonexistent/out.ply
 expect_error "stats of a non-PLY" 3 "kind\.json: not a PLY" -- "$vm" stats kind.json
 expect_error "stats of a missing file" 3 "nothere\.ply" -- "$vm" stats nothere.ply
@@ -88,6 +91,8 @@ if grep -qE "^topology +valid" mstats.txt && grep -q "</svg>" hist.svg; then pas
 if cmp -s mt1.ply mt2.ply; then pass; else fail "mesh --threads 1 and 2 give different files"; fi
 if "$vm" smooth -q demo.ply --field "$examples/four_spheres.json" --iterations 3 -o sm.ply && "$vm" stats sm.ply >/dev/null; then pass
 else fail "smooth"; fi
+"$vm" improve -q demo.ply --field "$examples/four_spheres.json" --iterations 3 -o im.ply
+if cmp -s sm.ply im.ply; then pass; else fail "improve is not smooth's synonym"; fi
 if "$vm" flip -q demo.ply -o fl.ply && "$vm" stats fl.ply >/dev/null; then pass; else fail "flip"; fi
 if "$vm" passes | grep -q "rest_factor" && "$vm" passes | grep -q "^flip"; then pass; else fail "passes listing"; fi
 if "$vm" mesh -q --grid 24 --iterations 50 --stop-when-converged -o conv.ply; then pass; else fail "--stop-when-converged"; fi
@@ -249,7 +254,7 @@ expect_error "unknown extension" 2 "out\.xyz: unknown output format '\.xyz' \(kn
 expect_error "no extension" 2 "out: no extension" -- "$vm" mesh --grid 4096 -o out
 expect_error "--per-phase in a missing directory" 3 "/nonexistent/dir: cannot write" \
   -- "$vm" mesh --grid 4096 -o out.ply --per-phase /nonexistent/dir
-expect_error "--per-phase on a file" 3 "blocker: --per-phase: not a directory" -- "$vm" create --grid 4096 -o out.ply --per-phase blocker
+expect_error "--per-phase on a file" 3 "blocker: not a directory" -- "$vm" create --grid 4096 -o out.ply --per-phase blocker
 expect_error "smooth to an unknown format" 2 "out\.off: unknown output format" -- "$vm" smooth demo.ply -o out.off
 
 # Ctrl-C: the run stops at the next iteration, says so on one line, exits 130 and

@@ -4,12 +4,13 @@
 # pkg-config file, plugin folder), then builds the consumer in consumer/ against it
 # twice -- with find_package only, and with pkg-config only -- runs both and checks
 # their meshes with the installed CLI. With MPIRUN (a build with VM_MPI), also the MPI
-# component: voronoimesh_mpi and mpi.hpp installed, and mpi_consumer/ built against
+# component: voronoimesh_mpi and mpi/distributed.hpp installed, and mpi_consumer/ built against
 # voronoimesh::voronoimesh_mpi and run on 2 ranks. Finally moves the prefix and runs the
 # CLI again.
 # Usage: install_test.sh BUILD_DIR CONSUMER_DIR WORK_DIR VERSION SOVERSION CXX [MPIRUN]
 set -uo pipefail
 build=$1 consumer=$2 work=$3 version=$4 soversion=$5 cxx=$6 mpirun=${7:-}
+public=$(cd "$(dirname "$0")/../../libvoronoimesh/include/voronoimesh" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 prefix=$work/prefix
 passed=0 failed=0
@@ -50,16 +51,18 @@ for lib in libteem libnifti2 libmuparser libtbb libz libOpenMeshCore; do
   if [[ " $needed" == *" $lib."* ]]; then pass; else fail "library does not need $lib: $needed"; fi
 done
 
-# Headers: the public ones and version.hpp, nothing from src/ or detail/, and none
-# includes a private header.
+# Headers: the public ones (include/voronoimesh/<stage>/) and the generated
+# core/version.hpp, nothing from src/, and none includes a private header (every
+# include of the library's own is "voronoimesh/...").
 include=$prefix/include/voronoimesh
-for h in errors.hpp pipeline.hpp io/write_mesh.hpp version.hpp install_dirs.hpp; do
+for h in core/errors.hpp improve/pipeline.hpp io/write_mesh.hpp core/version.hpp plugin/plugin_abi.h; do
   if [ -f "$include/$h" ]; then pass; else fail "header $h not installed"; fi
 done
-if [ -z "$(find "$prefix/include" -path '*detail*')" ]; then pass; else fail "private headers installed"; fi
-if ! grep -rlE '#include *[<"](detail/|src/)' "$include" >private.txt; then pass
+extra=$(cd "$include" && find . -type f ! -path ./core/version.hpp | while read -r f; do [ -f "$public/$f" ] || echo "$f"; done)
+if [ -z "$extra" ]; then pass; else fail "installed headers that are not public: $extra"; fi
+if ! grep -rhE '#include *"' "$include" | grep -vE '#include *"voronoimesh/' >private.txt; then pass
 else fail "public headers include private ones: $(cat private.txt)"; fi
-if grep -q "VORONOIMESH_VERSION_STRING \"$version\"" "$include/version.hpp"; then pass; else fail "version.hpp"; fi
+if grep -q "VORONOIMESH_VERSION_STRING \"$version\"" "$include/core/version.hpp"; then pass; else fail "core/version.hpp"; fi
 
 # The package files and the plugin folder.
 for f in cmake/voronoimesh/voronoimeshConfig.cmake cmake/voronoimesh/voronoimeshConfigVersion.cmake \
@@ -68,21 +71,21 @@ for f in cmake/voronoimesh/voronoimeshConfig.cmake cmake/voronoimesh/voronoimesh
 done
 if [ -d "$libdir/voronoimesh/plugins" ]; then pass; else fail "no plugin folder $libdir/voronoimesh/plugins"; fi
 
-# mpi.hpp comes with the MPI component only.
+# mpi/distributed.hpp comes with the MPI component only.
 installed=no mpi_build=no
-[ -f "$include/mpi.hpp" ] && installed=yes
+[ -f "$include/mpi/distributed.hpp" ] && installed=yes
 [ -n "$mpirun" ] && mpi_build=yes
-if [ "$installed" = "$mpi_build" ]; then pass; else fail "mpi.hpp installed: $installed, MPI build: $mpi_build"; fi
+if [ "$installed" = "$mpi_build" ]; then pass; else fail "mpi/distributed.hpp installed: $installed, MPI build: $mpi_build"; fi
 
 # Every installed header together, with only the installed tree and the public
-# dependencies on the include path (mpi.hpp also needs MPI's: the MPI consumer below
+# dependencies on the include path (mpi/distributed.hpp also needs MPI's: the MPI consumer below
 # compiles it).
 export PKG_CONFIG_PATH=$libdir/pkgconfig
 cflags=$(pkg-config --cflags voronoimesh) && libs=$(pkg-config --libs voronoimesh) || fail "pkg-config voronoimesh"
 if [ "$(pkg-config --modversion voronoimesh)" = "$version" ]; then pass; else fail "pkg-config --modversion"; fi
 if [ "$(realpath "$(pkg-config --variable=plugindir voronoimesh)")" = "$libdir/voronoimesh/plugins" ]; then pass
 else fail "pkg-config plugindir $(pkg-config --variable=plugindir voronoimesh)"; fi
-(cd "$include" && find . -name '*.hpp' ! -name mpi.hpp | sort | sed 's|^\./|#include <voronoimesh/|; s|$|>|') >all_headers.cpp
+(cd "$include" && find . -name '*.hpp' ! -path './mpi/*' | sort | sed 's|^\./|#include <voronoimesh/|; s|$|>|') >all_headers.cpp
 ok "all installed headers compile" -- "$cxx" -std=c++20 -fsyntax-only $cflags all_headers.cpp
 
 # check_output NAME MESH: the installed CLI reads the consumer's mesh back and finds

@@ -2,9 +2,9 @@
 // What the MPI tests share: the rank, examples at a grid, and a check that a
 // failure reaches every rank.
 
-#include "voronoimesh/array_input.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/fields/array_input.hpp"
+#include "voronoimesh/fields/scene.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>

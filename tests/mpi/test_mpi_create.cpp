@@ -1,15 +1,15 @@
-// Distributed create (mpi.hpp), run under mpirun with 2 and 4 ranks: the mesh
+// Distributed create (mpi/distributed.hpp), run under mpirun with 2 and 4 ranks: the mesh
 // the ranks make together is the one one process makes, node for node and
 // triangle for triangle in the same order, and a failure on one rank is an
 // error on every rank, not a hang. Rank 0 compares; every rank runs every test
 // in the same order (each test makes the same collective calls on all ranks).
 
-#include "voronoimesh/array_input.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/meshing.hpp"
-#include "voronoimesh/mpi.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/array_input.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include "mpi_test_helpers.hpp"
 

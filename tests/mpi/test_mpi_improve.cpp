@@ -1,14 +1,14 @@
-// Distributed improvement (mpi.hpp, improve_part()), run under mpirun with 2
+// Distributed improvement (mpi/distributed.hpp, improve_part()), run under mpirun with 2
 // and 4 ranks: after 20 iterations of the default pipeline (and of the moving
 // passes alone, with and without the crossing guard) the ranks' mesh is the one
 // one process makes, positions bit for bit, and it is valid; passes that
 // are not distributed yet are refused on every rank.
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/meshing.hpp"
-#include "voronoimesh/mpi.hpp"
-#include "voronoimesh/registry.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/improve/registry.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include "mpi_test_helpers.hpp"
 
@@ -43,8 +43,8 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterati
 }
 
 // The default pipeline: flips near a cut are decided in sub-rounds
-// (mpi/flip_peers.hpp), crossing checks and the guard agree on culprits, and
-// collapses are chosen from every rank's slivers (mpi/collapse_peers.hpp).
+// (mpi/window_flip_peers.hpp), crossing checks and the guard agree on culprits, and
+// collapses are chosen from every rank's slivers (mpi/window_collapse_peers.hpp).
 TEST(MpiImprove, four_spheres_after_20_iterations_is_the_one_process_mesh) {
   expect_same_as_one_process(example("four_spheres.json", 32), 20, true, kDefaultPipeline);
 }
@@ -78,7 +78,7 @@ TEST(MpiImprove, passes_not_yet_distributed_are_refused_on_every_rank) {
   mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, MeshOptions{});
   const Pipeline pipeline = Pipeline::parse("smooth,stats", builtin_registry());
   expect_every_rank_throws<InvalidInput>(
-      [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", "'stats' is not distributed");
+      [&] { mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, 1); }, "rank 0", "'stats' does not run on parts of a distributed mesh");
 }
 
 } // namespace

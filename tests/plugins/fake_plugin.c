@@ -4,7 +4,7 @@
  *   FAKE_CLASH       registers a pass named "smooth", which is built in
  *   FAKE_FAILING     a good plugin whose pass fails at run time
  * Written in C: the boundary must work for plugins in plain C. */
-#include "voronoimesh/plugin_abi.h"
+#include "voronoimesh/plugin/plugin_abi.h"
 
 #include <stdio.h>
 

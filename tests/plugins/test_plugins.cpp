@@ -3,9 +3,9 @@
 
 #include "fixtures.hpp"
 #include "scratch_dir.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/plugins.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/plugin/plugins.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,11 +3,11 @@
 // crossings and better triangles (cvt: more even areas).
 
 #include "fixtures.hpp"
-#include "voronoimesh/intersections.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/plugins.hpp"
-#include "voronoimesh/smooth.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/smooth.hpp"
+#include "voronoimesh/plugin/plugins.hpp"
 
 #include <gtest/gtest.h>
 

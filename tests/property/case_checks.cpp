@@ -1,12 +1,12 @@
 #include "case_checks.hpp"
 
-#include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/intersections.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/registry.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/registry.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "mesh_checks.hpp"
 
@@ -50,9 +50,7 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   const Pipeline moving = Pipeline::parse("smooth,project,clamp", registry);
   const Pipeline flips = Pipeline::parse("flip", registry);
   // A closed mesh has the extra phase outside the box; the passes need its function too.
-  const auto field = is_closed_mesh(created, c.scene.field->num_phases())
-                         ? with_outside_phase(c.scene.field, created.domain)
-                         : c.scene.field;
+  const auto field = phases_of_mesh(created, c.scene.field);
   InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
   RunOptions once;
   once.iterations = 1;

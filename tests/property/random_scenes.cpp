@@ -1,6 +1,6 @@
 #include "random_scenes.hpp"
 
-#include "voronoimesh/array_input.hpp"
+#include "voronoimesh/fields/array_input.hpp"
 
 #include "json_numbers.hpp"
 

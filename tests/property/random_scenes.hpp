@@ -5,8 +5,8 @@
 /// come from std::mt19937_64's raw output, whose sequence the standard fixes,
 /// never from std:: distributions, whose algorithms it does not).
 
-#include "voronoimesh/meshing.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include <cstdint>
 #include <string>
@@ -18,9 +18,9 @@ namespace vm::test {
 enum class SceneKind {
   spheres,      ///< overlapping spheres, some duplicated or tied up to round-off, some crossing the box
   seeds,        ///< Voronoi cells of seed points, half of them on grid nodes (ties at nodes)
-  grid_values,  ///< random phase values at the grid nodes (array_input.hpp)
+  grid_values,  ///< random phase values at the grid nodes (fields/array_input.hpp)
   tied_values,  ///< small integer values at the nodes: exact ties of 2 and more phases, absent phases
-  labels,       ///< a random label per grid node, or grains of random seeds (array_input.hpp)
+  labels,       ///< a random label per grid node, or grains of random seeds (fields/array_input.hpp)
   thin_slabs,   ///< slabs thinner than the grid spacing, any orientation
   vanishing,    ///< phases that never win: constant below another, radius 0, outside the box, sub-cell
   lattice_ties, ///< planes and spheres through grid nodes (values tie exactly at lattice nodes)

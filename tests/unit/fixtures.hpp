@@ -2,10 +2,10 @@
 /// @file fixtures.hpp
 /// Tiny procedural interface meshes for the unit tests.
 
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/node_mesh.hpp"
-#include "voronoimesh/sampled_field.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <Eigen/Geometry>
 

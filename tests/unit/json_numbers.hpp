@@ -3,7 +3,7 @@
 /// Numbers and points as JSON text for scenes written by tests, with 17
 /// significant digits so that parsing them gives back the same doubles.
 
-#include "voronoimesh/types.hpp"
+#include "voronoimesh/core/types.hpp"
 
 #include <sstream>
 #include <string>

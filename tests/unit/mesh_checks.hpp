@@ -3,9 +3,9 @@
 /// Orientation checks of improved meshes, shared by the improvement tests and
 /// the property tests (tests/property).
 
-#include "voronoimesh/field.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <vector>
 

@@ -2,7 +2,7 @@
 /// @file refusal.hpp
 /// The message a reader refuses a file with, for tests of bad input.
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <gtest/gtest.h>
 

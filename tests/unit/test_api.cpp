@@ -1,5 +1,5 @@
-// The library API for programs that hold their own data (array_input.hpp,
-// meshing.hpp, queries.hpp): arrays give the same meshes as the matching
+// The library API for programs that hold their own data (fields/array_input.hpp,
+// run/meshing.hpp, mesh/queries.hpp): arrays give the same meshes as the matching
 // files, the one-call mesher's options do what they say, queries measure what
 // the geometry says, and every mistake is a vm::Error naming the problem.
 
@@ -160,13 +160,13 @@ TEST(Meshing, options_reach_create_and_improve) {
   const NodeMesh initial = create_mesh(s.scene(), o);
   EXPECT_TRUE(validate(initial).ok());
   expect_same_mesh(mesh_scene(s.scene(), o), initial); // 0 iterations: create only
-  o.grid = {24, 24, 24};
+  o.grid = std::array{24, 24, 24};
   EXPECT_GT(create_mesh(s.scene(), o).num_triangles(), initial.num_triangles() * 3 / 2);
 
   NodeMesh improved = initial;
   o.iterations = 4;
   o.pipeline = "smooth,flip";
-  EXPECT_EQ(improve_mesh(improved, s.scene(), o), 4);
+  EXPECT_EQ(improve_mesh(improved, s.scene().field, o), 4);
   EXPECT_EQ(improved.num_nodes(), initial.num_nodes());
   EXPECT_NE(improved.points, initial.points);
   EXPECT_GT(compute_stats(improved).min_quality, compute_stats(initial).min_quality);
@@ -174,7 +174,7 @@ TEST(Meshing, options_reach_create_and_improve) {
   const PassRegistry passes = builtin_registry();
   o.passes = &passes;
   NodeMesh again = initial;
-  improve_mesh(again, s.scene(), o);
+  improve_mesh(again, s.scene().field, o);
   expect_same_mesh(again, improved);
 }
 
@@ -231,7 +231,7 @@ TEST_F(ArrayFiles, points_mesh_like_the_same_point_file) {
   }
   file.close();
   MeshOptions o;
-  o.grid = {24, 24, 24};
+  o.grid = std::array{24, 24, 24};
   const NodeMesh from_array = create_mesh(scene_from_points(points, labels), o);
   expect_same_mesh(from_array, create_mesh(load_input(path("cloud.xyz")), o));
   EXPECT_EQ(from_array.phase_labels, (std::vector<int32_t>{4, 8, 9}));
@@ -266,18 +266,40 @@ TEST(ArrayInput, mistakes_are_invalid_input_naming_the_problem) {
                  "points: point 1: coordinates must be finite");
 }
 
+/// f() throws InvalidOption naming `option`, its problem saying `problem`.
+template <class F> void expect_invalid_option(F&& f, const std::string& option, const std::string& problem) {
+  try {
+    f();
+    ADD_FAILURE() << "no exception; expected one on " << option;
+  } catch (const InvalidOption& e) {
+    EXPECT_EQ(e.option(), option) << e.what();
+    EXPECT_NE(e.problem().find(problem), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()), option + ": " + e.problem());
+  }
+}
+
 TEST(Meshing, mistakes_are_invalid_input_naming_the_option) {
   const TwoSpheres s(8);
   MeshOptions o;
-  o.grid = {8, 0, 8};
-  expect_invalid([&] { create_mesh(s.scene(), o); }, "grid: cells per axis must be between 1 and 4096, got 0");
+  o.grid = std::array{8, 0, 8};
+  expect_invalid_option([&] { create_mesh(s.scene(), o); }, "grid", "must be between 1 and 4096 cells per axis, got 0");
   o = {};
   o.threads = -1;
-  expect_invalid([&] { mesh_scene(s.scene(), o); }, "threads: must be 0 (all cores) or more");
+  expect_invalid_option([&] { mesh_scene(s.scene(), o); }, "threads", "must be 0 (all cores) or more");
+  o = {};
+  o.top_k = 17;
+  expect_invalid_option([&] { mesh_scene(s.scene(), o); }, "top_k", "must be between 1 and 16, got 17");
+  o = {};
+  o.snap = 0.6;
+  expect_invalid_option([&] { create_mesh(s.scene(), o); }, "snap", "must be between 0 and 0.5");
+  o = {};
+  o.iterations = -1;
+  NodeMesh created = create_mesh(s.scene());
+  expect_invalid_option([&] { improve_mesh(created, s.scene().field, o); }, "iterations", "must be 0 or more");
   o = {};
   o.pipeline = "smooth,wiggle";
   NodeMesh m = create_mesh(s.scene());
-  expect_invalid([&] { improve_mesh(m, s.scene(), o); }, "wiggle");
+  expect_invalid([&] { improve_mesh(m, s.scene().field, o); }, "wiggle");
   expect_invalid([&] { create_mesh(Scene{s.grid, nullptr}); }, "scene: no phase field");
 }
 

@@ -1,8 +1,8 @@
-// Candidate pairs of the intersection tests (detail/box_pairs.hpp) against
+// Candidate pairs of the intersection tests (check/box_pairs.hpp) against
 // brute force, on boxes of very different sizes (several grid levels), with and
 // without a mask of involved boxes.
 
-#include "detail/box_pairs.hpp"
+#include "check/box_pairs.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
-// Tests of closed domains (CreateParams::close, closed_domain.hpp): the box faces
+// Tests of closed domains (CreateParams::close, fields/outside_phase.hpp): the box faces
 // become surfaces against an "exterior" phase, every phase is a closed volume,
 // and improvement keeps box nodes on their faces, edges and corners.
 
-#include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/intersections.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "fixtures.hpp"
 

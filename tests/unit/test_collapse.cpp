@@ -1,10 +1,10 @@
-// Collapsing junction slivers (collapse.hpp): triangles that no flip may mend
+// Collapsing junction slivers (improve/collapse.hpp): triangles that no flip may mend
 // because their short edge lies along a junction.
 
-#include "voronoimesh/collapse.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/stats.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/improve/collapse.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <gtest/gtest.h>
 

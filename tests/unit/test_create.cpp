@@ -1,14 +1,14 @@
 // Tests of create (paper Algorithm 2): consistency, exactness, accuracy, and the
 // degenerate cases that snapping and symmetric scenes produce.
 
-#include "detail/exact.hpp"
-#include "detail/lattice.hpp"
-#include "detail/node_values.hpp"
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/stats.hpp"
-#include "voronoimesh/validate.hpp"
+#include "core/exact.hpp"
+#include "create/lattice.hpp"
+#include "create/node_values.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/scene.hpp"
 
 #include "json_numbers.hpp"
 

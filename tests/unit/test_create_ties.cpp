@@ -1,13 +1,13 @@
 // Create on data full of exact ties and coincidences (integer values, copied
 // phases, top-k cut-offs): where the symbolic perturbation's limit points merge
 // into a pinched phase, create repairs the lattice nodes around them
-// (create.cpp, NodeValues::RepairLevel) until the mesh validates.
+// (create/create.cpp, NodeValues::RepairLevel) until the mesh validates.
 
-#include "detail/lattice.hpp"
-#include "detail/node_values.hpp"
-#include "voronoimesh/array_input.hpp"
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/validate.hpp"
+#include "create/lattice.hpp"
+#include "create/node_values.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/array_input.hpp"
 
 #include <gtest/gtest.h>
 

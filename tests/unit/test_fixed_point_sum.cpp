@@ -1,10 +1,10 @@
-// detail/fixed_point_sum.hpp: sums that do not depend on the order of their
+// core/fixed_point_sum.hpp: sums that do not depend on the order of their
 // terms, and rms_edge_length() built on it, which sets the smoothing's rest
 // length and must not change with the node numbering (a distributed run
 // numbers each rank's part afresh).
 
-#include "detail/fixed_point_sum.hpp"
-#include "voronoimesh/smooth.hpp"
+#include "core/fixed_point_sum.hpp"
+#include "voronoimesh/improve/smooth.hpp"
 
 #include "fixtures.hpp"
 

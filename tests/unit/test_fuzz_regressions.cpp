@@ -4,12 +4,12 @@
 // file and the problem. A file's name starts with its target's name (without
 // '_'): "nrrddetached_..." went to fuzz_nrrd_detached.
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/io/volume.hpp"
-#include "voronoimesh/scene.hpp"
 
-#include "detail/point_cloud.hpp"
+#include "fields/point_cloud.hpp"
 #include "input_layouts.hpp"
 #include "scratch_dir.hpp"
 

@@ -1,13 +1,13 @@
-// Tests of the crossing guard (guard.hpp): moves and flips that would push one
+// Tests of the crossing guard (improve/guard.hpp): moves and flips that would push one
 // surface through another are undone, on a hand-made move and on a scene where
 // the unguarded pipeline does cross.
 
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/guard.hpp"
-#include "voronoimesh/intersections.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/guard.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
 
 #include "fixtures.hpp"
 
@@ -72,7 +72,7 @@ constexpr const char* kCrowdedSpheres = R"({"grid": 32, "phases": [{"kind": "con
   {"kind": "sphere", "center": [0.2640, 0.4607, 0.2895], "radius": 0.3112},
   {"kind": "sphere", "center": [0.3769, 0.4719, 0.7996], "radius": 0.3131}]})";
 
-// In a distributed run the ranks agree on each round's undone moves (guard.hpp):
+// In a distributed run the ranks agree on each round's undone moves (improve/guard.hpp):
 // a node another rank puts back (here the harmless far move, added by the
 // hook as another rank's culprit would be) is put back here too, the rounds go
 // on while any rank undoes something, and the hook sees every round.

@@ -1,7 +1,7 @@
 #include "fixtures.hpp"
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/history.hpp"
+#include "voronoimesh/check/history.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

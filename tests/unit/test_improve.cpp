@@ -2,16 +2,16 @@
 // stays valid, uninverted and free of self-intersections; nodes end on their
 // surfaces, curves and points; results do not depend on the thread count.
 
-#include "voronoimesh/clamp.hpp"
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/flip.hpp"
-#include "voronoimesh/intersections.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/project.hpp"
-#include "voronoimesh/scene.hpp"
-#include "voronoimesh/stats.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/clamp.hpp"
+#include "voronoimesh/improve/flip.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/project.hpp"
 
 #include "fixtures.hpp"
 #include "mesh_checks.hpp"

@@ -2,14 +2,14 @@
 // clouds written by the tests themselves: the right phases and labels, valid
 // meshes before and after improvement, sub-voxel accuracy against the surface
 // the labels were rasterised from, and label options.
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/input.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/io/volume.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/sampled_field.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "nrrd_file.hpp"
 

@@ -1,7 +1,7 @@
 #include "fixtures.hpp"
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>

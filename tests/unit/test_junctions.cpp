@@ -2,8 +2,8 @@
 
 #include "fixtures.hpp"
 
-#include "voronoimesh/junctions.hpp"
-#include "voronoimesh/stats.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,11 +4,11 @@
 // casting rays along x, and the phase around it must be its voxel's label
 // wherever the voxel is more than a voxel away from any other label.
 
-#include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/input.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "fixtures.hpp"
 #include "nrrd_file.hpp"

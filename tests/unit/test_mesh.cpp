@@ -1,8 +1,8 @@
 #include "fixtures.hpp"
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <OpenMesh/Tools/Utils/MeshCheckerT.hh>
 #include <gtest/gtest.h>

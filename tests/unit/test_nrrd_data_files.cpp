@@ -4,7 +4,7 @@
 // are refused before anything is allocated, with the file named. (gzip and
 // bzip2 streams are made as the fuzz targets make theirs, input_layouts.hpp.)
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
 #include "input_layouts.hpp"

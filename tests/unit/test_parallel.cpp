@@ -1,8 +1,8 @@
-/// detail/parallel.hpp: each call does what its TBB call does, on one thread
+/// core/parallel.hpp: each call does what its TBB call does, on one thread
 /// and on four; in ThreadSanitizer builds a race between the tasks of a call
 /// is still reported (the annotations order only what TBB orders).
 
-#include "detail/parallel.hpp"
+#include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

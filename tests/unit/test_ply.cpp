@@ -1,7 +1,7 @@
 #include "fixtures.hpp"
 #include "scratch_dir.hpp"
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/ply.hpp"
 
 #include <gtest/gtest.h>

@@ -3,15 +3,15 @@
 // errors of the point reader.
 #include "scratch_dir.hpp"
 
-#include "detail/point_cloud.hpp"
+#include "fields/point_cloud.hpp"
 
-#include "voronoimesh/create.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/input.hpp"
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/pipeline.hpp"
-#include "voronoimesh/sampled_field.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <gtest/gtest.h>
 

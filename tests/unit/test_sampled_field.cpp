@@ -1,6 +1,6 @@
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/sampled_field.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/fields/scene.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,5 +1,5 @@
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/scene.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/scene.hpp"
 
 #include <gtest/gtest.h>
 

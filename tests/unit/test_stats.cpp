@@ -1,6 +1,6 @@
 #include "fixtures.hpp"
 
-#include "voronoimesh/stats.hpp"
+#include "voronoimesh/check/stats.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 #include "fixtures.hpp"
 
-#include "voronoimesh/mesh.hpp"
-#include "voronoimesh/validate.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -3,7 +3,7 @@
 // byte by byte, read back and compared; then broken files, each of which must
 // be refused with a message naming the file and the problem.
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
 #include "refusal.hpp"

@@ -4,10 +4,10 @@
 #include "fixtures.hpp"
 #include "scratch_dir.hpp"
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
-#include "voronoimesh/junctions.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
 
 #include <gtest/gtest.h>
 

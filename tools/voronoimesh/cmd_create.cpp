@@ -1,4 +1,8 @@
+/// @file cmd_create.cpp
+/// `voronoimesh create`: the initial mesh alone (`mesh` with no iterations).
+
 #include "commands.hpp"
+#include "report.hpp"
 
 #include <memory>
 
@@ -27,12 +31,9 @@ void add_create_command(CLI::App& app, int& exit_code) {
       return;
     }
     exit_code = run_guarded([&] {
-      check_outputs(o->output);
-      auto limit = thread_limit(o->common);
-      Progress progress(!o->common.quiet);
-      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress, o->common.quiet);
-      vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
-      write_outputs(mesh, o->output, o->common);
+      const vm::PassRegistry registry = vm::builtin_registry();
+      Report report(o->common.quiet, 0, o->output.path);
+      vm::run_job(creating_job(*o, registry), &report);
       return kOk;
     });
   });

@@ -1,7 +1,10 @@
-#include "commands.hpp"
+/// @file cmd_mesh.cpp
+/// `voronoimesh mesh`, the main job: create, improve, write.
 
-#include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/errors.hpp"
+#include "commands.hpp"
+#include "report.hpp"
+
+#include "voronoimesh/core/errors.hpp"
 
 #include <memory>
 
@@ -32,7 +35,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                 "grid's slabs (balanced by interface tetrahedra), then improve distributed, each rank moving and "
                 "flipping in its band of z (the same mesh as one process). -o FILE.pvtu writes one .vtu piece per "
                 "rank and a ParaView index; other formats are assembled and written by rank 0. Pipelines with "
-                "other passes than smooth, project, clamp and flip, --stop-when-converged and --history improve "
+                "passes that do not run distributed (plugins, stats), --stop-when-converged and --history improve "
                 "on rank 0 alone");
   cmd->callback([o, &exit_code] {
     if (o->mpi) {
@@ -40,17 +43,9 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       return;
     }
     exit_code = run_guarded([&] {
-      check_outputs(o->output);
       const vm::PassRegistry registry = pass_registry(o->improve.plugins, o->common.quiet);
-      check_improve_options(o->improve, registry);
-      auto limit = thread_limit(o->common);
-      Progress progress(!o->common.quiet);
-      vm::Scene scene = read_input(o->input, o->input_options, o->create.top_k, progress, o->common.quiet);
-      vm::NodeMesh mesh = create_stage(scene, o->create, o->common, progress);
-      // A closed mesh has one more phase, outside the box; the passes need its function too.
-      const auto phases = o->create.close ? vm::with_outside_phase(scene.field, scene.grid.domain) : scene.field;
-      improve_stage(mesh, phases.get(), o->improve, registry, o->common, progress);
-      write_outputs(mesh, o->output, o->common);
+      Report report(o->common.quiet, o->improve.iterations, o->output.path);
+      vm::run_job(creating_job(*o, registry), &report);
       return kOk;
     });
   });

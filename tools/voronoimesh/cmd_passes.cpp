@@ -1,6 +1,6 @@
 #include "commands.hpp"
 
-#include "voronoimesh/registry.hpp"
+#include "voronoimesh/improve/registry.hpp"
 
 #include <cstdio>
 #include <map>

@@ -1,9 +1,9 @@
 #include "commands.hpp"
 
-#include "voronoimesh/intersections.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/io/ply.hpp"
-#include "voronoimesh/stats.hpp"
-#include "voronoimesh/validate.hpp"
 
 #include <iostream>
 #include <memory>

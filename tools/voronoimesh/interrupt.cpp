@@ -1,3 +1,6 @@
+/// @file interrupt.cpp
+/// The signal handlers of interrupt.hpp.
+
 #include "interrupt.hpp"
 
 #include <csignal>
@@ -20,9 +23,5 @@ void install_interrupt_handlers() {
 }
 
 bool interrupted() { return g_interrupted != 0; }
-
-void stop_if_interrupted() {
-  if (interrupted()) throw Interrupted();
-}
 
 } // namespace vmcli

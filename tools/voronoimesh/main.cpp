@@ -1,33 +1,54 @@
+/// @file main.cpp
+/// The voronoimesh tool: its subcommands (commands.hpp) and how failures become exit codes.
+
 #include "commands.hpp"
 #include "interrupt.hpp"
 
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/install_dirs.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/core/version.hpp"
 
-#include <iostream>
+#include <cstdio>
+#include <string>
 
 namespace vmcli {
 
+namespace {
+
+/// The command line's name of a library option: "top_k" -> "--top-k".
+std::string flag(std::string option) {
+  for (char& c : option)
+    if (c == '_') c = '-';
+  return "--" + option;
+}
+
+} // namespace
+
 int run_guarded(const std::function<int()>& body, bool report) {
+  auto say = [&](const std::string& message) {
+    if (report) std::fprintf(stderr, "voronoimesh: %s\n", message.c_str());
+  };
   try {
     return body();
+  } catch (const vm::InvalidOption& e) {
+    say(vm::located(flag(e.option()), e.problem()));
+    return kInvalidInput;
   } catch (const vm::InvalidInput& e) {
-    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
+    say(e.what());
     return kInvalidInput;
   } catch (const vm::IoError& e) {
-    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
+    say(e.what());
     return kIoError;
   } catch (const vm::TopologyError& e) {
-    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
+    say(e.what());
     return kTopology;
-  } catch (const Interrupted& e) {
-    if (report) std::cerr << "voronoimesh: " << e.what() << "\n";
+  } catch (const vm::Cancelled&) {
+    say("interrupted; nothing was written");
     return kInterrupted;
   } catch (const std::bad_alloc&) {
-    if (report) std::cerr << "voronoimesh: out of memory (try a smaller --grid)\n";
+    say("out of memory (try a smaller --grid)");
     return kInternal;
   } catch (const std::exception& e) {
-    if (report) std::cerr << "voronoimesh: internal error: " << e.what() << "\n";
+    say(std::string("internal error: ") + e.what());
     return kInternal;
   }
 }
@@ -44,7 +65,8 @@ int main(int argc, char** argv) {
   vmcli::install_interrupt_handlers();
   vmcli::add_mesh_command(app, exit_code);
   vmcli::add_create_command(app, exit_code);
-  vmcli::add_smooth_commands(app, exit_code);
+  vmcli::add_smooth_command(app, exit_code);
+  vmcli::add_flip_command(app, exit_code);
   vmcli::add_passes_command(app, exit_code);
   vmcli::add_stats_command(app, exit_code);
   vmcli::add_plugins_command(app, exit_code);

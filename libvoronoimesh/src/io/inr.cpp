@@ -6,9 +6,9 @@
 
 #include "voronoimesh/io/volume.hpp"
 
-#include "detail/text.hpp"
-#include "detail/voxel_data.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/text.hpp"
+#include "io/voxel_data.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <zlib.h>
 

@@ -5,11 +5,11 @@
 /// RequiredVertices, so a remesher keeps them. The tables from references to
 /// phases are comments at the top.
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
-#include "voronoimesh/junctions.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
 
 namespace vm::io::detail {
 

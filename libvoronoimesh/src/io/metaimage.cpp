@@ -5,11 +5,11 @@
 
 #include "voronoimesh/io/volume.hpp"
 
-#include "detail/inflate.hpp"
-#include "detail/text.hpp"
-#include "detail/text_file.hpp"
-#include "detail/voxel_data.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/text.hpp"
+#include "core/text_file.hpp"
+#include "io/inflate.hpp"
+#include "io/voxel_data.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -12,11 +12,11 @@
 /// reference), a curve per phase triple, a point per phase set of quadruple
 /// points, each named after its phases.
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
-#include "voronoimesh/junctions.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
 
 #include <algorithm>
 #include <unordered_map>

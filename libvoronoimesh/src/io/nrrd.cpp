@@ -6,11 +6,11 @@
 /// the data files can hold the sizes is checked before Teem allocates them
 /// (nrrd_data_files.hpp).
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
-#include "detail/memory.hpp"
-#include "detail/text.hpp"
+#include "core/memory.hpp"
+#include "core/text.hpp"
 #include "io/nrrd_data_files.hpp"
 #include "io/nrrd_header_screen.hpp"
 

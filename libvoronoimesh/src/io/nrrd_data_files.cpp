@@ -1,8 +1,8 @@
 #include "io/nrrd_data_files.hpp"
 
-#include "detail/text.hpp"
-#include "detail/voxel_data.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/text.hpp"
+#include "io/voxel_data.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <bzlib.h>
 

@@ -1,7 +1,7 @@
 #include "io/nrrd_header_screen.hpp"
 
-#include "detail/text.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/text.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <teem/nrrd.h>
 

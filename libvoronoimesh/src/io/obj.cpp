@@ -2,8 +2,8 @@
 /// Wavefront OBJ: every node once as `v`, then the triangles group by group,
 /// one group `g <pair>` per phase pair (io/write_mesh.hpp).
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
 

@@ -7,7 +7,7 @@
 /// name or an OBJ group name. Several phases are joined by '_'
 /// ("0-outside_1-sphere1").
 
-#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <cstdint>
 #include <span>

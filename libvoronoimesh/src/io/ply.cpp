@@ -4,8 +4,8 @@
 
 #include "voronoimesh/io/ply.hpp"
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
 

@@ -4,8 +4,8 @@
 
 #include "io/ply_format.hpp"
 
-#include "detail/text.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/text.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file io/ply_format.hpp
 /// The PLY container, shared by the mesh reader (read_ply) and the labelled
-/// point reader (detail/ply_points.cpp): a strict header parser and a cursor
+/// point reader (fields/ply_points.cpp): a strict header parser and a cursor
 /// that decodes typed scalars (ascii or binary, either byte order, any scalar
 /// type) and skips what the caller does not need. Counts are checked against
 /// the bytes left before anything is allocated, so bad input gives an

@@ -5,9 +5,9 @@
 
 #include "voronoimesh/io/ply.hpp"
 
-#include "detail/text.hpp"
+#include "core/text.hpp"
 #include "io/ply_format.hpp"
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +56,7 @@ public:
           fail(cat("face ", t, ": vertex index ", v, " out of range (", m.points.size(), " vertices)"));
     compact_phases(m);
     m.domain = comments_.domain ? *comments_.domain : bounding_box(m.points);
+    m.outside_phase = outside_phase(m);
     return m;
   }
 
@@ -178,6 +179,31 @@ private:
         m.phase_labels = labels;
         break;
       }
+  }
+
+  /// The outside phase of a closed mesh, or -1. A PLY tells it only by the last
+  /// phase's name, kOutsidePhaseName, which a scene may also give a phase of its
+  /// own: so the phase is the outside one only where every triangle it bounds
+  /// lies in a face of the domain box (the own phase's triangles lie inside).
+  static int32_t outside_phase(const NodeMesh& m) {
+    if (m.phase_names.empty() || m.phase_names.back() != kOutsidePhaseName) return -1;
+    const auto last = int32_t(m.phase_names.size() - 1);
+    const double tolerance = 1e-9 * (m.domain.max - m.domain.min).norm();
+    auto box_faces = [&](const Vec3& p) {
+      unsigned faces = 0;
+      for (int a = 0; a < 3; ++a) {
+        if (std::abs(p[a] - m.domain.min[a]) <= tolerance) faces |= 1u << (2 * a);
+        if (std::abs(p[a] - m.domain.max[a]) <= tolerance) faces |= 1u << (2 * a + 1);
+      }
+      return faces;
+    };
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+      if (m.pairs[t][1] != last) continue;
+      const auto& tri = m.triangles[t];
+      const auto& p = m.points;
+      if ((box_faces(p[size_t(tri[0])]) & box_faces(p[size_t(tri[1])]) & box_faces(p[size_t(tri[2])])) == 0) return -1;
+    }
+    return last;
   }
 
   static Box bounding_box(const std::vector<Vec3>& pts) {

@@ -4,11 +4,11 @@
 /// (binary) coordinates and a normal per triangle, so a multi-surface mesh needs several
 /// files, and each file's triangles must be oriented for what it describes.
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
 
 #include <Eigen/Geometry>

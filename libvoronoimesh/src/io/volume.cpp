@@ -1,10 +1,10 @@
 /// @file io/volume.cpp
 /// Picks a volume reader by the file's extension.
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
-#include "detail/text.hpp"
+#include "core/text.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,13 +1,14 @@
 /// @file io/vtk_xml.cpp
 /// VTK XML datasets for ParaView and VTK: .vtu (UnstructuredGrid of triangles)
 /// and .vtp (PolyData with polys), ASCII, with the phase pair of each triangle
-/// as cell data and the junction order of each node as point data.
+/// as cell data and the junction order of each node as point data; and the
+/// .pvtu index of such pieces, which names the same arrays.
 
-#include "detail/output_buffer.hpp"
-#include "detail/text.hpp"
+#include "core/text.hpp"
+#include "io/output_buffer.hpp"
 #include "io/phase_names.hpp"
 #include "io/writers.hpp"
-#include "voronoimesh/junctions.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
 
 namespace vm::io::detail {
 
@@ -16,6 +17,10 @@ namespace {
 using vm::detail::cat;
 using vm::detail::ChunkedOutput;
 using vm::detail::put_int;
+
+// The data arrays of every dataset, named once for the pieces and their index.
+constexpr const char* kNodeArray = "junction_order"; // Int32 point data
+constexpr std::array<const char*, 2> kPhaseArrays{"phase0", "phase1"}; // Int32 cell data
 
 /// `text` made safe inside an XML comment, which may not hold "--" or end in "-".
 std::string xml_comment_safe(const std::string& text) {
@@ -63,12 +68,11 @@ void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset datase
     buf += grid ? cat("    <Piece NumberOfPoints=\"", m.points.size(), "\" NumberOfCells=\"", nt, "\">\n")
                 : cat("    <Piece NumberOfPoints=\"", m.points.size(),
                       "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"", nt, "\">\n");
-    buf += "      <PointData Scalars=\"junction_order\">\n";
-    int_array(out, "Int32", "junction_order", m.points.size(), [&](size_t n) { return junctions.order(n); });
-    buf += "      </PointData>\n      <CellData Scalars=\"phase0\">\n";
-    for (int k = 0; k < 2; ++k)
-      int_array(out, "Int32", k == 0 ? "phase0" : "phase1", nt,
-                [&](size_t t) { return phase_label(m, m.pairs[t][size_t(k)]); });
+    buf += cat("      <PointData Scalars=\"", kNodeArray, "\">\n");
+    int_array(out, "Int32", kNodeArray, m.points.size(), [&](size_t n) { return junctions.order(n); });
+    buf += cat("      </PointData>\n      <CellData Scalars=\"", kPhaseArrays[0], "\">\n");
+    for (size_t k = 0; k < 2; ++k)
+      int_array(out, "Int32", kPhaseArrays[k], nt, [&](size_t t) { return phase_label(m, m.pairs[t][k]); });
     buf += "      </CellData>\n      <Points>\n"
            "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const Vec3& p : m.points) {
@@ -84,6 +88,25 @@ void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset datase
     if (grid) int_array(out, "UInt8", "types", nt, [](size_t) { return 5; }); // VTK_TRIANGLE
     buf += cat("      </", cells, ">\n");
     buf += cat("    </Piece>\n  </", type, ">\n</VTKFile>\n");
+  });
+}
+
+void write_pvtu_index(const std::string& path, const std::vector<std::string>& pieces) {
+  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) {
+    std::string& buf = out.text();
+    buf += "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+           "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+    buf += cat("    <PPointData Scalars=\"", kNodeArray, "\">\n");
+    buf += cat("      <PDataArray type=\"Int32\" Name=\"", kNodeArray, "\"/>\n");
+    buf += cat("    </PPointData>\n    <PCellData Scalars=\"", kPhaseArrays[0], "\">\n");
+    for (const char* name : kPhaseArrays) buf += cat("      <PDataArray type=\"Int32\" Name=\"", name, "\"/>\n");
+    buf += "    </PCellData>\n"
+           "    <PPoints>\n"
+           "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+           "    </PPoints>\n";
+    for (const std::string& piece : pieces) buf += cat("    <Piece Source=\"", piece, "\"/>\n");
+    buf += "  </PUnstructuredGrid>\n</VTKFile>\n";
   });
 }
 

@@ -4,9 +4,9 @@
 
 #include "voronoimesh/io/write_mesh.hpp"
 
-#include "detail/text.hpp"
+#include "core/text.hpp"
 #include "io/writers.hpp"
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/ply.hpp"
 
 #include <algorithm>

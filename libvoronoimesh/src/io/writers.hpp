@@ -3,7 +3,7 @@
 /// The writer of each format behind write_mesh() (io/write_mesh.hpp), one
 /// source file per format. Each assumes check_output_mesh() has passed.
 
-#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <string>
 #include <vector>
@@ -32,6 +32,10 @@ enum class VtkDataset { unstructured_grid, poly_data };
 
 /// VTK XML .vtu or .vtp with phase cell data and junction-order point data (vtk_xml.cpp).
 void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset dataset);
+
+/// The ParaView index (.pvtu) of .vtu pieces that write_vtk_xml() wrote, each
+/// named by its path relative to the index's folder (vtk_xml.cpp).
+void write_pvtu_index(const std::string& path, const std::vector<std::string>& pieces);
 
 /// MEDIT .mesh with references per phase pair and triple curve (medit.cpp).
 void write_medit(const NodeMesh& m, const std::string& path);

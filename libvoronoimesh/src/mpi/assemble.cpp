@@ -1,11 +1,11 @@
 /// @file mpi/assemble.cpp
 /// The whole mesh on rank 0, or one file per rank with a ParaView index.
 
-#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
 
-#include "detail/atomic_write.hpp"
+#include "io/writers.hpp"
 #include "mpi/comm.hpp"
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
 
 #include <algorithm>
@@ -24,6 +24,7 @@ NodeMesh mesh_of(const MeshPart& part) {
   m.phase_names = part.phase_names;
   m.phase_labels = part.phase_labels;
   m.domain = part.domain;
+  m.outside_phase = part.outside_phase;
   return m;
 }
 
@@ -93,6 +94,7 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
     mesh.domain = part.domain;
     mesh.phase_names = part.phase_names;
     mesh.phase_labels = part.phase_labels;
+    mesh.outside_phase = part.outside_phase;
   });
   return mesh;
 }
@@ -113,24 +115,9 @@ void write_pvtu(MPI_Comm c, const MeshPart& part, const std::string& path) {
     io::write_mesh(mesh_of(part), (index.parent_path() / piece(comm.rank())).string());
     comm.check_in(); // every piece is there before the index names it
     if (comm.rank() != 0) return;
-    // The arrays every piece has (io/vtk_xml.cpp).
-    vm::detail::write_atomically(path, [&](std::ostream& out) {
-      out << "<?xml version=\"1.0\"?>\n"
-             "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-             "  <PUnstructuredGrid GhostLevel=\"0\">\n"
-             "    <PPointData Scalars=\"junction_order\">\n"
-             "      <PDataArray type=\"Int32\" Name=\"junction_order\"/>\n"
-             "    </PPointData>\n"
-             "    <PCellData Scalars=\"phase0\">\n"
-             "      <PDataArray type=\"Int32\" Name=\"phase0\"/>\n"
-             "      <PDataArray type=\"Int32\" Name=\"phase1\"/>\n"
-             "    </PCellData>\n"
-             "    <PPoints>\n"
-             "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
-             "    </PPoints>\n";
-      for (int r = 0; r < comm.size(); ++r) out << "    <Piece Source=\"" << piece(r) << "\"/>\n";
-      out << "  </PUnstructuredGrid>\n</VTKFile>\n";
-    });
+    std::vector<std::string> pieces;
+    for (int r = 0; r < comm.size(); ++r) pieces.push_back(piece(r));
+    io::detail::write_pvtu_index(path, pieces);
   });
 }
 

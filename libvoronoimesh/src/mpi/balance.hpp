@@ -6,7 +6,7 @@
 /// weakness of equal blocks the paper names, sect. 4.4), so ranks get similar
 /// amounts of weighted work rather than similar numbers of slabs.
 
-#include "detail/lattice.hpp"
+#include "create/lattice.hpp"
 #include "mpi/layers.hpp"
 
 #include <array>
@@ -34,7 +34,7 @@ std::array<int, 2> slabs_starting_in(const vm::detail::TetLattice& lattice, Laye
 /// The work of slabs slabs[0]..slabs[1], from the winning phase at every grid
 /// node of layers `layers` (node (i, j, z) at labels[node_index - first node of
 /// layers[0]]), which must hold those slabs' nodes: a block of lattice blocks
-/// whose nodes do not all have the same winner is cut (create.cpp, cut_slab).
+/// whose nodes do not all have the same winner is cut (create/create.cpp, cut_slab).
 std::vector<SlabWork> slab_work(const vm::detail::TetLattice& lattice, const GridSpec& grid,
                                 std::span<const int32_t> labels, Layers layers, std::array<int, 2> slabs);
 

@@ -1,20 +1,20 @@
 /// @file mpi/create_part.cpp
 /// vm::mpi::create_part(): plan (blocks, value range, balanced slabs), move
 /// the layers each rank needs, create each rank's part with the repair rounds
-/// of one process (detail::create_part), then number the vertices as one
+/// of one process (detail::create_slabs), then number the vertices as one
 /// process does: in order of first appearance, slab after slab.
 
-#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
 
-#include "detail/create_part.hpp"
-#include "detail/lattice.hpp"
+#include "core/text.hpp"
+#include "create/create_slabs.hpp"
+#include "create/lattice.hpp"
 #include "mpi/balance.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/layers.hpp"
 #include "mpi/memory.hpp"
-#include "detail/text.hpp"
-#include "voronoimesh/closed_domain.hpp"
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
 
 #include <tbb/global_control.h>
 
@@ -28,7 +28,7 @@ namespace {
 
 using detail::Comm;
 using detail::Layers;
-using vm::detail::CreatePart;
+using vm::detail::SlabsMesh;
 using SlabRange = std::array<int, 2>;
 
 /// The repair rounds' view of the other ranks.
@@ -134,7 +134,7 @@ void refuse_window_beyond_share(const detail::MemoryShare& share, const SampledF
 /// order of first appearance; those the rank below made first get their ids
 /// from it, matched through the slab both cut (the same limit points, in the
 /// same order, on both).
-MeshPart number(Comm& comm, const CreatePart& part, SlabRange owned) {
+MeshPart number(Comm& comm, const SlabsMesh& part, SlabRange owned) {
   using vm::detail::kBelowOwned;
   using vm::detail::kInOwned;
   MeshPart out;
@@ -221,10 +221,11 @@ MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const S
   const SampledField window = detail::exchange_samples(comm, p.blocks, wanted, block);
   release();
   MpiPeers peers(comm);
-  CreatePart part;
-  const CreateStats mine = vm::detail::create_part(window, p.range, params, owned, peers, part);
+  SlabsMesh part;
+  const CreateStats mine = vm::detail::create_slabs(window, p.range, params, owned, peers, part);
   MeshPart out = number(comm, part, owned);
   out.domain = grid.domain;
+  out.outside_phase = params.close ? int32_t(window.num_phases()) : -1;
   const CreateStats all = sum_stats(comm, mine);
   if (validate && !all.validated)
     throw TopologyError("the created mesh failed validation after " + std::to_string(all.repair_rounds) +
@@ -279,7 +280,8 @@ MeshPart create_part(MPI_Comm c, const Scene& scene, const MeshOptions& o, Distr
     MeshPart out = create_from_block(comm, share, *samples, params, o.validate, stats, [&] { samples.reset(); });
     NodeMesh names;
     names.domain = grid.domain;
-    name_phases(names, scene, o);
+    names.outside_phase = out.outside_phase;
+    name_phases(names, *phases_of_mesh(names, scene.field));
     out.phase_names = std::move(names.phase_names);
     out.phase_labels = std::move(names.phase_labels);
     return out;

@@ -9,29 +9,25 @@
 /// mesh's id order, so the passes see around its vertices exactly what one
 /// process sees. Moves are computed for the whole window, then every window
 /// vertex takes its owner's move; the guard and the flips agree across ranks
-/// where one process would look at the whole mesh (guard.hpp, flip_peers.hpp).
+/// where one process would look at the whole mesh (improve/guard.hpp, flip_peers.hpp).
 /// The RMS edge length is a fixed-point sum over the ranks' own edges. At the
 /// end of an iteration the owners send the new positions, then the triangles
 /// to the windows they touch.
 
-#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
 
-#include "detail/edge_lengths.hpp"
-#include "mpi/collapse_peers.hpp"
-#include "mpi/flip_peers.hpp"
+#include "improve/edge_lengths.hpp"
+#include "improve/part_agreement.hpp"
 #include "mpi/window.hpp"
-#include "voronoimesh/clamp.hpp"
-#include "voronoimesh/collapse.hpp"
-#include "voronoimesh/flip.hpp"
-#include "voronoimesh/errors.hpp"
-#include "voronoimesh/guard.hpp"
-#include "voronoimesh/project.hpp"
-#include "voronoimesh/smooth.hpp"
+#include "mpi/window_collapse_peers.hpp"
+#include "mpi/window_flip_peers.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <limits>
 #include <unordered_map>
 
@@ -96,35 +92,6 @@ bool agree_on_undone(Comm& comm, const Window& w, std::vector<int32_t>& undone) 
   return true;
 }
 
-bool is_flip(const Pipeline::Step& s) { return s.info.name == "flip"; }
-
-bool is_distributed(const Pipeline::Step& s) {
-  return s.info.name == "smooth" || s.info.name == "project" || s.info.name == "clamp" || is_flip(s);
-}
-
-/// The flip pass's collapses over the ranks; the window follows the nodes and
-/// triangles the rebuilt mesh keeps (its start positions and ownership too).
-void collapse(Comm& comm, InterfaceMesh& mesh, Window& w, std::vector<uint8_t>& own, const CollapseParams& params) {
-  detail::WindowCollapsePeers peers(comm, own);
-  vm::detail::CollapseKept kept;
-  if (vm::detail::collapse_junction_slivers(mesh, params, peers, w.vertex_ids, w.triangle_ids, kept) == 0) return;
-  std::vector<int64_t> vertex_ids, triangle_ids;
-  std::vector<Vec3> start;
-  std::vector<uint8_t> still_own;
-  for (int32_t v : kept.nodes) {
-    vertex_ids.push_back(w.vertex_ids[size_t(v)]);
-    start.push_back(w.mesh.points[size_t(v)]);
-    still_own.push_back(own[size_t(v)]);
-  }
-  for (int32_t t : kept.triangles) triangle_ids.push_back(w.triangle_ids[size_t(t)]);
-  w.vertex_ids = std::move(vertex_ids);
-  w.triangle_ids = std::move(triangle_ids);
-  w.mesh.points = std::move(start);
-  w.mesh.triangles.clear(); // the rebuilt mesh has them
-  w.mesh.pairs.clear();
-  own = std::move(still_own);
-}
-
 /// How far a window must reach from its band for flips, when vertices have
 /// moved up to `moved` and edges are up to `edge` long: a flip's decision looks
 /// four edges from its lower vertex (the candidates sharing a node with its quad,
@@ -161,6 +128,7 @@ struct Run {
   Comm& comm;
   const Bands& bands;
   const Pipeline& pipeline;
+  std::vector<std::unique_ptr<Pass>> passes; // the pipeline's, made once
   const PhaseField& field;
   bool guard_crossings;
   const MeshPart& part; // domain and phases for the windows
@@ -176,6 +144,66 @@ double largest_move(Comm& comm, const InterfaceMesh& mesh, const Window& w, cons
     if (own[v]) moved = std::max(moved, (mesh.positions()[v] - w.mesh.points[v]).norm());
   return comm.max(moved);
 }
+
+/// Thrown on every rank at once when the moves of an iteration outgrew what
+/// the flips' window was built for: the iteration runs again on wider windows.
+struct WiderWindowsNeeded {
+  double moved;
+};
+
+/// How the passes agree across the ranks' windows (improve/part_agreement.hpp).
+/// A window covers every triangle within `margin` of the rank's band, `reach`
+/// bounds how far from a band its vertices lie, edges are up to `edge` long.
+class WindowAgreement : public vm::detail::PartAgreement {
+public:
+  WindowAgreement(Run& run, Window& w, std::vector<uint8_t>& own, double edge, double margin, double reach)
+      : run_(run), w_(w), own_(own), edge_(edge), margin_(margin), reach_(reach) {}
+
+  double rms_edge_length(const InterfaceMesh& mesh) override { return global_rms_edge_length(run_.comm, mesh, own_); }
+  void share_moves(std::vector<Vec3>& delta) override {
+    mpi::share_moves(run_.comm, w_, own_, run_.bands, reach_, delta);
+  }
+  bool agree_on_undone(std::vector<int32_t>& undone) override {
+    return mpi::agree_on_undone(run_.comm, w_, undone);
+  }
+  void before_topology_change(const InterfaceMesh& mesh) override {
+    const double moved = largest_move(run_.comm, mesh, w_, own_);
+    if (flip_reach(edge_, moved) > margin_ - run_.tolerance) throw WiderWindowsNeeded{moved};
+  }
+  vm::detail::FlipPeers& flip_peers() override {
+    return flip_peers_.emplace(run_.comm, w_, own_, run_.bands, reach_);
+  }
+  vm::detail::CollapsePeers& collapse_peers() override { return collapse_peers_.emplace(run_.comm, own_); }
+  std::span<const int64_t> node_ids() const override { return w_.vertex_ids; }
+  std::span<const int64_t> triangle_ids() const override { return w_.triangle_ids; }
+  /// The window follows the nodes and triangles the rebuilt mesh keeps (their
+  /// start positions and ownership too).
+  void renumbered(const vm::detail::CollapseKept& kept) override {
+    std::vector<int64_t> vertex_ids, triangle_ids;
+    std::vector<Vec3> start;
+    std::vector<uint8_t> still_own;
+    for (int32_t v : kept.nodes) {
+      vertex_ids.push_back(w_.vertex_ids[size_t(v)]);
+      start.push_back(w_.mesh.points[size_t(v)]);
+      still_own.push_back(own_[size_t(v)]);
+    }
+    for (int32_t t : kept.triangles) triangle_ids.push_back(w_.triangle_ids[size_t(t)]);
+    w_.vertex_ids = std::move(vertex_ids);
+    w_.triangle_ids = std::move(triangle_ids);
+    w_.mesh.points = std::move(start);
+    w_.mesh.triangles.clear(); // the rebuilt mesh has them
+    w_.mesh.pairs.clear();
+    own_ = std::move(still_own);
+  }
+
+private:
+  Run& run_;
+  Window& w_;
+  std::vector<uint8_t>& own_;
+  double edge_, margin_, reach_;
+  std::optional<detail::WindowFlipPeers> flip_peers_;
+  std::optional<detail::WindowCollapsePeers> collapse_peers_;
+};
 
 /// One iteration on windows reaching `margin` from the bands, edges up to
 /// `edge` long. Returns the largest move; or, when the moves turned out too
@@ -197,46 +225,17 @@ double iterate(Run& run, double edge, double margin, std::vector<TriangleRecord>
   // A window's vertices lie within a triangle's reach of the window.
   const double reach = margin + edge + run.tolerance;
 
-  // The passes as Pipeline::run() applies them: moves summed in pipeline
-  // order and committed before anything that looks at positions.
-  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
-  bool pending = false;
-  auto commit = [&] {
-    if (!pending) return;
-    share_moves(comm, w, own, bands, reach, delta);
-    if (run.guard_crossings)
-      commit_without_crossings(mesh, delta, &run.field,
-                               [&](std::vector<int32_t>& undone) { return agree_on_undone(comm, w, undone); });
-    else
-      mesh.move_nodes(delta);
-    std::fill(delta.begin(), delta.end(), Vec3::Zero());
-    pending = false;
-  };
-  for (const Pipeline::Step& s : run.pipeline.steps()) {
-    if (s.info.name == "smooth") {
-      add_smoothing_forces_with_rest_length(
-          mesh, run.field, s.params.at("rest_factor") * global_rms_edge_length(comm, mesh, own), delta);
-      pending = true;
-    } else if (s.info.name == "project") {
-      add_projection(mesh, run.field, ProjectParams{s.params.at("min_gradient_gap")}, delta);
-      pending = true;
-    } else if (s.info.name == "clamp") {
-      if (pending) clamp_displacements(mesh, ClampParams{s.params.at("factor")}, delta);
-    } else {
-      commit();
-      const double moved = largest_move(comm, mesh, w, own);
-      if (flip_reach(edge, moved) > margin - run.tolerance) return -moved;
-      detail::WindowFlipPeers peers(comm, w, own, bands, reach);
-      vm::detail::flip_edges(mesh,
-                             FlipParams{s.params.at("skip_quality"), int(s.params.at("max_rounds")), 0.0,
-                                        run.guard_crossings, &run.field},
-                             peers);
-      collapse(comm, mesh, w, own,
-               CollapseParams{s.params.at("collapse_below"), CollapseParams{}.max_collapses, run.guard_crossings});
-      delta.assign(mesh.num_nodes(), Vec3::Zero());
-    }
+  // The pipeline's iteration, each pass agreeing with the other ranks where
+  // one process would look at the whole mesh.
+  WindowAgreement parts(run, w, own, edge, margin, reach);
+  PassContext context(mesh, &run.field);
+  context.guard_crossings = run.guard_crossings;
+  context.parts = &parts;
+  try {
+    run.pipeline.iterate(context, run.passes);
+  } catch (const WiderWindowsNeeded& wider) {
+    return -wider.moved;
   }
-  commit();
   run.window_triangles += w.triangle_ids.size();
 
   // Where the vertices went: the owners send them to every window that may
@@ -281,10 +280,6 @@ double iterate(Run& run, double edge, double margin, std::vector<TriangleRecord>
 
 } // namespace
 
-bool distributes(const Pipeline& pipeline) {
-  return std::all_of(pipeline.steps().begin(), pipeline.steps().end(), is_distributed);
-}
-
 void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
                   bool guard_crossings, DistributedStats* stats) {
   const auto start = std::chrono::steady_clock::now();
@@ -293,19 +288,24 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
   int wider_windows = 0;
   comm.collectively([&] {
     for (const Pipeline::Step& s : pipeline.steps())
-      if (!is_distributed(s))
+      if (!s.info.distributed)
         throw InvalidInput("mpi: the pass '" + s.info.name +
-                           "' is not distributed; improve_part() runs smooth, project, clamp and flip");
+                           "' does not run on parts of a distributed mesh (of the built-in passes, smooth, project, "
+                           "clamp and flip do)");
     if (iterations <= 0) return;
     std::vector<double> own_z;
     for (size_t v = 0; v < part.points.size(); ++v)
       if (part.owners[v] == comm.rank()) own_z.push_back(part.points[v].z());
     const Bands bands(comm, std::move(own_z));
-    Run run{comm, bands, pipeline, field, guard_crossings, part, 1e-9 * (part.domain.max - part.domain.min).norm()};
+    Run run{comm,           bands, pipeline, pipeline.make_passes(), field,
+            guard_crossings, part,  1e-9 * (part.domain.max - part.domain.min).norm()};
     // The triangles this rank sends to windows: its created ones, then its own.
     std::vector<TriangleRecord> sending = detail::records_of(part);
     std::unordered_map<int64_t, Vec3> moved_to;
-    const bool flips = std::any_of(pipeline.steps().begin(), pipeline.steps().end(), is_flip);
+    // The distributed passes that move no nodes change the topology (flip and its
+    // collapses), and look farther than the moving passes.
+    const bool flips = std::any_of(pipeline.steps().begin(), pipeline.steps().end(),
+                                   [](const Pipeline::Step& s) { return !s.info.moves_nodes; });
     double expected_move = -1; // none yet
     for (int it = 1; it <= iterations; ++it) {
       const double edge = comm.max(detail::longest_edge(sending));

@@ -1,6 +1,6 @@
 #include "mpi/layers.hpp"
 
-#include "voronoimesh/errors.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <algorithm>
 #include <string>

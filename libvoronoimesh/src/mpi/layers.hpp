@@ -4,7 +4,7 @@
 /// a block of layers and asks for the window of layers its slabs need.
 
 #include "mpi/comm.hpp"
-#include "voronoimesh/sampled_field.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
 
 #include <array>
 #include <cstdint>

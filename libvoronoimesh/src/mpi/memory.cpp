@@ -1,7 +1,7 @@
 #include "mpi/memory.hpp"
 
-#include "detail/memory.hpp"
-#include "voronoimesh/errors.hpp"
+#include "core/memory.hpp"
+#include "voronoimesh/core/errors.hpp"
 
 #include <cstdio>
 #include <cstdlib>

@@ -68,6 +68,7 @@ Window build_window(std::vector<TriangleRecord> records, const MeshPart& part) {
   w.mesh.domain = part.domain;
   w.mesh.phase_names = part.phase_names;
   w.mesh.phase_labels = part.phase_labels;
+  w.mesh.outside_phase = part.outside_phase;
   return w;
 }
 

@@ -6,7 +6,7 @@
 /// mesh's id order (so that the passes see what one process sees).
 
 #include "mpi/comm.hpp"
-#include "voronoimesh/mpi.hpp"
+#include "voronoimesh/mpi/distributed.hpp"
 
 #include <cstring>
 #include <vector>

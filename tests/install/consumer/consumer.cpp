@@ -3,16 +3,16 @@
 // the mesh to the PLY file named on the command line. Exit code 0 only if every
 // check passes; install_test.sh checks the written file again with the installed CLI.
 
-#include <voronoimesh/create.hpp>
-#include <voronoimesh/errors.hpp>
-#include <voronoimesh/install_dirs.hpp>
+#include <voronoimesh/create/create.hpp>
+#include <voronoimesh/core/errors.hpp>
+#include <voronoimesh/plugin/plugins.hpp>
 #include <voronoimesh/io/write_mesh.hpp>
-#include <voronoimesh/junctions.hpp>
-#include <voronoimesh/mesh.hpp>
-#include <voronoimesh/pipeline.hpp>
-#include <voronoimesh/scene.hpp>
-#include <voronoimesh/validate.hpp>
-#include <voronoimesh/version.hpp>
+#include <voronoimesh/mesh/junctions.hpp>
+#include <voronoimesh/mesh/interface_mesh.hpp>
+#include <voronoimesh/improve/pipeline.hpp>
+#include <voronoimesh/fields/scene.hpp>
+#include <voronoimesh/check/validate.hpp>
+#include <voronoimesh/core/version.hpp>
 
 #include <cstdio>
 #include <set>

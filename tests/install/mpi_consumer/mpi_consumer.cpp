@@ -1,14 +1,14 @@
-// Uses only the installed headers and libraries (mpi.hpp, voronoimesh_mpi): every
+// Uses only the installed headers and libraries (mpi/distributed.hpp, voronoimesh_mpi): every
 // rank creates its part of the built-in demo (the paper's four overlapping spheres),
 // rank 0 assembles it, checks it is the mesh one process makes and writes it to the
 // PLY file named on the command line. Exit code 0 on every rank only if all of that
 // worked; install_test.sh checks the written file again with the installed CLI.
 
-#include <voronoimesh/errors.hpp>
+#include <voronoimesh/core/errors.hpp>
 #include <voronoimesh/io/write_mesh.hpp>
-#include <voronoimesh/meshing.hpp>
-#include <voronoimesh/mpi.hpp>
-#include <voronoimesh/scene.hpp>
+#include <voronoimesh/run/meshing.hpp>
+#include <voronoimesh/mpi/distributed.hpp>
+#include <voronoimesh/fields/scene.hpp>
 
 #include <mpi.h>
 
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     if (argc != 2) throw vm::InvalidInput("usage: mpi_consumer OUT.ply");
     const vm::Scene scene = vm::demo_scene();
     vm::MeshOptions options;
-    options.grid = {32, 32, 32}; // coarser than the demo's 64: fast, and the structure survives
+    options.grid = std::array{32, 32, 32}; // coarser than the demo's 64: fast, and the structure survives
     options.threads = 1;         // the ranks share the test machine's cores
     const vm::mpi::MeshPart part = vm::mpi::create_part(MPI_COMM_WORLD, scene, options);
     const vm::NodeMesh mesh = vm::mpi::assemble(MPI_COMM_WORLD, part);

@@ -6,14 +6,18 @@
 /// line for every phase. OpenMesh's own PLY writer is not used: it stores
 /// float32 and splits junction copies (openmesh-probe.md, Q4).
 
-#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <string>
 
 namespace vm::io {
 
 /// Writes `m` to `path`, binary little-endian unless `ascii`. The file is written
-/// to a temporary name and renamed, so a failure leaves no partial file. Throws IoError.
+/// to a temporary name and renamed, so a failure leaves no partial file.
+/// @param m     the mesh to write
+/// @param path  the file to write
+/// @param ascii ASCII PLY instead of binary little-endian
+/// @throws IoError if the file cannot be written
 void write_ply(const NodeMesh& m, const std::string& path, bool ascii = false);
 
 /// Reads a PLY written by write_ply (ascii or binary, either endianness; vertex
@@ -21,9 +25,13 @@ void write_ply(const NodeMesh& m, const std::string& path, bool ascii = false);
 /// labels found (in the phase comments and the faces) become phase ids 0..N-1 in
 /// increasing order; phase_labels keeps them unless they are 0..N-1 already, and
 /// phase_names comes from the comments (empty if no phase has a name), so
-/// writing the mesh again gives the same file. Throws IoError naming the file and
-/// the problem if it is not a PLY, is truncated, lacks the phase0/phase1 face
-/// properties or describes a phase twice.
+/// writing the mesh again gives the same file. A last phase named
+/// kOutsidePhaseName whose triangles all lie in the domain box's faces is the
+/// mesh's outside_phase (the file says no more of a closed mesh).
+/// @param path the PLY file to read
+/// @return the mesh it holds
+/// @throws IoError naming the file and the problem if it cannot be read, is not a PLY, is truncated, lacks
+///         the phase0/phase1 face properties or describes a phase twice
 NodeMesh read_ply(const std::string& path);
 
 } // namespace vm::io

@@ -4,7 +4,7 @@
 /// (.nrrd/.nhdr), NIfTI-1 (.nii/.nii.gz), MetaImage (.mha/.mhd) and INR
 /// (.inr/.inr.gz). One reader per format; read_volume() picks by extension.
 
-#include "voronoimesh/types.hpp"
+#include "voronoimesh/core/types.hpp"
 
 #include <Eigen/Core>
 
@@ -28,26 +28,55 @@ struct Volume {
   /// otherwise `values` does. Components are interleaved per voxel:
   /// index = c + components * (i + size[0] * (j + size[1] * k)).
   bool integer = false;
-  std::vector<int32_t> labels;
-  std::vector<float> values;
+  std::vector<int32_t> labels; ///< the data when `integer`: components x voxel_count() values, else empty
+  std::vector<float> values;   ///< the data unless `integer`: components x voxel_count() values, else empty
 
   /// Voxels in all, the product of `size`.
   int64_t voxel_count() const { return size[0] * size[1] * size[2]; }
 };
 
-/// Reads a volume, choosing the format by the file's extension. Throws
-/// InvalidInput naming the file and the problem for a malformed, truncated or
-/// unsupported file (e.g. 64-bit integers beyond int32, more than 3 dimensions
-/// apart from a component axis), IoError if it cannot be read.
+/// Reads a volume, choosing the format by the file's extension.
+/// @param path the file to read; its extension (case-insensitive) chooses the format
+/// @return the volume
+/// @throws InvalidInput naming the file and the problem for a malformed, truncated or unsupported file
+///         (e.g. 64-bit integers beyond int32, more than 3 dimensions apart from a component axis), or an
+///         extension read_volume() does not know
+/// @throws IoError      if it cannot be read
 Volume read_volume(const std::string& path);
 
-/// Per-format readers (read_volume dispatches to these).
+/// @name Per-format readers
+/// Per-format readers (read_volume dispatches to these). Each throws as read_volume().
+/// @{
+
+/// Reads an NRRD volume (.nrrd, or a detached header .nhdr).
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a malformed, truncated or unsupported file
+/// @throws IoError      if it cannot be read
 Volume read_nrrd(const std::string& path);
+/// Reads a NIfTI volume (.nii, .nii.gz, or the .hdr of a .hdr/.img pair).
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a malformed, truncated or unsupported file
+/// @throws IoError      if it cannot be read
 Volume read_nifti(const std::string& path);
+/// Reads a MetaImage volume (.mha, or a .mhd header with its data file).
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a malformed, truncated or unsupported file
+/// @throws IoError      if it cannot be read
 Volume read_metaimage(const std::string& path);
+/// Reads an INR volume (.inr, .inr.gz).
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a malformed, truncated or unsupported file
+/// @throws IoError      if it cannot be read
 Volume read_inr(const std::string& path);
 
+/// @}
+
 /// True when `path` has an extension read_volume() knows.
+/// @param path a file name; only its extension (case-insensitive) is looked at
 bool is_volume_file(const std::string& path);
 
 } // namespace vm::io

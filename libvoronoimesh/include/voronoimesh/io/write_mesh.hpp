@@ -11,7 +11,7 @@
 /// "-name" if the phase has a name; phases joined by '_'). Every file is written
 /// to a temporary name and renamed, so a failure leaves no partial file.
 
-#include "voronoimesh/node_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <string>
 #include <vector>
@@ -26,11 +26,14 @@ struct WriteOptions {
 };
 
 /// The extensions write_mesh() knows, with the dot: .ply .obj .stl .msh .vtu .vtp .mesh.
+/// @return the extensions, lower case, in the order above
 const std::vector<std::string>& output_extensions();
 
 /// Checks that write_mesh() knows the extension of `path` (case-insensitive),
-/// before any long work. Throws InvalidInput "<path>: unknown output format
-/// '<ext>' (known: .ply, .obj, ...)".
+/// before any long work.
+/// @param path the file to be written
+/// @throws InvalidInput "<path>: unknown output format '<ext>' (known: .ply, .obj, ...)", or naming the
+///         known formats if `path` has no extension
 void check_output_format(const std::string& path);
 
 /// Writes `m` to `path` in the format of its extension:
@@ -51,10 +54,13 @@ void check_output_format(const std::string& path);
 ///  - .mesh: MEDIT (MeshVersionFormatted 2): triangles with one reference per
 ///    phase pair, triple curves as Edges, quadruple points as Corners and
 ///    RequiredVertices; the reference table is in comments at the top.
-/// Returns the files written (one, or one per pair for .stl). Throws
-/// InvalidInput for an unknown extension, IoError if a file cannot be written
-/// or the mesh is malformed (pair count differs from the triangle count, a node
-/// id out of range, more than 2^31 - 1 nodes or triangles).
+/// @param m       the mesh to write
+/// @param path    the file to write; its extension (case-insensitive) chooses the format
+/// @param options how to write it (ASCII or binary PLY and STL)
+/// @return the files written (one, or one per pair for .stl)
+/// @throws InvalidInput for an unknown extension (as check_output_format())
+/// @throws IoError      if a file cannot be written or the mesh is malformed (pair count differs from the
+///                      triangle count, a node id out of range, more than 2^31 - 1 nodes or triangles)
 std::vector<std::string> write_mesh(const NodeMesh& m, const std::string& path, const WriteOptions& options = {});
 
 /// Writes one STL per phase (binary unless options.ascii) into the directory
@@ -63,8 +69,12 @@ std::vector<std::string> write_mesh(const NodeMesh& m, const std::string& path, 
 /// triangle of pair (a, b) as it is for a, reversed for b), so each file of a
 /// phase that does not touch the domain box is a closed, consistently oriented
 /// surface, ready for a volume mesher. Files are named `phase_<token>.stl`
-/// (e.g. phase_1-sphere1.stl); phases without triangles get none. Returns the
-/// files written. Throws IoError as write_mesh().
+/// (e.g. phase_1-sphere1.stl); phases without triangles get none.
+/// @param m       the mesh to write
+/// @param dir     the directory to write the files into, made if missing
+/// @param options how to write them (ASCII or binary STL)
+/// @return the files written
+/// @throws IoError as write_mesh()
 std::vector<std::string> write_per_phase_stl(const NodeMesh& m, const std::string& dir,
                                              const WriteOptions& options = {});
 

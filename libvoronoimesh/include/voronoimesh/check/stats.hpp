@@ -1,0 +1,60 @@
+#pragma once
+/// @file check/stats.hpp
+/// Counts and quality measures of an interface mesh.
+
+#include "voronoimesh/mesh/node_mesh.hpp"
+
+#include <optional>
+#include <string>
+
+namespace vm {
+
+/// Triangle quality q = 4 sqrt(3) area / (sum of squared edge lengths); 1 for an
+/// equilateral triangle, 0 for a degenerate one (paper sect. 4.3).
+/// @param a first corner
+/// @param b second corner
+/// @param c third corner
+/// @return q in [0, 1]; 0 also when a coordinate is not finite
+double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Counts and quality measures of a mesh (compute_stats()).
+struct MeshStats {
+  size_t vertices = 0;          ///< nodes (points), used or not
+  size_t triangles = 0;         ///< triangles, malformed ones included
+  size_t phases = 0;            ///< distinct phase ids used by triangles
+  size_t surfaces = 0;          ///< connected patches of one phase pair
+  size_t triple_curves = 0;     ///< junction curves between higher-order points (find_junctions())
+  size_t quadruple_points = 0;  ///< nodes where 4 or more phases meet
+  size_t higher_order_points = 0; ///< of those, nodes where 5 or more meet
+  /// Smallest triangle quality q (triangle_quality()).
+  double min_quality = 0, mean_quality = 0; ///< mean triangle quality q
+  double quality_p01 = 0;       ///< 1st percentile of q: 99% of triangles are at least this good
+  size_t below_half = 0;        ///< triangles with q < 0.5
+  size_t slivers = 0;           ///< triangles with q < 0.1
+  /// Smallest angle of any triangle, in degrees.
+  double min_angle_deg = 0, max_angle_deg = 0; ///< largest angle of any triangle, in degrees
+  /// Shortest edge (distinct node edges), in the units of the points.
+  double min_edge = 0, max_edge = 0, rms_edge = 0; ///< RMS edge length, in the units of the points
+  /// @var max_edge
+  /// Longest edge, in the units of the points.
+
+  /// Pairs of triangles that intersect (find_self_intersections); not measured by
+  /// compute_stats, which must stay cheap: set by callers that check.
+  std::optional<size_t> self_intersections;
+};
+
+/// Measures `m`: counts, junctions (find_junctions()) and triangle quality. Linear in the mesh size.
+/// Triangles with out-of-range or repeated node ids, or without a pair, are left out of every count but
+/// `triangles` (validate() reports them).
+/// @param m the mesh
+/// @return its counts and measures; self_intersections is left unset
+MeshStats compute_stats(const NodeMesh& m);
+
+/// Human-readable multi-line summary.
+/// @param s the measures to show
+std::string to_text(const MeshStats& s);
+/// One JSON object.
+/// @param s the measures to write
+std::string to_json(const MeshStats& s);
+
+} // namespace vm

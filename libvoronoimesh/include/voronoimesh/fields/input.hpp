@@ -1,0 +1,70 @@
+#pragma once
+/// @file fields/input.hpp
+/// Every input voronoimesh meshes: JSON scenes, label volumes, signed-distance
+/// grids and labelled point clouds (format and options: docs/inputs.md).
+
+#include "voronoimesh/fields/scene.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// How a label volume's phase functions are made (docs/inputs.md).
+enum class LabelFunction {
+  smoothed_indicator, ///< Gaussian-smoothed indicator of each label (default)
+  signed_distance,    ///< exact Euclidean signed distance, clamped to a band
+};
+
+/// Options for reading inputs other than JSON scenes.
+struct InputOptions {
+  // Label volumes.
+  std::vector<int32_t> drop_labels;               ///< these labels become background
+  std::vector<std::vector<int32_t>> merge_labels; ///< each group becomes its smallest label
+  int32_t background = 0;                         ///< the background label
+  bool no_background = false;                     ///< background voxels are no phase: the labels around fill them
+  LabelFunction label_function = LabelFunction::smoothed_indicator; ///< how each label's phase function is made
+  double smoothing = 1.0;        ///< Gaussian sigma in voxels (smoothed indicator), in (0, 8]
+  double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
+  bool ignore_direction = false; ///< take an oblique direction matrix as the identity
+  int top_k = 4;                 ///< phases kept per voxel, in [1, 16]
+  // Volumes (labels and distance grids).
+  /// The scene's grid: cells of about this many voxels (of the smallest
+  /// spacing) along each axis, in [1, 64]; 1 = the voxel grid itself. A
+  /// coarser grid gives a coarser mesh (2: about a quarter of the triangles)
+  /// of the same phase functions, still evaluated at voxel resolution by the
+  /// improvement's projection.
+  double voxels_per_cell = 1;
+};
+
+/// Reads `path` as whatever it is, by extension: .json a scene (load_scene);
+/// a volume (io::is_volume_file): integers are a label volume, one phase per
+/// label ordered by label value, reals a signed-distance grid with one component
+/// per phase (larger = inside). The scene's grid is the voxel grid, nodes at
+/// voxel centres (one voxel more along an axis with an odd number of cells, so
+/// the bcc lattice keeps them), or with `voxels_per_cell` > 1 a grid of
+/// coarser, nearly cubic cells over the same box. Errors are one line naming the file.
+/// @param path    the input: a scene (.json), a volume (io::is_volume_file()) or a labelled point file
+///                (.xyz, .txt, .pts, .csv, .ply; docs/inputs.md)
+/// @param options how the input is read; an option that does not apply to this kind of input must keep
+///                its default (refuse_options_that_do_not_apply())
+/// @return the scene of the input
+/// @throws InvalidInput for bad content or a bad option, or an unknown extension
+/// @throws IoError      if the file cannot be read
+Scene load_input(const std::string& path, const InputOptions& options = {});
+
+/// Throws InvalidInput "<what>: --smoothing, ... apply only to volumes, and
+/// this is <kind>" when an option that only volumes (or label volumes) use differs
+/// from its default, so that none is silently ignored. load_input() checks its
+/// inputs with it; a program meshing a scene of its own (the CLI's demo) can too.
+/// @param options the options to check
+/// @param volume  whether the options for volumes apply
+/// @param labels  whether the options for label volumes apply
+/// @param kind    names the kind of input in the message ("a scene")
+/// @param what    names the input in the message (the file name, "the built-in demo")
+/// @throws InvalidInput when an option that does not apply differs from its default
+void refuse_options_that_do_not_apply(const InputOptions& options, bool volume, bool labels, const std::string& kind,
+                                      const std::string& what);
+
+} // namespace vm

@@ -1,0 +1,107 @@
+#pragma once
+/// @file fields/sampled_field.hpp
+/// A phase field sampled on a Cartesian grid keeping only the K largest phases
+/// per grid node, so memory is O(nodes x K) whatever the number of phases.
+
+#include "voronoimesh/core/types.hpp"
+#include "voronoimesh/fields/phase_field.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm {
+
+/// Top-K samples of N phase functions on the nodes of a grid.
+class SampledField {
+public:
+  /// Samples `field` at every node of `grid` in parallel, keeping the `k` largest
+  /// phases per node (ties: lower phase id first).
+  /// @param field the phase functions to sample
+  /// @param grid  the grid whose nodes are sampled
+  /// @param k     phases kept per node, in [1, 16] (more is never needed: few phases compete at any one
+  ///              point)
+  /// @return the samples of every node
+  /// @throws InvalidInput if a value is NaN or infinite (naming the phase and the point), or if k is not
+  ///         in [1, 16]
+  static SampledField sample(const PhaseField& field, const GridSpec& grid, int k = 4);
+
+  /// As sample(), but only the nodes of grid layers layers[0]..layers[1] (the
+  /// nodes (i, j, z) with z in that range): one rank's block of a distributed
+  /// run (mpi/distributed.hpp). Node indices stay those of the whole grid.
+  /// @param field  the phase functions to sample
+  /// @param grid   the whole grid
+  /// @param k      phases kept per node, in [1, 16]
+  /// @param layers the first and last grid layer (along z) to sample, inclusive, within [0, grid.cells[2]]
+  /// @return the samples of the nodes of those layers
+  /// @throws InvalidInput as sample(), and for layers outside [0, grid.cells[2]]
+  static SampledField sample(const PhaseField& field, const GridSpec& grid, int k, std::array<int32_t, 2> layers);
+
+  /// A block of samples made elsewhere (another rank's sample()): `ids` and
+  /// `values` hold k entries per node, `floors` one, for the nodes of `layers`
+  /// in node-index order.
+  /// @param grid       the whole grid
+  /// @param num_phases N, all phases of the field
+  /// @param k          slots per node (k() of the block it copies), 1 or more
+  /// @param layers     the first and last grid layer (along z) the samples hold, inclusive
+  /// @param ids        the phase ids, k per node, sorted by decreasing value (as all_ids())
+  /// @param values     their values, k per node (as all_values())
+  /// @param floors     the floor value of each node (as all_floors(), floor_value())
+  /// @return the block of samples
+  /// @throws InvalidInput if the sizes do not match (or the layers lie outside the grid)
+  static SampledField from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,
+                                   std::vector<int32_t> ids, std::vector<double> values, std::vector<double> floors);
+
+  const GridSpec& grid() const { return grid_; }  ///< the grid sampled
+  int num_phases() const { return num_phases_; } ///< N, all phases of the field
+  /// Slots per node (min(k, N)).
+  int k() const { return k_; }
+  /// The grid layers held: the whole grid unless sampled by layers.
+  std::array<int32_t, 2> layers() const { return layers_; }
+  /// Index of the first node held (nodes first_node() .. are held).
+  int64_t first_node() const { return first_node_; }
+  /// The stored arrays, nodes in order (k() entries per node for ids and values):
+  /// the phase ids (ids()).
+  std::span<const int32_t> all_ids() const { return ids_; }
+  std::span<const double> all_values() const { return values_; } ///< the values matching all_ids() (values())
+  std::span<const double> all_floors() const { return floor_; }  ///< the floor value of each node (floor_value())
+
+  /// Phase ids stored at node n, sorted by decreasing value (k() entries).
+  /// @param n a node index of the whole grid, among the nodes held
+  std::span<const int32_t> ids(int64_t n) const { return {ids_.data() + (n - first_node_) * k_, size_t(k_)}; }
+  /// Values matching ids(n).
+  /// @param n a node index of the whole grid, among the nodes held
+  std::span<const double> values(int64_t n) const {
+    return {values_.data() + (n - first_node_) * k_, size_t(k_)};
+  }
+  /// The value every phase not stored at node n takes there: below all stored
+  /// values by a margin, and a function of the node alone, so the piecewise-linear
+  /// field stays one consistent field (DESIGN.md, "Field").
+  /// @param n a node index of the whole grid, among the nodes held
+  double floor_value(int64_t n) const { return floor_[size_t(n - first_node_)]; }
+  /// Value of phase `phase` at node n (stored value or floor_value).
+  /// @param n     a node index of the whole grid, among the nodes held
+  /// @param phase a phase id, in [0, num_phases())
+  double value(int64_t n, int32_t phase) const;
+
+  /// Smallest and largest value held (floor values included); for a block of
+  /// layers, those of the block.
+  double min_value() const { return min_value_; }
+  double max_value() const { return max_value_; } ///< largest value held, as min_value()
+
+private:
+  void find_range();
+
+  GridSpec grid_;
+  int num_phases_ = 0;
+  int k_ = 0;
+  std::array<int32_t, 2> layers_{0, -1};
+  int64_t first_node_ = 0;
+  std::vector<int32_t> ids_;
+  std::vector<double> values_;
+  std::vector<double> floor_;
+  double min_value_ = 0, max_value_ = 0;
+};
+
+} // namespace vm

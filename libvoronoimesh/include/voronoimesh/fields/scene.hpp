@@ -1,0 +1,43 @@
+#pragma once
+/// @file fields/scene.hpp
+/// Scenes read from JSON: phase functions in closed form or from distance-grid
+/// files (format: docs/scenes.md).
+
+#include "voronoimesh/core/types.hpp"
+#include "voronoimesh/fields/phase_field.hpp"
+
+#include <memory>
+#include <string>
+
+namespace vm {
+
+/// A closed-form scene: the domain and background grid, and the phase functions.
+struct Scene {
+  GridSpec grid;                           ///< the domain and the default background grid
+  std::shared_ptr<const PhaseField> field; ///< the phase functions (shared: scenes are cheap to copy)
+};
+
+/// Parses a scene from JSON text (format: docs/scenes.md).
+/// @param json_text the scene as JSON
+/// @param source    names the text in error messages (usually the file name); the files of "grid" phases
+///                  are found relative to its folder (the working directory if it has none)
+/// @return the scene
+/// @throws InvalidInput with a one-line message naming `source` and the problem (malformed JSON, unknown
+///         phase kind, grid out of range [1, 4096], fewer than two phases, a bad expression, grid phase
+///         files on different grids...)
+/// @throws IoError if a grid phase's file cannot be read
+Scene parse_scene(const std::string& json_text, const std::string& source);
+
+/// Reads and parses a scene file (parse_scene() with the path as source).
+/// @param path the scene file (JSON)
+/// @return the scene
+/// @throws IoError      if it (or a grid phase's file) cannot be read
+/// @throws InvalidInput as parse_scene()
+Scene load_scene(const std::string& path);
+
+/// The built-in demo: the paper's four overlapping spheres (5 phases, 10
+/// surfaces, 10 triple curves, 5 quadruple points) at grid 64.
+/// @return the demo scene, on the unit cube
+Scene demo_scene();
+
+} // namespace vm

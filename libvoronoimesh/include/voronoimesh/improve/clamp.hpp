@@ -1,0 +1,37 @@
+#pragma once
+/// @file improve/clamp.hpp
+/// Inversion-proof clamping of displacements (paper sect. 4.2.3, eq. 5, Algorithm 3).
+
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include <vector>
+
+namespace vm {
+
+/// Parameters of clamp_displacements() (the clamp pass); defaults are the paper's.
+struct ClampParams {
+  /// Fraction of the largest safe step a node may take (eq. 5): 1/2, so that no
+  /// triangle can invert whatever its other nodes do.
+  double factor = 0.5;
+};
+
+/// Algorithm 3: the largest s >= 0 such that v0 + s*delta stays in v0's region of
+/// triangle (v0, v1, v2): the side of each of the three midlines (through the
+/// edge midpoints) on which v0 lies. While every corner stays in its own region
+/// the triangle cannot invert. +infinity when delta never leaves the region;
+/// 0 for a degenerate triangle.
+/// @param delta the displacement of v0
+/// @param v0    the corner that moves
+/// @param v1    the second corner
+/// @param v2    the third corner
+/// @return the largest safe fraction s of `delta`, in [0, +infinity]
+double clamp_step(const Vec3& delta, const Vec3& v0, const Vec3& v1, const Vec3& v2);
+
+/// Scales each node's displacement by min(1, factor x min over its triangles of
+/// clamp_step) (eq. 5). Each node is clamped on its own, in parallel.
+/// @param mesh   the mesh, at the positions before the move
+/// @param params the fraction of the largest safe step (ClampParams::factor)
+/// @param delta  the displacement of every node, one entry per node; scaled in place
+void clamp_displacements(const InterfaceMesh& mesh, const ClampParams& params, std::vector<Vec3>& delta);
+
+} // namespace vm

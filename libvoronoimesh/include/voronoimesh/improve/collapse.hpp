@@ -1,0 +1,44 @@
+#pragma once
+/// @file improve/collapse.hpp
+/// Removal of degenerate triangles at junctions by collapsing an edge. Beyond the
+/// paper: where quadruple points lie closer than a grid cell, triangles with all
+/// three corners on junction curves can become degenerate; clamping then freezes
+/// their corners (a degenerate triangle allows no move) and, their other edges
+/// being junctions, no flip can remove them. Where a tiny face ends, nodes bunch
+/// on its triple curve: triangles with one short edge along the curve, which no
+/// flip may touch either.
+///
+/// Collapsing is no pass of its own: it is the second half of the flip pass
+/// (flip_edges(), FlipParams::collapse_below), which removes what its flips
+/// could not.
+
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+namespace vm {
+
+/// Parameters of collapse_junction_slivers(), which the flip pass runs after its
+/// flips (FlipParams::collapse_below; the pass parameter collapse_below).
+struct CollapseParams {
+  /// Triangles below this quality with two or three corners on junctions (or
+  /// the box) are collapsed. 0 turns collapsing off.
+  double below_quality = 0.05;
+  /// At most this many collapses per call.
+  int max_collapses = 64;
+  /// Refuse collapses after which a moved triangle crosses another surface.
+  bool guard_crossings = true;
+};
+
+/// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
+/// its phases and box faces among a's, so a already lies on every constraint of b:
+/// b's triangles are moved to a and the triangles on both a and b disappear, in
+/// every surface at once. Collapses that share no triangle go in one batch; a
+/// batch (or, if it fails, each collapse) is kept only if no triangle turns over,
+/// the mesh stays valid and (with guard_crossings) no triangle at a kept node
+/// crosses another surface. Rebuilds `mesh` (node ids change) when anything was
+/// collapsed.
+/// @param mesh   the mesh, changed in place (node ids change when anything was collapsed)
+/// @param params which triangles to collapse, how many at most, and the crossing guard
+/// @return the number of collapses
+size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params = {});
+
+} // namespace vm

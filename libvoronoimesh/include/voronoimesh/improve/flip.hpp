@@ -1,0 +1,52 @@
+#pragma once
+/// @file improve/flip.hpp
+/// Edge flipping (paper sect. 4.3, Algorithm 5).
+
+#include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+namespace vm {
+
+/// Parameters of flip_edges() (the flip pass); defaults are the paper's.
+struct FlipParams {
+  /// Pairs of triangles already this good are left alone (Algorithm 5, line 7).
+  double skip_quality = 0.9;
+  /// Rounds of flips per call; each round flips a set of edges sharing no node.
+  int max_rounds = 8;
+  /// Afterwards, collapse junction triangles below this quality that no flip can
+  /// remove (improve/collapse.hpp; beyond the paper). 0 turns it off.
+  double collapse_below = 0.05;
+  /// Refuse flips and collapses that would make two surfaces cross (improve/guard.hpp).
+  bool guard_crossings = true;
+  /// With guard_crossings: the phase functions, to also refuse flips that make a
+  /// junction triangle face against its phase pair (null: not checked).
+  const PhaseField* field = nullptr;
+};
+
+/// Times flip_edges() bans the flips that made surfaces cross and tries again
+/// before giving up on flipping for that call.
+constexpr int kMaxFlipAttempts = 3;
+
+/// What one flip_edges() call did.
+struct FlipStats {
+  size_t flips = 0;     ///< edges flipped
+  int rounds = 0;       ///< rounds of flips made
+  size_t collapses = 0; ///< junction slivers collapsed afterwards (collapse_junction_slivers())
+};
+
+/// Flips every edge shared by two triangles of the same surface when that raises
+/// the smaller of their qualities and does not fold them (Algorithm 5). Junction
+/// and domain-boundary edges never flip (they are boundaries of their patches),
+/// and a flip never creates an edge that exists in another patch. In rounds: all
+/// edges are judged in parallel, then the best (by quality gain, ties by edge)
+/// that share no node are flipped; so the result is the same for any thread count.
+/// With guard_crossings, flips whose new triangles would cross another surface
+/// are banned (and, after kMaxFlipAttempts, the call flips nothing): a mesh
+/// without crossings keeps none. Then degenerate junction triangles are collapsed
+/// (collapse_junction_slivers), which renumbers the nodes.
+/// @param mesh   the mesh, changed in place (collapses renumber its nodes)
+/// @param params quality threshold, rounds, collapsing and the crossing guard
+/// @return the flips, rounds and collapses made
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params = {});
+
+} // namespace vm

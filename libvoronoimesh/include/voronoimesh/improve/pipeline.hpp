@@ -1,0 +1,109 @@
+#pragma once
+/// @file improve/pipeline.hpp
+/// An ordered list of configured passes repeated for a number of iterations
+/// (paper Algorithm 1).
+
+#include "voronoimesh/improve/registry.hpp"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// The paper's pipeline: smoothing, projection, clamping, then flipping.
+inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
+
+/// What happened in one iteration, for progress lines and stopping rules.
+struct IterationReport {
+  int iteration = 0;          ///< 1-based
+  double min_quality = 0;     ///< smallest triangle quality q after the iteration (quality_summary())
+  double mean_quality = 0;    ///< mean triangle quality q after the iteration
+  size_t flips = 0;           ///< edges flipped in the iteration
+  size_t undone_moves = 0;    ///< node moves the crossing guard undid
+  double seconds = 0;         ///< wall time of the iteration
+  std::optional<MeshStats> stats; ///< when the pipeline has a stats pass
+  /// Wall time of each step, in pipeline order; committing the moves is charged
+  /// to the moving pass before it.
+  std::vector<double> pass_seconds;
+};
+
+/// How Pipeline::run() iterates.
+struct RunOptions {
+  int iterations = 20; ///< iterations to run, at most
+  /// Stop early once neither the minimum nor the mean quality has improved by
+  /// more than `tolerance` for `patience` iterations in a row.
+  bool stop_when_converged = false;
+  double tolerance = 1e-3; ///< quality gain that counts as an improvement (stop_when_converged)
+  int patience = 3;        ///< iterations in a row without improvement that stop the run (stop_when_converged)
+  /// Undo any move that would make two triangles intersect (improve/guard.hpp). Off
+  /// saves the exact intersection check of every iteration.
+  bool guard_crossings = true;
+  /// Called after every iteration (and with iteration 0 before the first).
+  std::function<void(const IterationReport&, const InterfaceMesh&)> observer;
+  /// Asked before every iteration: true ends the run there, leaving the mesh as
+  /// the last complete iteration made it (the CLI's Ctrl-C).
+  std::function<bool()> stop_requested;
+};
+
+/// Configured passes in order, parsed from a spec string and run for some iterations.
+class Pipeline {
+public:
+  /// One configured pass: its type and its parameter values.
+  struct Step {
+    PassInfo info; ///< a copy: the pipeline does not depend on the registry afterwards
+    ParamValues params; ///< every parameter of the pass, defaults filled in (PassRegistry::resolve())
+  };
+
+  /// Parses "name,name:key=value:key=value,..." against `registry`.
+  /// @param spec     the passes in order, separated by commas, each with its parameters after colons
+  /// @param registry the pass types the spec may name; the pipeline keeps copies of them
+  /// @return the pipeline, every parameter resolved (PassRegistry::resolve())
+  /// @throws InvalidInput naming the bad pass or parameter (an unknown pass or parameter, a value that is
+  ///         not a number or out of range, an empty pass name, no passes)
+  static Pipeline parse(const std::string& spec, const PassRegistry& registry);
+
+  /// The configured passes, in order.
+  const std::vector<Step>& steps() const { return steps_; }
+  /// True when some pass evaluates the phase functions (run() then needs a field).
+  bool needs_field() const;
+  /// True when every pass runs on a part of a distributed mesh too
+  /// (PassInfo::distributed), so a distributed run can run the pipeline.
+  bool distributes() const;
+  /// "smooth(rest_factor=1.2), project(...), ..." with every parameter.
+  std::string describe() const;
+
+  /// Runs the pipeline on `mesh` (paper Algorithm 1).
+  /// @param mesh    the mesh to improve, changed in place
+  /// @param field   the phase functions (unsnapped); may be null when no pass needs them (needs_field())
+  /// @param options iterations, stopping rules, the crossing guard and the observer
+  /// @return the number of iterations done
+  /// @throws InvalidInput if a pass needs the phase functions and `field` is null
+  int run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions& options) const;
+
+  /// The configured passes, made once for a run of iterate() calls.
+  /// @return one Pass per step, in order (PassInfo::make with the step's parameters)
+  std::vector<std::unique_ptr<Pass>> make_passes() const;
+  /// One iteration on context.mesh: `passes` (make_passes()) in order, pending
+  /// moves committed at one point, before every pass that does not move nodes
+  /// and at the end, so that nothing looks at half-moved positions. run() calls
+  /// it for each iteration; a distributed run calls it on each rank's part, with
+  /// context.parts set.
+  /// @param context the mesh, field and displacement buffer the passes work on
+  /// @param passes  the passes of make_passes(), one per step
+  /// @return the wall time of each pass, in seconds, in pipeline order; committing the moves is charged
+  ///         to the moving pass before it
+  std::vector<double> iterate(PassContext& context, const std::vector<std::unique_ptr<Pass>>& passes) const;
+
+private:
+  std::vector<Step> steps_;
+};
+
+/// Minimum and mean triangle quality, summed in a fixed order.
+/// @param mesh the mesh
+/// @return {minimum, mean} of the triangle quality q (triangle_quality()); {0, 0} without triangles
+std::pair<double, double> quality_summary(const InterfaceMesh& mesh);
+
+} // namespace vm

@@ -1,0 +1,40 @@
+#pragma once
+/// @file improve/project.hpp
+/// Projection of nodes onto their surfaces, triple curves and quadruple points
+/// (paper sect. 4.2.2, eq. 4), using the original (unsnapped) phase functions.
+
+#include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include <span>
+#include <vector>
+
+namespace vm {
+
+/// Parameters of add_projection() (the project pass); defaults are the paper's.
+struct ProjectParams {
+  /// Pairs whose gradients differ by less than this (|grad phi_i - grad phi_j|)
+  /// are skipped: the step would divide by almost zero (the paper's "special
+  /// treatment" for poorly defined phase functions).
+  double min_gradient_gap = 1e-6;
+};
+
+/// p(x, chi) of eq. 4: the mean of the Newton steps onto phi_i = phi_j over the
+/// pairs of `phases`, scaled by 1/(|chi| - 1). Zero for fewer than two phases.
+/// @param field  the original (unsnapped) phase functions
+/// @param x      the node's position
+/// @param phases chi, the phases meeting at the node (at most 8)
+/// @param params which pairs to skip (ProjectParams::min_gradient_gap)
+/// @return the step p(x, chi)
+Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
+                     const ProjectParams& params = {});
+
+/// Adds p(x, chi) of every node to `delta`, kept on the node's box faces.
+/// @param mesh   the mesh; chi of a node is its phase set
+/// @param field  the original (unsnapped) phase functions
+/// @param params which pairs to skip (ProjectParams::min_gradient_gap)
+/// @param delta  the displacement of every node, one entry per node; the steps are added to it
+void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const ProjectParams& params,
+                    std::vector<Vec3>& delta);
+
+} // namespace vm

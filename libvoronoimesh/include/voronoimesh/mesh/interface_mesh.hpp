@@ -1,0 +1,152 @@
+#pragma once
+/// @file mesh/interface_mesh.hpp
+/// InterfaceMesh: the patch-split OpenMesh representation of DESIGN.md ("The mesh
+/// structure", and shared/notes/openmesh-probe.md "Recommended representation").
+/// Every surface patch (triangles of one phase pair, connected through edges that
+/// carry exactly two triangles of that pair) is its own OpenMesh component, so a
+/// junction node has one OpenMesh vertex ("copy") per incident patch and fan. Node
+/// arrays hold the authoritative positions and the phase sets.
+
+#include "voronoimesh/core/types.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm {
+
+/// OpenMesh traits: double-precision points.
+struct MeshTraits : public OpenMesh::DefaultTraitsDouble {};
+/// The OpenMesh triangle mesh type of InterfaceMesh (double-precision points).
+using OMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+/// Sorted phase ids of a node, -1 padded. Nodes where more than 8 phases meet
+/// are refused (TopologyError).
+using PhaseSet = std::array<int16_t, 8>;
+
+/// Number of phases in a PhaseSet.
+/// @param s the phase set
+/// @return the entries that are not -1 padding
+int phase_count(const PhaseSet& s);
+
+/// The mesh the improvement passes work on (see the file comment); NodeMesh in, NodeMesh out.
+class InterfaceMesh {
+public:
+  /// Builds the patch-split mesh.
+  /// @param m the node-level mesh
+  /// @return the patch-split mesh, with the same nodes, triangles and phases
+  /// @throws TopologyError if OpenMesh refuses a face (which means the input is not a valid interface
+  ///         mesh), naming the triangle; also for a node id out of range, a repeated node, a bad phase
+  ///         pair, a pair count that differs from the triangle count, or more than 8 phases at a node
+  static InterfaceMesh from_node_mesh(const NodeMesh& m);
+  /// The node-level mesh back (node order and triangle order preserved).
+  NodeMesh to_node_mesh() const;
+
+  size_t num_nodes() const { return pos_.size(); }         ///< nodes (geometric points)
+  size_t num_triangles() const { return mesh_.n_faces(); } ///< triangles of every patch
+
+  /// The patch-split OpenMesh mesh, read-only.
+  const OMesh& omesh() const { return mesh_; }
+  /// Node of an OpenMesh vertex (copy).
+  /// @param v an OpenMesh vertex of omesh()
+  int32_t node(OMesh::VertexHandle v) const { return mesh_.property(node_, v); }
+  /// Phase pair of an OpenMesh face.
+  /// @param f an OpenMesh face of omesh()
+  PhasePair pair(OMesh::FaceHandle f) const;
+  /// OpenMesh vertices (copies) of node n.
+  /// @param n a node id, in [0, num_nodes())
+  /// @return the indices of its OpenMesh vertices
+  std::span<const int32_t> copies(int32_t n) const {
+    return {copy_v_.data() + copy_off_[n], size_t(copy_off_[n + 1] - copy_off_[n])};
+  }
+
+  /// Node positions (authoritative; OpenMesh points mirror them).
+  const std::vector<Vec3>& positions() const { return pos_; }
+
+  // --- For the improvement passes ---------------------------------------------
+
+  /// Moves every node by `delta` (one entry per node) and mirrors the new
+  /// positions into the OpenMesh points, in parallel. The only way positions
+  /// change, so point() can never go stale (openmesh-probe.md, pitfall 4).
+  /// @param delta the displacement of every node, one entry per node
+  void move_nodes(const std::vector<Vec3>& delta);
+  /// Puts each node nodes[i] exactly at positions[i] (to undo a move bit for bit).
+  /// @param nodes     the nodes to place
+  /// @param positions their new positions, one per entry of `nodes`
+  void place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions);
+  /// The OpenMesh mesh, for topology changes (flips). Call topology_changed()
+  /// afterwards.
+  OMesh& omesh_for_topology() { return mesh_; }
+  /// Rebuilds the node adjacency after flips.
+  void topology_changed() { build_adjacency(); }
+
+  /// Neighbouring nodes of node n across all its copies, sorted (as of the last
+  /// topology_changed()).
+  /// @param n a node id, in [0, num_nodes())
+  std::span<const int32_t> neighbours(int32_t n) const {
+    return {adj_.data() + adj_off_[n], size_t(adj_off_[n + 1] - adj_off_[n])};
+  }
+  /// True when nodes a and b share an edge in any patch (always current).
+  /// @param a a node id
+  /// @param b another node id
+  bool adjacent(int32_t a, int32_t b) const;
+  /// Faces of the domain box each node lies on: bit 2a for the min side of axis
+  /// a, bit 2a+1 for the max side (within 1e-9 of the box diagonal).
+  const std::vector<uint8_t>& box_faces() const { return box_; }
+  /// The nodes of face f in its orientation order (node-level triangle f).
+  /// @param f an OpenMesh face of omesh()
+  std::array<int32_t, 3> face_nodes(OMesh::FaceHandle f) const;
+  /// True when node a's phases and box faces are all among node b's: b lies on
+  /// every surface, curve and box face a lies on.
+  /// @param a the node whose constraints are looked for
+  /// @param b the node that must have them all
+  bool constraints_within(int32_t a, int32_t b) const;
+  /// Calls f(a, b) for every triangle at node n, with (n, a, b) in the
+  /// triangle's orientation order.
+  /// @param n a node id, in [0, num_nodes())
+  /// @param f called as f(int32_t a, int32_t b) once per triangle at n
+  template <class F> void for_each_triangle_at(int32_t n, F&& f) const;
+  const std::vector<PhaseSet>& phases() const { return phases_; }          ///< phases meeting at each node
+  const Box& domain() const { return domain_; }                            ///< the domain box
+  const std::vector<std::string>& phase_names() const { return names_; } ///< as NodeMesh::phase_names
+  /// The phase outside the box of a closed mesh, or -1 (NodeMesh::outside_phase).
+  int32_t outside_phase() const { return outside_; }
+  /// True when phase p is among node n's phases.
+  /// @param n a node id, in [0, num_nodes())
+  /// @param p a phase id
+  bool has_phase(int32_t n, int32_t p) const;
+
+private:
+  void build_adjacency();
+  void find_box_faces();
+
+  OMesh mesh_;
+  OpenMesh::VPropHandleT<int32_t> node_;
+  OpenMesh::FPropHandleT<OpenMesh::Vec2s> pair_;
+  std::vector<Vec3> pos_;
+  std::vector<PhaseSet> phases_;
+  std::vector<int32_t> copy_off_, copy_v_;
+  std::vector<int32_t> adj_off_, adj_;
+  std::vector<uint8_t> box_;
+  Box domain_;
+  std::vector<std::string> names_;
+  std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
+  int32_t outside_ = -1;
+};
+
+template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {
+  for (int32_t c : copies(n)) {
+    const auto v = OMesh::VertexHandle(c);
+    for (auto h : mesh_.voh_range(v)) {
+      if (mesh_.is_boundary(h)) continue;
+      const auto next = mesh_.next_halfedge_handle(h);
+      f(node(mesh_.to_vertex_handle(h)), node(mesh_.to_vertex_handle(next)));
+    }
+  }
+}
+
+} // namespace vm

@@ -1,0 +1,57 @@
+#pragma once
+/// @file mesh/node_mesh.hpp
+/// The node-level form of an interface mesh: one vertex per geometric point,
+/// triangles as node triples, one phase pair per triangle. This is what files
+/// hold and what create produces; InterfaceMesh (mesh/interface_mesh.hpp) is built from it.
+
+#include "voronoimesh/core/types.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+/// The name of the phase outside the box of a closed mesh (NodeMesh::outside_phase):
+/// what files call it ("outside" is a common name of a scene's own background phase).
+inline const std::string kOutsidePhaseName = "exterior";
+
+/// Triangles of every interface, sharing vertices at junctions.
+struct NodeMesh {
+  /// Node positions.
+  std::vector<Vec3> points;
+  /// Node ids of each triangle, oriented so that the right-hand normal points
+  /// from pairs[t][0] into pairs[t][1].
+  std::vector<std::array<int32_t, 3>> triangles;
+  /// Phase pair of each triangle, pairs[t][0] < pairs[t][1].
+  std::vector<PhasePair> pairs;
+  /// Phase names by id, when known (may be empty).
+  std::vector<std::string> phase_names;
+  /// The id each phase shows in files (a label volume's label value), by phase
+  /// id; strictly increasing, so orientation conventions survive the mapping.
+  /// Empty: files show the phase ids themselves.
+  std::vector<int32_t> phase_labels;
+  /// The domain box; edges lying on it may bound a single triangle.
+  Box domain;
+  /// The phase outside the box of a closed mesh (CreateParams::close: the box
+  /// faces are surfaces between the phases inside and this one, the last), or -1
+  /// when the mesh is not closed.
+  int32_t outside_phase = -1;
+
+  /// A mesh with the same domain and phases (names, labels, outside phase) and
+  /// no points or triangles: where a new mesh is made from this one.
+  NodeMesh empty_like() const {
+    NodeMesh m;
+    m.phase_names = phase_names;
+    m.phase_labels = phase_labels;
+    m.domain = domain;
+    m.outside_phase = outside_phase;
+    return m;
+  }
+
+  size_t num_nodes() const { return points.size(); }         ///< points.size()
+  size_t num_triangles() const { return triangles.size(); } ///< triangles.size()
+};
+
+} // namespace vm

@@ -1,0 +1,178 @@
+/// @file check/box_pairs.cpp
+/// All pairs of overlapping boxes (check/box_pairs.hpp) through a multi-level
+/// uniform grid.
+
+#include "check/box_pairs.hpp"
+
+#include "core/parallel.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vm::detail {
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Candidate pairs: a multi-level uniform grid. Level L has cells of size
+// h 2^L; each triangle lives in the lowest level whose cells are at least as
+// large as its bounding box, in every cell its box touches there (2 per axis
+// at most, but for rounding). A pair of overlapping boxes is taken in one cell only: the cell, at
+// the higher of the two levels, that holds the lower corner of the boxes'
+// intersection; along each axis that is the first cell of one of the two boxes.
+
+/// One triangle in one cell.
+struct Entry {
+  uint64_t key;
+  int32_t tri;
+  uint8_t first;    ///< bit a: the cell is the triangle's first one along axis a
+  uint8_t involved; ///< the box is one whose pairs are wanted
+};
+
+constexpr int kAxisBits = 19; // cells per axis below 2^19 (see Grid::Grid)
+
+class Grid {
+public:
+  explicit Grid(std::span<const Bounds> boxes) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    std::vector<double> extent(boxes.size());
+    for (size_t t = 0; t < boxes.size(); ++t) {
+      lo = lo.cwiseMin(boxes[t].lo);
+      hi = hi.cwiseMax(boxes[t].hi);
+      extent[t] = (boxes[t].hi - boxes[t].lo).maxCoeff();
+    }
+    origin_ = lo;
+    const double span = (hi - lo).maxCoeff();
+    // Base cell: twice the median triangle size, so that most triangles
+    // touch 1 to 2 cells per axis; no more than 2^18 cells per axis.
+    auto mid = extent.begin() + ptrdiff_t(extent.size() / 2);
+    std::nth_element(extent.begin(), mid, extent.end());
+    double h = 2 * *mid;
+    if (!(h > 0)) h = span > 0 ? span : 1.0;
+    h = std::max(h, std::ldexp(span, -(kAxisBits - 1)));
+    for (size_t l = 0; l < size_.size(); ++l) size_[l] = std::ldexp(h, int(l));
+  }
+
+  /// The level of a box: its size fits in one cell.
+  int level(const Bounds& b) const {
+    const double extent = (b.hi - b.lo).maxCoeff();
+    int l = 0;
+    while (extent > size(l)) ++l;
+    return l;
+  }
+
+  double size(int level) const { return size_[size_t(level)]; }
+
+  /// Index of the cell holding coordinate x along `axis` at `level`.
+  int64_t index(double x, int axis, int level) const {
+    return int64_t(std::floor((x - origin_[axis]) / size(level)));
+  }
+
+  /// Cell index ranges of box b at `level`, per axis.
+  void range(const Bounds& b, int level, std::array<int64_t, 3>& first, std::array<int64_t, 3>& last) const {
+    for (int a = 0; a < 3; ++a) {
+      first[size_t(a)] = index(b.lo[a], a, level);
+      last[size_t(a)] = index(b.hi[a], a, level);
+    }
+  }
+
+  static uint64_t key(int level, int64_t i, int64_t j, int64_t k) {
+    return (uint64_t(level) << (3 * kAxisBits)) | (uint64_t(i) << (2 * kAxisBits)) | (uint64_t(j) << kAxisBits) |
+           uint64_t(k);
+  }
+
+  /// Calls f(key, first-flags) for every cell of box b at `level`.
+  template <class F>
+  void for_cells(const Bounds& b, int level, F f) const {
+    std::array<int64_t, 3> first, last;
+    range(b, level, first, last);
+    for (int64_t i = first[0]; i <= last[0]; ++i)
+      for (int64_t j = first[1]; j <= last[1]; ++j)
+        for (int64_t k = first[2]; k <= last[2]; ++k)
+          f(key(level, i, j, k), uint8_t((i == first[0]) | (j == first[1]) << 1 | (k == first[2]) << 2));
+  }
+
+private:
+  Vec3 origin_;
+  std::array<double, kAxisBits + 1> size_; ///< cell size by level, h 2^level
+};
+
+
+} // namespace
+
+std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved) {
+  const size_t n = boxes.size();
+  auto is_involved = [&](size_t t) { return uint8_t(involved.empty() || involved[t]); };
+  if (n < 2) return {};
+  const Grid grid(boxes);
+  std::vector<int8_t> level(n);
+  std::vector<size_t> offset(n + 1, 0);
+  detail::parallel_for(size_t(0), n, [&](size_t t) {
+    level[t] = int8_t(grid.level(boxes[t]));
+    size_t cells = 0;
+    grid.for_cells(boxes[t], level[t], [&](uint64_t, uint8_t) { ++cells; });
+    offset[t + 1] = cells;
+  });
+  for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
+  std::vector<Entry> entries(offset[n]);
+  detail::parallel_for(size_t(0), n, [&](size_t t) {
+    size_t e = offset[t];
+    grid.for_cells(boxes[t], level[t],
+                   [&](uint64_t key, uint8_t first) { entries[e++] = {key, int32_t(t), first, is_involved(t)}; });
+  });
+  detail::parallel_sort(entries.begin(), entries.end(),
+                        [](const Entry& x, const Entry& y) { return x.key != y.key ? x.key < y.key : x.tri < y.tri; });
+  std::vector<size_t> cell_start;
+  for (size_t e = 0; e < entries.size(); ++e)
+    if (e == 0 || entries[e].key != entries[e - 1].key) cell_start.push_back(e);
+  cell_start.push_back(entries.size());
+  const int top_level = *std::max_element(level.begin(), level.end());
+  std::vector<bool> level_used(size_t(top_level) + 1, false);
+  for (int8_t l : level) level_used[size_t(l)] = true;
+
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
+  auto consider = [&](std::vector<BoxPair>& out, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s) {
+    if ((first_t | first_s) != 7) return; // not the pair's own cell
+    if (boxes[size_t(t)].overlaps(boxes[size_t(s)])) out.push_back({std::min(t, s), std::max(t, s)});
+  };
+  // Pairs of one level, in their common cell.
+  detail::parallel_for(tbb::blocked_range<size_t>(0, cell_start.size() - 1), [&](const tbb::blocked_range<size_t>& r) {
+    auto& out = found.local();
+    for (size_t c = r.begin(); c != r.end(); ++c)
+      // Each involved entry meets every other, but an involved one before it
+      // (that pair was taken from the other side).
+      for (size_t i = cell_start[c]; i < cell_start[c + 1]; ++i) {
+        if (!entries[i].involved) continue;
+        for (size_t j = involved.empty() ? i + 1 : cell_start[c]; j < cell_start[c + 1]; ++j)
+          if (j > i || (j < i && !entries[j].involved))
+            consider(out, entries[i].tri, entries[j].tri, entries[i].first, entries[j].first);
+      }
+  });
+  // Pairs across levels: each box looks up the cells it covers in every higher level.
+  if (top_level > 0)
+    detail::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+      auto& out = found.local();
+      for (size_t t = r.begin(); t != r.end(); ++t)
+        for (int l = level[t] + 1; l <= top_level; ++l) {
+          if (!level_used[size_t(l)]) continue;
+          grid.for_cells(boxes[t], l, [&](uint64_t key, uint8_t first) {
+            auto lo = std::lower_bound(entries.begin(), entries.end(), key,
+                                       [](const Entry& e, uint64_t k) { return e.key < k; });
+            for (; lo != entries.end() && lo->key == key; ++lo)
+              if (is_involved(t) || lo->involved) consider(out, int32_t(t), lo->tri, first, lo->first);
+          });
+        }
+    });
+  size_t total = 0;
+  for (const auto& part : found) total += part.size();
+  std::vector<BoxPair> pairs;
+  pairs.reserve(total);
+  for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
+  return pairs;
+}
+
+} // namespace vm::detail

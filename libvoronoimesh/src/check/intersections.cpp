@@ -1,0 +1,181 @@
+/// @file check/intersections.cpp
+/// Exact self-intersection test of a node-level mesh: overlapping triangle
+/// boxes give candidate pairs (check/box_pairs.hpp), exact predicates decide
+/// each pair (check/triangle_pair.hpp).
+
+#include "voronoimesh/check/intersections.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+
+#include "check/box_pairs.hpp"
+#include "check/triangle_pair.hpp"
+#include "core/parallel.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace vm {
+
+namespace {
+
+using detail::Bounds;
+
+/// Intersecting pairs found by one thread: all counted, the smallest kept.
+struct Found {
+  size_t count = 0;
+  std::vector<std::array<int32_t, 2>> smallest; ///< a max-heap of at most `limit` pairs
+
+  void add(int32_t t, int32_t s, size_t limit) {
+    ++count;
+    const std::array<int32_t, 2> pair{std::min(t, s), std::max(t, s)};
+    if (smallest.size() < limit) {
+      smallest.push_back(pair);
+      std::push_heap(smallest.begin(), smallest.end());
+    } else if (limit > 0 && pair < smallest.front()) {
+      std::pop_heap(smallest.begin(), smallest.end());
+      smallest.back() = pair;
+      std::push_heap(smallest.begin(), smallest.end());
+    }
+  }
+};
+
+void check_input(const NodeMesh& m, bool needs_pairs) {
+  if (needs_pairs && m.pairs.size() != m.triangles.size())
+    throw InvalidInput("find_self_intersections: one phase pair per triangle expected");
+  for (const Vec3& p : m.points)
+    if (!p.allFinite()) throw InvalidInput("find_self_intersections: non-finite node coordinate");
+  const auto n = int32_t(m.points.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (int32_t id : m.triangles[t])
+      if (id < 0 || id >= n)
+        throw InvalidInput("find_self_intersections: triangle " + std::to_string(t) + " has node id " +
+                           std::to_string(id) + " out of range");
+}
+
+
+/// The triangles whose bounding box can overlap that of a flagged triangle (the
+/// flagged ones included), in increasing order, through a hash of coarse cells
+/// covering the flagged boxes; all triangles when a third or more are flagged
+/// (no gain then). Lets a check after a few local changes skip most of the mesh.
+std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> flagged) {
+  const size_t nt = m.triangles.size();
+  auto box_of = [&](size_t t) { return detail::triangle_bounds(m.points, m.triangles[t]); };
+  std::vector<int32_t> all;
+  size_t count = 0;
+  double cell = 0;
+  for (size_t t = 0; t < flagged.size(); ++t)
+    if (flagged[t]) {
+      const Bounds b = box_of(t);
+      ++count, cell = std::max(cell, (b.hi - b.lo).maxCoeff());
+    }
+  if (flagged.empty() || 3 * count >= nt) {
+    all.resize(nt);
+    for (size_t t = 0; t < nt; ++t) all[t] = int32_t(t);
+    return all;
+  }
+  if (!(cell > 0)) cell = 1;
+  auto cell_of = [&](double x) { return int64_t(std::floor(x / cell)); };
+  auto key = [](int64_t i, int64_t j, int64_t k) {
+    return uint64_t(i) * 0x9E3779B97F4A7C15ull ^ uint64_t(j) * 0xC2B2AE3D27D4EB4Full ^ uint64_t(k) * 0x165667B19E3779F9ull;
+  };
+  // Calls f(key) for each cell of box b; false if b covers too many to list.
+  auto cells = [&](const Bounds& b, auto&& f) {
+    const int64_t i0 = cell_of(b.lo.x()), i1 = cell_of(b.hi.x()), j0 = cell_of(b.lo.y()), j1 = cell_of(b.hi.y()),
+                  k0 = cell_of(b.lo.z()), k1 = cell_of(b.hi.z());
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 64) return false;
+    for (int64_t i = i0; i <= i1; ++i)
+      for (int64_t j = j0; j <= j1; ++j)
+        for (int64_t k = k0; k <= k1; ++k) f(key(i, j, k));
+    return true;
+  };
+  std::vector<uint64_t> covered;
+  for (size_t t = 0; t < nt; ++t)
+    if (flagged[t]) cells(box_of(t), [&](uint64_t k) { covered.push_back(k); });
+  std::sort(covered.begin(), covered.end());
+  covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
+  std::vector<uint8_t> keep(nt, 0);
+  detail::parallel_for(size_t(0), nt, [&](size_t t) {
+    bool near = false;
+    const bool listed = cells(box_of(t), [&](uint64_t k) {
+      near = near || std::binary_search(covered.begin(), covered.end(), k);
+    });
+    keep[t] = flagged[t] || !listed || near;
+  });
+  for (size_t t = 0; t < nt; ++t)
+    if (keep[t]) all.push_back(int32_t(t));
+  return all;
+}
+
+IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+                           bool across_surfaces_only);
+
+} // namespace
+
+IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+                                           bool across_surfaces_only) {
+  check_input(m, across_surfaces_only);
+  if (!involved.empty() && involved.size() != m.triangles.size())
+    throw InvalidInput("find_self_intersections: one involved flag per triangle expected");
+  const std::vector<int32_t> near = near_flagged(m, involved);
+  if (near.size() == m.triangles.size()) return find_in(m, max_reported, involved, across_surfaces_only);
+  // Only the triangles near the flagged ones, with the same nodes (shared nodes
+  // are compared by id). `near` is increasing, so pairs stay sorted.
+  NodeMesh part;
+  part.points = m.points;
+  std::vector<uint8_t> part_involved;
+  for (int32_t t : near) {
+    part.triangles.push_back(m.triangles[size_t(t)]);
+    if (!m.pairs.empty()) part.pairs.push_back(m.pairs[size_t(t)]);
+    part_involved.push_back(involved[size_t(t)]);
+  }
+  IntersectionReport report = find_in(part, max_reported, part_involved, across_surfaces_only);
+  for (auto& pair : report.pairs)
+    for (int32_t& t : pair) t = near[size_t(t)];
+  return report;
+}
+
+namespace {
+
+IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+                           bool across_surfaces_only) {
+  const size_t nt = m.triangles.size();
+  IntersectionReport report;
+  if (nt < 2) return report;
+
+  std::vector<Bounds> boxes(nt);
+  std::vector<int8_t> axis(nt);
+  detail::parallel_for(size_t(0), nt, [&](size_t t) {
+    const auto& tri = m.triangles[t];
+    boxes[t] = detail::triangle_bounds(m.points, tri);
+    axis[t] = detail::projection_axis(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
+  });
+  const std::vector<detail::BoxPair> candidates = detail::overlapping_box_pairs(boxes, involved);
+
+  tbb::enumerable_thread_specific<Found> found;
+  detail::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    Found& f = found.local();
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const auto [t, s] = candidates[i];
+      if (across_surfaces_only && m.pairs[size_t(t)] == m.pairs[size_t(s)]) continue;
+      if (detail::intersect_improperly(m.points, m.triangles[size_t(t)], m.triangles[size_t(s)], axis[size_t(t)],
+                                       axis[size_t(s)]))
+        f.add(t, s, max_reported);
+    }
+  });
+
+  for (const Found& f : found) {
+    report.count += f.count;
+    report.pairs.insert(report.pairs.end(), f.smallest.begin(), f.smallest.end());
+  }
+  std::sort(report.pairs.begin(), report.pairs.end());
+  if (report.pairs.size() > max_reported) report.pairs.resize(max_reported);
+  return report;
+}
+
+} // namespace
+
+} // namespace vm

@@ -1,0 +1,197 @@
+/// @file check/stats.cpp
+/// Counts (surfaces, triple curves, quadruple points) and quality measures of a
+/// node-level interface mesh.
+
+#include "voronoimesh/check/stats.hpp"
+
+#include "core/union_find.hpp"
+#include "mesh/junction_tables.hpp"
+#include "mesh/topology.hpp"
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+namespace vm {
+
+namespace {
+
+using detail::EdgeTable;
+using detail::Triangles;
+
+/// Number of distinct representatives among the items with `keep` set.
+template <class Keep>
+size_t count_classes(detail::UnionFind& uf, size_t n, Keep keep) {
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (keep(i) && uf.find(int32_t(i)) == int32_t(i)) ++count;
+  return count;
+}
+
+/// Patches: triangles of one pair joined through edges that carry exactly
+/// two triangles of that pair.
+size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<char>& usable) {
+  detail::UnionFind uf(m.triangles.size());
+  std::vector<std::pair<PhasePair, int32_t>> on_edge;
+  for (size_t e = 0; e < et.size(); ++e) {
+    on_edge.clear();
+    for (int32_t h : et.halfedges(e)) {
+      const int32_t t = detail::he_triangle(h);
+      on_edge.emplace_back(m.pairs[size_t(t)], t);
+    }
+    std::sort(on_edge.begin(), on_edge.end());
+    for (size_t i = 0; i < on_edge.size();) {
+      size_t j = i + 1;
+      while (j < on_edge.size() && on_edge[j].first == on_edge[i].first) ++j;
+      if (j - i == 2) uf.unite(on_edge[i].second, on_edge[i + 1].second);
+      i = j;
+    }
+  }
+  return count_classes(uf, m.triangles.size(), [&](size_t t) { return usable[t] != 0; });
+}
+
+double angle_deg(const Vec3& u, const Vec3& v) {
+  return std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
+}
+
+void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats& s) {
+  double sum = 0;
+  size_t counted = 0;
+  std::vector<double> qualities;
+  qualities.reserve(m.triangles.size());
+  s.min_quality = std::numeric_limits<double>::infinity();
+  s.min_angle_deg = std::numeric_limits<double>::infinity();
+  s.max_angle_deg = 0;
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    if (!usable[t]) continue;
+    const auto& tri = m.triangles[t];
+    const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
+    const double q = triangle_quality(a, b, c);
+    s.min_quality = std::min(s.min_quality, q);
+    qualities.push_back(q);
+    sum += q;
+    ++counted;
+    s.below_half += q < 0.5;
+    s.slivers += q < 0.1;
+    for (double angle : {angle_deg(b - a, c - a), angle_deg(c - b, a - b), angle_deg(a - c, b - c)}) {
+      s.min_angle_deg = std::min(s.min_angle_deg, angle);
+      s.max_angle_deg = std::max(s.max_angle_deg, angle);
+    }
+  }
+  if (counted == 0) {
+    s.min_quality = s.min_angle_deg = 0;
+    return;
+  }
+  s.mean_quality = sum / double(counted);
+  auto p01 = qualities.begin() + std::ptrdiff_t(qualities.size() / 100);
+  std::nth_element(qualities.begin(), p01, qualities.end());
+  s.quality_p01 = *p01;
+}
+
+void edge_stats(const NodeMesh& m, const EdgeTable& et, MeshStats& s) {
+  if (et.size() == 0) return;
+  double sum2 = 0;
+  s.min_edge = std::numeric_limits<double>::infinity();
+  s.max_edge = 0;
+  for (const auto& [a, b] : et.nodes) {
+    const double len = (m.points[size_t(a)] - m.points[size_t(b)]).norm();
+    s.min_edge = std::min(s.min_edge, len);
+    s.max_edge = std::max(s.max_edge, len);
+    sum2 += len * len;
+  }
+  s.rms_edge = std::sqrt(sum2 / double(et.size()));
+}
+
+} // namespace
+
+double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double sum2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  const double q = 4.0 * std::sqrt(3.0) * 0.5 * (b - a).cross(c - a).norm() / sum2;
+  return std::isfinite(q) ? q : 0.0; // 0/0 for a point triangle, NaN coordinates
+}
+
+MeshStats compute_stats(const NodeMesh& m) {
+  MeshStats s;
+  s.vertices = m.points.size();
+  s.triangles = m.triangles.size();
+  // Malformed triangles (bad ids, no pair) are left out of every count; validate() reports them.
+  std::vector<char> usable(m.triangles.size());
+  std::vector<int32_t> phases;
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    usable[t] = t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
+    if (usable[t]) phases.insert(phases.end(), m.pairs[t].begin(), m.pairs[t].end());
+  }
+  std::sort(phases.begin(), phases.end());
+  s.phases = size_t(std::unique(phases.begin(), phases.end()) - phases.begin());
+
+  const detail::NodeTriangles nt = detail::node_triangles(m.points.size(), m.triangles, &usable);
+  const EdgeTable et = detail::edge_table(m.triangles, nt);
+  const detail::NodePhases np = detail::node_phases(nt, m.pairs);
+  s.surfaces = count_surfaces(m, et, usable);
+  const Junctions junctions = detail::junctions_from(m.pairs, et, np);
+  s.triple_curves = junctions.curves.size();
+  s.quadruple_points = junctions.quadruple_points.size();
+  for (int32_t n : junctions.quadruple_points) s.higher_order_points += junctions.order(size_t(n)) >= 5;
+  quality_stats(m, usable, s);
+  edge_stats(m, et, s);
+  return s;
+}
+
+std::string to_text(const MeshStats& s) {
+  std::string out;
+  auto line = [&out](const char* label, const std::string& value) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%-22s %s\n", label, value.c_str());
+    out += buf;
+  };
+  auto num = [](const char* fmt, auto... v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, fmt, v...);
+    return std::string(buf);
+  };
+  line("vertices", std::to_string(s.vertices));
+  line("triangles", std::to_string(s.triangles));
+  line("phases", std::to_string(s.phases));
+  line("surfaces", std::to_string(s.surfaces));
+  line("triple curves", std::to_string(s.triple_curves));
+  line("quadruple points", std::to_string(s.quadruple_points));
+  line("higher-order points", std::to_string(s.higher_order_points));
+  line("quality min/1%/mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
+  line("quality < 0.5", std::to_string(s.below_half));
+  line("slivers (q < 0.1)", std::to_string(s.slivers));
+  line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));
+  line("edge min / max / rms", num("%.6g / %.6g / %.6g", s.min_edge, s.max_edge, s.rms_edge));
+  if (s.self_intersections) line("self-intersections", std::to_string(*s.self_intersections) + " triangle pairs");
+  return out;
+}
+
+std::string to_json(const MeshStats& s) {
+  nlohmann::ordered_json j = {
+      {"vertices", s.vertices},
+      {"triangles", s.triangles},
+      {"phases", s.phases},
+      {"surfaces", s.surfaces},
+      {"triple_curves", s.triple_curves},
+      {"quadruple_points", s.quadruple_points},
+      {"higher_order_points", s.higher_order_points},
+      {"min_quality", s.min_quality},
+      {"mean_quality", s.mean_quality},
+      {"quality_p01", s.quality_p01},
+      {"below_half", s.below_half},
+      {"slivers", s.slivers},
+      {"min_angle_deg", s.min_angle_deg},
+      {"max_angle_deg", s.max_angle_deg},
+      {"min_edge", s.min_edge},
+      {"max_edge", s.max_edge},
+      {"rms_edge", s.rms_edge},
+  };
+  if (s.self_intersections) j["self_intersections"] = *s.self_intersections;
+  return j.dump(2);
+}
+
+} // namespace vm

@@ -1,0 +1,500 @@
+#include "voronoimesh/create/create.hpp"
+
+#include "check/validate_part.hpp"
+#include "core/text.hpp"
+#include "create/create_slabs.hpp"
+#include "create/lattice.hpp"
+#include "create/limit_key_index.hpp"
+#include "create/node_values.hpp"
+#include "create/tet_cutter.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+
+#include "core/parallel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <numeric>
+
+namespace vm {
+namespace {
+
+using detail::SlabsMesh;
+using detail::CutTriangle;
+using detail::LimitKey;
+using detail::LimitKeyIndex;
+using SlabRange = std::array<int, 2>;
+
+/// What one slab of the lattice produced: its distinct limit points (with
+/// positions) and triangles indexing them.
+struct SlabResult {
+  std::vector<LimitKey> keys;
+  std::vector<Vec3> points;
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<PhasePair> pairs;
+  detail::CutCounters counters;
+  uint64_t tets = 0;
+  uint64_t dropped = 0;
+  uint64_t box_triangles = 0;
+};
+
+/// Cuts the tetrahedra of one slab, and with `outside` >= 0 their faces on the
+/// box too. Points are numbered within the slab; a triangle with two corners on
+/// one point is dropped.
+void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid, int slab,
+              int32_t outside, SlabResult& r) {
+  detail::TetCutter cutter(values, lattice, grid);
+  LimitKeyIndex local;
+  std::vector<CutTriangle> cut;
+  // A block whose nodes all have the same winner holds no interface: that phase
+  // beats every other at every corner of every tet in it.
+  auto one_winner = [&](const int64_t* nodes, int count) {
+    const int32_t label = values.label(nodes[0]);
+    for (int c = 1; c < count; ++c)
+      if (values.label(nodes[c]) != label) return false;
+    return true;
+  };
+  // Closing needs every block on the box, even with one winner: its faces there
+  // are that phase's boundary.
+  auto on_box = [&](const int64_t* nodes, int count) {
+    for (int c = 0; c < count; ++c) {
+      const detail::GridPoint p = lattice.grid_point(nodes[c]);
+      for (int a = 0; a < 3; ++a)
+        if (p[size_t(a)] == 0 || p[size_t(a)] == grid.cells[size_t(a)]) return true;
+    }
+    return false;
+  };
+  auto skip = [&](const int64_t* nodes, int count) {
+    return one_winner(nodes, count) && !(outside >= 0 && on_box(nodes, count));
+  };
+  r.tets = lattice.for_each_tet(slab, skip, [&](const std::array<int64_t, 4>& nodes) {
+    cut.clear();
+    cutter.cut(nodes, cut, r.counters);
+    const size_t interior = cut.size();
+    if (outside >= 0) cutter.cut_box_faces(nodes, outside, cut, r.counters);
+    r.box_triangles += cut.size() - interior;
+    for (const CutTriangle& t : cut) {
+      std::array<int32_t, 3> tri;
+      for (int c = 0; c < 3; ++c) {
+        const auto [id, inserted] = local.insert(t.corners[c], r.keys);
+        if (inserted) {
+          r.keys.push_back(t.corners[c]);
+          r.points.push_back(cutter.position(t.corners[c]));
+        }
+        tri[c] = id;
+      }
+      if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+        ++r.dropped;
+        continue;
+      }
+      r.triangles.push_back(tri);
+      r.pairs.push_back(t.pair);
+    }
+  });
+}
+
+/// Numbers the limit points of slab `s` among those of `e` (adding the new
+/// ones), into `global`; marks where they were made.
+void ids_of_slab(const SlabResult& s, LimitKeyIndex& ids, SlabsMesh& e, uint8_t where, std::vector<int32_t>& global) {
+  global.resize(s.keys.size());
+  for (size_t k = 0; k < s.keys.size(); ++k) {
+    const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
+    if (inserted) {
+      e.points.push_back(s.points[k]);
+      e.keys.push_back(s.keys[k]);
+      e.where.push_back(0);
+    }
+    e.where[size_t(id)] |= where;
+    global[k] = id;
+  }
+}
+
+void append_triangles(const SlabResult& s, const std::vector<int32_t>& global, SlabsMesh& e) {
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& tri = s.triangles[t];
+    e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
+    e.pairs.push_back(s.pairs[t]);
+  }
+}
+
+/// Cuts the tetrahedra of the slabs cut[0]..cut[1] flagged in `recut` (in
+/// parallel, slab by slab; the others keep what an earlier round found, their
+/// nodes' values being unchanged) and numbers the limit points of those slabs
+/// in order of first appearance. Slabs are a property of the lattice, not of
+/// the thread count, and are merged in order: the result is the same for any
+/// number of threads, and the same as cutting every slab again. Statistics
+/// count the `owned` slabs.
+SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& values, const GridSpec& grid,
+                   int32_t outside, const std::vector<char>& recut, std::vector<SlabResult>& slabs, SlabRange owned,
+                   SlabRange cut, CreateStats& stats) {
+  detail::parallel_for(cut[0], cut[1] + 1, [&](int s) {
+    if (!recut[size_t(s)]) return;
+    slabs[size_t(s)] = SlabResult{};
+    cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);
+  });
+
+  SlabsMesh e;
+  LimitKeyIndex ids;
+  size_t keys = 0, triangles = 0;
+  for (int s = cut[0]; s <= cut[1]; ++s)
+    keys += slabs[size_t(s)].keys.size(), triangles += slabs[size_t(s)].triangles.size();
+  ids.reserve(keys);
+  e.points.reserve(keys);
+  e.keys.reserve(keys);
+  e.where.reserve(keys);
+  e.triangles.reserve(triangles);
+  e.pairs.reserve(triangles);
+  std::vector<int32_t> global;
+  for (int slab = cut[0]; slab <= cut[1]; ++slab) {
+    const SlabResult& s = slabs[size_t(slab)];
+    const uint8_t where = slab < owned[0]   ? detail::kBelowOwned
+                          : slab > owned[1] ? detail::kAboveOwned
+                                            : detail::kInOwned;
+    if (slab == owned[0]) e.owned_begin = e.triangles.size();
+    if (where == detail::kInOwned) {
+      stats.tets_visited += s.tets;
+      stats.tets_cut += s.counters.tets_cut;
+      stats.polygons += s.counters.polygons;
+      stats.degenerate_cuts += s.counters.degenerate;
+      stats.collapsed_polygons += s.counters.collapsed;
+      stats.dropped_triangles += s.dropped;
+      stats.box_triangles += s.box_triangles;
+    }
+    ids_of_slab(s, ids, e, where, global);
+    append_triangles(s, global, e);
+    if (slab == owned[0]) e.first_owned_slab = global;
+    if (slab == owned[1]) e.owned_end = e.triangles.size();
+  }
+  if (cut[1] > owned[1]) e.slab_above = global;
+  return e;
+}
+
+/// Two triangles on the same three points are a phase squeezed to zero thickness
+/// between them (it won only on a face, by an exact tie). Seen from the first
+/// triangle's vertex order, each has a back and a front phase; the squeezed phase
+/// is the one they share, and what remains is the interface between the outer two
+/// (nothing, if those are the same phase). Couples that do not stack that way, and
+/// stacks of three or more, are left for the validator to report.
+void resolve_coincident_triangles(SlabsMesh& e, CreateStats& stats) {
+  auto& tris = e.triangles;
+  auto& pairs = e.pairs;
+  // Two polygons from different tets can only coincide on the face between them,
+  // so only triangles whose corners all lie in one lattice face (three lattice
+  // nodes between them) are candidates: a small fraction.
+  auto in_one_face = [&](const std::array<int32_t, 3>& tri) {
+    std::array<int64_t, 12> nodes;
+    int n = 0;
+    for (int32_t v : tri) {
+      const LimitKey& k = e.keys[size_t(v)];
+      for (int c = 0; c < k.count; ++c)
+        if (std::find(nodes.begin(), nodes.begin() + n, k.nodes[c]) == nodes.begin() + n) nodes[n++] = k.nodes[c];
+    }
+    return n <= 3;
+  };
+  std::vector<std::array<int32_t, 3>> sorted(tris.size());
+  std::vector<uint32_t> order;
+  for (size_t t = 0; t < tris.size(); ++t)
+    if (in_one_face(tris[t])) {
+      sorted[t] = tris[t];
+      std::sort(sorted[t].begin(), sorted[t].end());
+      order.push_back(uint32_t(t));
+    }
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b;
+  });
+  std::vector<char> removed(tris.size(), 0);
+  for (size_t g = 0; g < order.size();) {
+    size_t end = g + 1;
+    while (end < order.size() && sorted[order[end]] == sorted[order[g]]) ++end;
+    if (end - g == 2) {
+      const uint32_t a = order[g], b = order[g + 1];
+      bool same_orientation = false;
+      for (int r = 0; r < 3; ++r)
+        if (tris[b][r] == tris[a][0] && tris[b][(r + 1) % 3] == tris[a][1]) same_orientation = true;
+      const int32_t a_back = pairs[a][0], a_front = pairs[a][1];
+      const int32_t b_back = same_orientation ? pairs[b][0] : pairs[b][1];
+      const int32_t b_front = same_orientation ? pairs[b][1] : pairs[b][0];
+      int32_t back = -1, front = -1;
+      if (a_front == b_back) back = a_back, front = b_front; // a below b
+      else if (a_back == b_front) back = b_back, front = a_front; // b below a
+      if (back >= 0) {
+        ++stats.coincident_pairs;
+        removed[b] = 1;
+        removed[a] = back == front;
+        if (back > front) std::swap(tris[a][1], tris[a][2]);
+        pairs[a] = {std::min(back, front), std::max(back, front)};
+      }
+    }
+    g = end;
+  }
+  size_t w = 0, owned_begin = 0, owned_end = 0;
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (t == e.owned_begin) owned_begin = w;
+    if (t == e.owned_end) owned_end = w;
+    if (!removed[t]) {
+      tris[w] = tris[t];
+      pairs[w] = pairs[t];
+      ++w;
+    }
+  }
+  e.owned_begin = e.owned_begin < tris.size() ? owned_begin : w;
+  e.owned_end = e.owned_end < tris.size() ? owned_end : w;
+  tris.resize(w);
+  pairs.resize(w);
+}
+
+} // namespace
+
+GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice) {
+  GridSpec g = grid;
+  if (lattice == Lattice::bcc)
+    for (int& c : g.cells) c += c % 2;
+  return g;
+}
+
+namespace {
+
+uint64_t saturated(double bytes) { return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes); }
+
+double sample_bytes(const GridSpec& grid, int k, std::array<int32_t, 2> layers) {
+  const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(layers[1] - layers[0] + 1);
+  return nodes * (12.0 * k + 8); // id (4 B) + value (8 B) per slot, floor 8 B
+}
+
+} // namespace
+
+uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t, 2> layers) {
+  return saturated(sample_bytes(grid, k, layers));
+}
+
+uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
+  const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
+  const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
+  // NodeValues: id and quantized value per slot (8 B), floor and label 8 B.
+  return saturated(sample_bytes(grid, k, {0, grid.cells[2]}) + lattice_nodes * (8.0 * k + 8));
+}
+
+namespace {
+
+void check_params(const CreateParams& params) {
+  if (!(params.snap >= 0 && params.snap <= 0.5))
+    throw InvalidOption("snap", "must be between 0 and 0.5 (a fraction of the grid spacing h), got " +
+                                    detail::cat(params.snap));
+}
+
+/// The grid layers whose nodes the owner of slabs `owned` counts in statistics:
+/// from the first layer of its first slab to below the first layer of the next
+/// owner's, so every layer is counted once.
+std::array<int32_t, 2> counted_layers(const detail::TetLattice& lattice, SlabRange owned, int32_t top) {
+  const int next = owned[1] + 1;
+  return {lattice.layers_of_slabs(owned[0], owned[0])[0],
+          next < lattice.num_slabs() ? lattice.layers_of_slabs(next, next)[0] - 1 : top};
+}
+
+uint64_t count_snapped(const detail::NodeValues& values, const detail::TetLattice& lattice,
+                       std::array<int32_t, 2> layers) {
+  const detail::NodeWindow w = lattice.window(layers[0], layers[1]);
+  uint64_t snapped = 0;
+  for (int r = 0; r < 2; ++r)
+    for (int64_t id = w.first[size_t(r)]; id < w.first[size_t(r)] + w.count[size_t(r)]; ++id)
+      snapped += values.snapped(id);
+  return snapped;
+}
+
+/// The lattice nodes of the vertices in the problems validate() finds around
+/// the vertices of the owned slabs, and how many problems it finds. `whole`:
+/// the part is the whole mesh. Otherwise only the vertices made in the owned
+/// slabs have all their triangles in the part: they are numbered first and
+/// validate_first_nodes() checks them alone, which finds exactly the problems
+/// validate() finds at them in the whole mesh.
+std::pair<std::vector<int64_t>, size_t> offending_nodes(SlabsMesh& part, const Box& domain, bool whole) {
+  NodeMesh mesh;
+  mesh.domain = domain;
+  ValidationReport report;
+  if (whole) {
+    mesh.points = std::move(part.points);
+    mesh.triangles = std::move(part.triangles);
+    mesh.pairs = std::move(part.pairs);
+    report = validate(mesh);
+    part.points = std::move(mesh.points);
+    part.triangles = std::move(mesh.triangles);
+    part.pairs = std::move(mesh.pairs);
+  } else {
+    std::vector<int32_t> order, renumbered(part.points.size());
+    for (int pass = 0; pass < 2; ++pass)
+      for (size_t v = 0; v < part.points.size(); ++v)
+        if (((part.where[v] & detail::kInOwned) != 0) == (pass == 0)) {
+          renumbered[v] = int32_t(order.size());
+          order.push_back(int32_t(v));
+        }
+    size_t checked = 0;
+    while (checked < order.size() && (part.where[size_t(order[checked])] & detail::kInOwned)) ++checked;
+    mesh.points.reserve(order.size());
+    for (int32_t v : order) mesh.points.push_back(part.points[size_t(v)]);
+    mesh.triangles.reserve(part.triangles.size());
+    for (const auto& t : part.triangles)
+      mesh.triangles.push_back({renumbered[size_t(t[0])], renumbered[size_t(t[1])], renumbered[size_t(t[2])]});
+    mesh.pairs = part.pairs;
+    report = detail::validate_first_nodes(mesh, checked);
+    for (int32_t& v : report.nodes) v = order[size_t(v)];
+  }
+  std::vector<int64_t> nodes;
+  for (int32_t v : report.nodes)
+    for (int c = 0; c < part.keys[size_t(v)].count; ++c) nodes.push_back(part.keys[size_t(v)].nodes[c]);
+  return {std::move(nodes), report.problem_count};
+}
+
+} // namespace
+
+namespace detail {
+
+CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_range, const CreateParams& params,
+                         SlabRange owned, CreatePeers& peers, SlabsMesh& part) {
+  const auto start = std::chrono::steady_clock::now();
+  check_params(params);
+  const GridSpec& grid = field.grid();
+  TetLattice lattice(grid, params.lattice);
+  const int num_slabs = lattice.num_slabs();
+  if (owned[0] < 0 || owned[1] >= num_slabs || owned[0] > owned[1])
+    throw InvalidInput(cat("create: slabs ", owned[0], "..", owned[1], " are not within the lattice's 0..",
+                           num_slabs - 1));
+  // The slab on each side too, so that every triangle around a vertex of the
+  // owned slabs is here (a lattice node's tetrahedra lie in two neighbouring slabs).
+  const SlabRange cut{std::max(0, owned[0] - 1), std::min(num_slabs - 1, owned[1] + 1)};
+  const bool whole = cut == owned;
+  const std::array<int32_t, 2> layers = lattice.layers_of_slabs(cut[0], cut[1]);
+  if (field.layers()[0] > layers[0] || field.layers()[1] < layers[1])
+    throw InvalidInput(cat("create: the samples hold grid layers ", field.layers()[0], "..", field.layers()[1],
+                           ", slabs ", cut[0], "..", cut[1], " need ", layers[0], "..", layers[1]));
+  const NodeScope scope{lattice.window(layers[0], layers[1]), value_range[0], value_range[1]};
+  const std::array<int32_t, 2> counted = counted_layers(lattice, owned, grid.cells[2]);
+  auto is_counted = [&](int64_t node) {
+    const int32_t z = lattice.grid_point(node)[2];
+    return z >= counted[0] && z <= counted[1];
+  };
+
+  // Snapping can tie three phases at both ends of a lattice edge, or tie phases at
+  // a node so that one phase touches it from two sides: a pinched, non-manifold
+  // phase boundary (DESIGN.md, "Snapping can pinch a phase"). Data can hold such
+  // ties themselves (labels, integer values, seeds on grid nodes), and crossings
+  // of three phases at one point of a lattice edge without any tie at its nodes.
+  // The symbolic perturbation keeps all of these apart, but only infinitesimally:
+  // their limit points coincide and merge. Where the result shows a problem,
+  // create repairs the lattice nodes of the offending vertices and makes the mesh
+  // again: snapping is undone where it changed something, then the node's values
+  // are moved by a small pseudo-random amount (NodeValues::RepairLevel), drawn
+  // anew each time the node offends again. Moved values hold no coincidences
+  // (bar a chance of one in 16 or more per draw), so this ends: in practice after
+  // a few rounds. Only the slabs holding a node repaired in the last round are
+  // cut again. Every rank repairs the nodes all ranks found, so all make the
+  // repairs one process makes.
+  using Level = NodeValues::RepairLevel;
+  std::vector<Level> repair; // by the window's numbering
+  std::vector<SlabResult> slabs(static_cast<size_t>(num_slabs));
+  std::vector<char> recut(slabs.size(), 0);
+  std::fill(recut.begin() + cut[0], recut.begin() + cut[1] + 1, 1);
+  CreateStats stats;
+  double check_seconds = 0;
+  for (int round = 0;; ++round) {
+    NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(),
+                      repair.empty() ? nullptr : &repair, &scope);
+    CreateStats round_stats;
+    part = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, owned, cut,
+                   round_stats);
+    resolve_coincident_triangles(part, round_stats);
+    round_stats.snapped_nodes = whole ? values.snapped_nodes() : count_snapped(values, lattice, counted);
+    round_stats.unsnapped_nodes = stats.unsnapped_nodes;
+    round_stats.untied_nodes = stats.untied_nodes;
+    round_stats.repair_rounds = round;
+    stats = round_stats;
+    if (round == kMaxRepairRounds) break;
+
+    const auto check_start = std::chrono::steady_clock::now();
+    auto [nodes, problems] = offending_nodes(part, grid.domain, whole);
+    check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
+    nodes = peers.merge_nodes(std::move(nodes));
+    if (peers.sum(problems) == 0) {
+      stats.validated = true;
+      break;
+    }
+    if (repair.empty()) repair.assign(size_t(scope.window.size()), NodeValues::kSnap);
+    std::fill(recut.begin(), recut.end(), 0);
+    uint64_t unsnapped = 0, untied = 0;
+    // Repairs that stay at the offending nodes can move the problem to the next
+    // node along (unsnapping one node of a snapped region leaves its neighbours'
+    // ties): from the second round on, the neighbours are repaired with them.
+    if (round >= 1) {
+      const size_t offending = nodes.size();
+      for (size_t i = 0; i < offending; ++i)
+        lattice.for_each_neighbour(nodes[i], [&](int64_t n) { nodes.push_back(n); });
+    }
+    // Where the problems keep moving on instead (a snapped label field: each
+    // repaired node leaves its snapped neighbours pinched), one repair of every
+    // node ends it: no snapping left anywhere and every value moved, so no
+    // coincidences but by chance, which the remaining rounds redraw.
+    const bool everywhere = round + 1 == kLocalRepairRounds;
+    if (everywhere) {
+      nodes.resize(size_t(lattice.num_nodes()));
+      std::iota(nodes.begin(), nodes.end(), int64_t(0));
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (int64_t node : nodes) {
+      if (!scope.window.contains(node)) continue; // no slab cut here uses it
+      Level& level = repair[size_t(scope.window.local(node))];
+      if (level == std::numeric_limits<Level>::max()) continue;
+      if (!everywhere && level == NodeValues::kSnap && values.snapped(node)) {
+        level = NodeValues::kUnsnap;
+        unsnapped += is_counted(node);
+      } else {
+        level = std::max<Level>(level + 1, NodeValues::kFirstUntie);
+        untied += is_counted(node);
+      }
+      const auto [first, last] = lattice.slabs_of_node(node);
+      for (int slab = std::max(first, cut[0]); slab <= std::min(last, cut[1]); ++slab) recut[size_t(slab)] = 1;
+    }
+    unsnapped = peers.sum(unsnapped);
+    untied = peers.sum(untied);
+    if (unsnapped + untied == 0) break; // nothing left to repair: the caller's validation reports it
+    stats.unsnapped_nodes += unsnapped;
+    stats.untied_nodes += untied;
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.check_seconds = check_seconds;
+  return stats;
+}
+
+} // namespace detail
+
+CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
+  check_params(params);
+  const detail::TetLattice lattice(field.grid(), params.lattice);
+  detail::CreatePeers alone;
+  SlabsMesh part;
+  const CreateStats stats = detail::create_slabs(field, {field.min_value(), field.max_value()}, params,
+                                                {0, lattice.num_slabs() - 1}, alone, part);
+  out = NodeMesh{};
+  out.domain = field.grid().domain;
+  out.outside_phase = params.close ? int32_t(field.num_phases()) : -1;
+  out.points = std::move(part.points);
+  out.triangles = std::move(part.triangles);
+  out.pairs = std::move(part.pairs);
+  return stats;
+}
+
+} // namespace vm
+
+namespace vm {
+
+void name_phases(NodeMesh& mesh, const PhaseField& field) {
+  mesh.phase_names.clear();
+  mesh.phase_labels.clear();
+  for (int p = 0; p < field.num_phases(); ++p) {
+    mesh.phase_names.push_back(field.phase_name(p));
+    if (field.phase_label(p) != p) mesh.phase_labels.resize(size_t(field.num_phases()));
+  }
+  for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = field.phase_label(int(p));
+}
+
+} // namespace vm

@@ -1,0 +1,78 @@
+#pragma once
+/// @file limit_key_index.hpp
+/// Numbers distinct limit points in order of first appearance. create() looks up
+/// every corner of every triangle it cuts (millions), so this is an open-
+/// addressing table of 32-bit ids into the caller's vector of keys, with each
+/// key's hash kept beside its id: no allocation per key (std::unordered_map's
+/// node of a 112-byte key cost a third of the memory of create) and a key is
+/// compared only when the hashes agree.
+
+#include "create/limit_key.hpp"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace vm::detail {
+
+class LimitKeyIndex {
+public:
+  /// Room for `n` keys without growing.
+  void reserve(size_t n) {
+    size_t capacity = 16;
+    while (capacity < 2 * n) capacity *= 2;
+    if (capacity > slots_.size()) rehash(capacity);
+  }
+
+  /// The id of `key` among `keys`, the keys inserted so far (keys[id] is the key
+  /// of id). If absent, `key` gets id keys.size() and inserted is true: the
+  /// caller then appends it to `keys`.
+  std::pair<int32_t, bool> insert(const LimitKey& key, const std::vector<LimitKey>& keys) {
+    if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : 2 * slots_.size());
+    const uint32_t h = spread(LimitKeyHash{}(key));
+    const size_t mask = slots_.size() - 1;
+    for (size_t s = h & mask;; s = (s + 1) & mask) {
+      Slot& slot = slots_[s];
+      if (slot.id < 0) {
+        slot = {h, int32_t(keys.size())};
+        ++size_;
+        return {slot.id, true};
+      }
+      if (slot.hash == h && keys[size_t(slot.id)] == key) return {slot.id, false};
+    }
+  }
+
+private:
+  struct Slot {
+    uint32_t hash = 0;
+    int32_t id = -1; ///< -1: empty
+  };
+
+  /// LimitKeyHash mixes its inputs into the high bits only slowly; the table
+  /// indexes by the low bits, so they are mixed again (MurmurHash3's finalizer).
+  static uint32_t spread(uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return uint32_t(h);
+  }
+
+  void rehash(size_t capacity) {
+    std::vector<Slot> old(capacity);
+    old.swap(slots_);
+    const size_t mask = capacity - 1;
+    for (const Slot& slot : old)
+      if (slot.id >= 0) {
+        size_t s = slot.hash & mask;
+        while (slots_[s].id >= 0) s = (s + 1) & mask;
+        slots_[s] = slot;
+      }
+  }
+
+  std::vector<Slot> slots_;
+  size_t size_ = 0;
+};
+
+} // namespace vm::detail

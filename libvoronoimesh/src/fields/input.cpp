@@ -1,0 +1,91 @@
+#include "voronoimesh/fields/input.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/io/volume.hpp"
+
+#include "core/text.hpp"
+#include "fields/axis_align.hpp"
+#include "fields/point_cloud.hpp"
+#include "fields/volume_scenes.hpp"
+#include "fields/voxel_grid.hpp"
+
+#include <algorithm>
+
+namespace vm {
+
+namespace {
+
+using detail::cat;
+
+/// A distance grid: one real component per phase per voxel.
+Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
+  if (v.components < 2)
+    throw InvalidInput(located(path, "has one real component per voxel; a distance grid needs one per phase (2 or more), "
+                                     "or one file per phase through a scene's \"grid\" phases"));
+  const GridSpec grid = detail::voxel_grid(v.size, v.spacing, v.origin, path, "a distance grid");
+  const size_t c = size_t(v.components);
+  const auto fill = [&](int64_t n, std::span<float> out) {
+    std::copy_n(v.values.begin() + ptrdiff_t(size_t(n) * c), c, out.begin());
+  };
+  Scene scene = detail::phase_values_scene(grid, v.components, fill, {}, {}, o.top_k, path);
+  scene.grid = detail::volume_scene_grid(grid, o.voxels_per_cell, path);
+  return scene;
+}
+
+/// The options of `o` that differ from their defaults but mean nothing for an
+/// input of this kind ("--smoothing" ...), so that none is silently ignored.
+/// `volume` and `labels`: whether options for volumes, and for label volumes, apply.
+std::vector<std::string> options_that_do_not_apply(const InputOptions& o, bool volume, bool labels) {
+  const InputOptions defaults;
+  std::vector<std::string> given;
+  if (!labels) {
+    if (!o.drop_labels.empty()) given.push_back("--drop-labels");
+    if (!o.merge_labels.empty()) given.push_back("--merge-labels");
+    if (o.background != defaults.background) given.push_back("--background");
+    if (o.no_background) given.push_back("--no-background");
+    if (o.label_function != defaults.label_function) given.push_back("--signed-distance");
+    if (o.smoothing != defaults.smoothing) given.push_back("--smoothing");
+    if (o.band != defaults.band) given.push_back("--band");
+  }
+  if (!volume) {
+    if (o.voxels_per_cell != defaults.voxels_per_cell) given.push_back("--voxels-per-cell");
+    if (o.ignore_direction) given.push_back("--ignore-direction");
+  }
+  return given;
+}
+
+} // namespace
+
+void refuse_options_that_do_not_apply(const InputOptions& o, bool volume, bool labels, const std::string& kind,
+                                      const std::string& what) {
+  const std::vector<std::string> given = options_that_do_not_apply(o, volume, labels);
+  if (given.empty()) return;
+  std::string list = given.front();
+  for (size_t i = 1; i < given.size(); ++i) list += ", " + given[i];
+  const bool label_options_only = options_that_do_not_apply(o, true, labels).size() == given.size();
+  throw InvalidInput(located(what, cat(list, given.size() > 1 ? " apply" : " applies", " only to ",
+                                       label_options_only ? "label volumes" : "volumes", ", and this is ", kind,
+                                       " (docs/inputs.md)")));
+}
+
+Scene load_input(const std::string& path, const InputOptions& options) {
+  detail::check_input_options(options);
+  if (detail::lower(path).ends_with(".json")) {
+    refuse_options_that_do_not_apply(options, false, false, "a scene", path);
+    return load_scene(path);
+  }
+  if (io::is_volume_file(path)) {
+    io::Volume v = io::read_volume(path);
+    if (!v.integer) refuse_options_that_do_not_apply(options, true, false, "a distance grid (real values)", path);
+    detail::axis_align(v, path, options.ignore_direction);
+    return v.integer ? detail::label_volume_scene(std::move(v), options, path) : distance_scene(v, options, path);
+  }
+  if (detail::is_point_file(path)) {
+    refuse_options_that_do_not_apply(options, false, false, "a point cloud", path);
+    return detail::point_cloud_scene(path, options);
+  }
+  throw InvalidInput(located(path, "unknown input type: expected a scene (.json), a volume (.nrrd, .nhdr, .nii, .nii.gz, "
+                                   ".mha, .mhd, .inr, .inr.gz) or a point file (.xyz, .txt, .pts, .csv, .ply)"));
+}
+
+} // namespace vm

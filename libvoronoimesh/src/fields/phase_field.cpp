@@ -1,0 +1,33 @@
+#include "voronoimesh/fields/phase_field.hpp"
+
+#include "fields/top_k.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace vm {
+
+void PhaseField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
+  // Scratch space per thread: this runs once per grid node.
+  thread_local std::vector<double> v;
+  thread_local std::vector<int32_t> order;
+  v.resize(size_t(num_phases()));
+  order.resize(v.size());
+  values(x, v);
+  if (const auto bad = std::find_if(v.begin(), v.end(), [](double d) { return !std::isfinite(d); }); bad != v.end()) {
+    ids[0] = int32_t(bad - v.begin());
+    vals[0] = *bad;
+    return;
+  }
+  std::iota(order.begin(), order.end(), 0);
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(ids.size()), order.end(),
+                    [&](int32_t a, int32_t b) { return detail::ranks_before(v[size_t(a)], a, v[size_t(b)], b); });
+  for (size_t slot = 0; slot < ids.size(); ++slot) {
+    ids[slot] = order[slot];
+    vals[slot] = v[size_t(order[slot])];
+  }
+}
+
+} // namespace vm

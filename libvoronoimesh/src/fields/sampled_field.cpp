@@ -1,0 +1,155 @@
+#include "voronoimesh/fields/sampled_field.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+
+#include "core/parallel.hpp"
+#include "fields/top_k.hpp"
+
+#include <tbb/blocked_range.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <sstream>
+
+namespace vm {
+
+namespace {
+
+std::string point_text(const Vec3& x) {
+  std::ostringstream s;
+  s << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  return s.str();
+}
+
+void check_grid(const GridSpec& grid) {
+  for (int a = 0; a < 3; ++a) {
+    if (grid.cells[a] < 1)
+      throw InvalidInput(located("grid", "cells per axis must be at least 1, got " +
+                                             std::to_string(grid.cells[a])));
+    if (!(grid.domain.min[a] < grid.domain.max[a]))
+      throw InvalidInput(located("grid", "domain min must be below max on every axis"));
+  }
+}
+
+/// The error for the first non-finite value at node `n`: evaluating again is
+/// cheaper than carrying the phase out of the parallel loop, and only happens once.
+[[noreturn]] void throw_not_finite(const PhaseField& field, const GridSpec& grid, int64_t n) {
+  const auto nodes = grid.nodes();
+  const Vec3 x = grid.node_position(n % nodes[0], (n / nodes[0]) % nodes[1], n / (nodes[0] * nodes[1]));
+  std::vector<double> v(size_t(field.num_phases()));
+  field.values(x, v);
+  int i = 0;
+  while (i + 1 < int(v.size()) && std::isfinite(v[size_t(i)])) ++i;
+  const std::string what = std::isnan(v[size_t(i)]) ? "NaN" : "infinite";
+  throw InvalidInput(located("phase " + field.phase_name(i), "value is " + what + " at " + point_text(x)));
+}
+
+/// The node's floor value, from its kept values (largest first).
+double node_floor(std::span<const double> vals, double h) {
+  return detail::floor_below(vals.front(), vals.back(), h);
+}
+
+} // namespace
+
+SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k) {
+  return sample(field, grid, k, {0, grid.cells[2]});
+}
+
+SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k,
+                                  std::array<int32_t, 2> layers) {
+  if (k < 1 || k > 16)
+    throw InvalidInput(located("sample", "k (phases kept per node) must be between 1 and 16, got " + std::to_string(k)));
+  check_grid(grid);
+  if (layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1])
+    throw InvalidInput(located("sample", "layers " + std::to_string(layers[0]) + ".." + std::to_string(layers[1]) +
+                                             " are not within the grid's 0.." + std::to_string(grid.cells[2])));
+  const int n_phases = field.num_phases();
+  if (n_phases < 1) throw InvalidInput(located("sample", "the field has no phases"));
+
+  SampledField s;
+  s.grid_ = grid;
+  s.num_phases_ = n_phases;
+  s.k_ = std::min(k, n_phases);
+  const size_t kk = size_t(s.k_);
+  const auto nodes = grid.nodes();
+  s.layers_ = layers;
+  s.first_node_ = grid.node_index(0, 0, layers[0]);
+  const int64_t count = (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
+  s.ids_.resize(size_t(count) * kk);
+  s.values_.resize(size_t(count) * kk);
+  s.floor_.resize(size_t(count));
+  const double h = grid.h();
+
+  // Lowest node index holding a NaN or infinity. Nodes above it are skipped and
+  // nodes below it are all visited, so the error reported does not depend on
+  // scheduling.
+  std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
+
+  // One task range = rows of nodes along x; every node is written by one task only.
+  const int64_t first_row = layers[0] * nodes[1], end_row = (layers[1] + 1) * nodes[1];
+  detail::parallel_for(tbb::blocked_range<int64_t>(first_row, end_row), [&](const auto& rows) {
+    for (int64_t row = rows.begin(); row != rows.end(); ++row) {
+      const int64_t j = row % nodes[1], kz = row / nodes[1];
+      for (int64_t i = 0; i < nodes[0]; ++i) {
+        const int64_t n = grid.node_index(i, j, kz) - s.first_node_;
+        if (n > first_bad.load(std::memory_order_relaxed)) return;
+        const std::span<int32_t> ids{&s.ids_[size_t(n) * kk], kk};
+        const std::span<double> vals{&s.values_[size_t(n) * kk], kk};
+        field.top_values(grid.node_position(i, j, kz), ids, vals);
+        if (!std::all_of(vals.begin(), vals.end(), [](double d) { return std::isfinite(d); })) {
+          int64_t seen = first_bad.load();
+          while (n < seen && !first_bad.compare_exchange_weak(seen, n)) {}
+          return;
+        }
+        s.floor_[size_t(n)] = node_floor(vals, h);
+      }
+    }
+  });
+  if (const int64_t bad = first_bad.load(); bad != std::numeric_limits<int64_t>::max())
+    throw_not_finite(field, grid, bad + s.first_node_);
+  s.find_range();
+  return s;
+}
+
+SampledField SampledField::from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,
+                                        std::vector<int32_t> ids, std::vector<double> values,
+                                        std::vector<double> floors) {
+  check_grid(grid);
+  const auto nodes = grid.nodes();
+  const int64_t count = (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
+  if (k < 1 || layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1] ||
+      ids.size() != size_t(count) * size_t(k) || values.size() != ids.size() || floors.size() != size_t(count))
+    throw InvalidInput(located("samples", "the arrays do not match layers " + std::to_string(layers[0]) + ".." +
+                                              std::to_string(layers[1]) + " with " + std::to_string(k) +
+                                              " phases per node"));
+  SampledField s;
+  s.grid_ = grid;
+  s.num_phases_ = num_phases;
+  s.k_ = k;
+  s.layers_ = layers;
+  s.first_node_ = grid.node_index(0, 0, layers[0]);
+  s.ids_ = std::move(ids);
+  s.values_ = std::move(values);
+  s.floor_ = std::move(floors);
+  s.find_range();
+  return s;
+}
+
+void SampledField::find_range() {
+  // The floor is below every stored value of its node, and slot 0 is the node's largest.
+  min_value_ = *std::min_element(floor_.begin(), floor_.end());
+  max_value_ = values_[0];
+  for (size_t n = 1; n < floor_.size(); ++n) max_value_ = std::max(max_value_, values_[n * size_t(k_)]);
+}
+
+double SampledField::value(int64_t n, int32_t phase) const {
+  const auto stored = ids(n);
+  for (size_t slot = 0; slot < stored.size(); ++slot)
+    if (stored[slot] == phase) return values(n)[slot];
+  return floor_value(n);
+}
+
+} // namespace vm

@@ -1,0 +1,246 @@
+#include "fields/top_k_grid_field.hpp"
+
+#include "core/parallel.hpp"
+#include "fields/top_k.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+namespace vm::detail {
+
+namespace {
+
+std::atomic<uint64_t> next_serial{1};
+
+constexpr int64_t kBrickNodes = TopKGridField::kBrick * TopKGridField::kBrick * TopKGridField::kBrick;
+
+/// Fills `ids[from..k)` with the lowest ids not among ids[0..from), as SampledField's tie rule would pick them.
+void pad_ids(int16_t* ids, size_t from, size_t k) {
+  int32_t next = 0;
+  for (size_t slot = from; slot < k; ++slot) {
+    while (std::find(ids, ids + slot, next) != ids + slot) ++next;
+    ids[slot] = int16_t(next++);
+  }
+}
+
+/// The floor of a node whose kept values run from `first` down to `last`: in
+/// float, like the stored values, and strictly below the last of them.
+float node_floor(float first, float last, double h) {
+  float f = float(floor_below(first, last, h));
+  if (f >= last) f = std::nextafter(last, -std::numeric_limits<float>::infinity());
+  return f;
+}
+
+} // namespace
+
+TopKGridField::TopKGridField(const GridSpec& grid, int k, std::vector<std::string> names, std::vector<int32_t> labels,
+                             std::vector<int32_t> uniform, float top)
+    : serial_(next_serial++), grid_(grid), k_(std::min<int>(k, int(names.size()))), names_(std::move(names)), labels_(std::move(labels)),
+      top_(top) {
+  const auto nodes = grid_.nodes();
+  for (size_t a = 0; a < 3; ++a) bricks_[a] = (nodes[a] + kBrick - 1) / kBrick;
+  const size_t count = size_t(bricks_[0] * bricks_[1] * bricks_[2]);
+  if (uniform.empty()) uniform.assign(count, -1);
+  brick_.resize(count);
+  int32_t dense = 0;
+  for (size_t b = 0; b < count; ++b) brick_[b] = uniform[b] >= 0 ? -1 - uniform[b] : dense++;
+  const size_t dense_nodes = size_t(dense) * size_t(kBrickNodes);
+  ids_.assign(dense_nodes * size_t(k_), 0);
+  values_.assign(dense_nodes * size_t(k_), 0.f);
+  floor_.assign(dense_nodes, 0.f);
+  filled_.assign(dense_nodes, 0);
+}
+
+size_t TopKGridField::slot(int64_t i, int64_t j, int64_t k) const {
+  const int64_t b = i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick));
+  const int64_t local = i % kBrick + kBrick * (j % kBrick + kBrick * (k % kBrick));
+  return size_t(int64_t(brick_[size_t(b)]) * kBrickNodes + local);
+}
+
+void TopKGridField::offer(int64_t n, int32_t id, float value) {
+  const auto nodes = grid_.nodes();
+  offer(n % nodes[0], n / nodes[0] % nodes[1], n / (nodes[0] * nodes[1]), id, value);
+}
+
+void TopKGridField::offer(int64_t i, int64_t j, int64_t k, int32_t id, float value) {
+  const size_t s = slot(i, j, k);
+  int16_t* ids = &ids_[s * size_t(k_)];
+  float* vals = &values_[s * size_t(k_)];
+  int at = filled_[s];
+  if (at == k_) {
+    if (!ranks_before(value, id, vals[k_ - 1], ids[k_ - 1])) return;
+    --at; // replaces the smallest
+  } else {
+    ++filled_[s];
+  }
+  // Insertion sort step: move larger-ranked ones down until `value` fits.
+  while (at > 0 && ranks_before(value, id, vals[at - 1], ids[at - 1])) {
+    ids[at] = ids[at - 1];
+    vals[at] = vals[at - 1];
+    --at;
+  }
+  ids[at] = int16_t(id);
+  vals[at] = value;
+}
+
+int64_t TopKGridField::finish(float far) {
+  const size_t k = size_t(k_);
+  const double h = grid_.h();
+  const auto nodes = grid_.nodes();
+  // The lowest node offered nothing: a minimum, whichever thread finds which.
+  std::atomic<int64_t> empty{std::numeric_limits<int64_t>::max()};
+  parallel_for_each_index(brick_.size(), [&](size_t b) {
+    if (brick_[b] < 0) return;
+    const int64_t bi = int64_t(b) % bricks_[0], bj = int64_t(b) / bricks_[0] % bricks_[1], bk = int64_t(b) / (bricks_[0] * bricks_[1]);
+    for (int64_t k3 = bk * kBrick; k3 < std::min(nodes[2], (bk + 1) * kBrick); ++k3)
+      for (int64_t j3 = bj * kBrick; j3 < std::min(nodes[1], (bj + 1) * kBrick); ++j3)
+        for (int64_t i3 = bi * kBrick; i3 < std::min(nodes[0], (bi + 1) * kBrick); ++i3) {
+          const size_t s = slot(i3, j3, k3);
+          if (filled_[s] == 0) {
+            const int64_t n = grid_.node_index(i3, j3, k3);
+            for (int64_t seen = empty.load(); n < seen && !empty.compare_exchange_weak(seen, n);) {}
+          }
+          int16_t* ids = &ids_[s * k];
+          float* vals = &values_[s * k];
+          pad_ids(ids, filled_[s], k);
+          std::fill(vals + filled_[s], vals + k, far);
+          floor_[s] = node_floor(vals[0], vals[k - 1], h);
+        }
+  }, 64);
+  filled_.clear();
+  filled_.shrink_to_fit();
+  uniform_ids_.assign(size_t(num_phases()) * k, 0);
+  uniform_values_.assign(k, far);
+  uniform_values_[0] = top_;
+  for (size_t p = 0; p < size_t(num_phases()); ++p) {
+    uniform_ids_[p * k] = int16_t(p);
+    pad_ids(&uniform_ids_[p * k], 1, k);
+  }
+  uniform_floor_ = node_floor(top_, k > 1 ? far : top_, h);
+  return empty == std::numeric_limits<int64_t>::max() ? -1 : empty.load();
+}
+
+const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
+  thread_local struct {
+    uint64_t serial = 0;
+    Vec3 x;
+    Cell cell;
+  } last;
+  if (last.serial != serial_ || last.x != x) fill_cell(x, last.cell), last.serial = serial_, last.x = x;
+  return last.cell;
+}
+
+void TopKGridField::fill_cell(const Vec3& x, Cell& c) const {
+  const Vec3 h = grid_.spacing();
+  Vec3 f, dfd; // fraction in the cell, and its derivative along the axis (0 outside the domain)
+  // Per axis, for the cell's lower and upper node: the brick and the place in it.
+  uint64_t brick[3][2], local[3][2];
+  for (int a = 0; a < 3; ++a) {
+    const double t = (x[a] - grid_.domain.min[a]) / h[a];
+    const double clamped = std::clamp(t, 0.0, double(grid_.cells[a]));
+    const uint64_t i0 = uint64_t(std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1));
+    f[a] = clamped - double(i0);
+    dfd[a] = t == clamped ? 1.0 / h[a] : 0.0;
+    for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick, local[a][side] = (i0 + side) % kBrick;
+  }
+  const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
+  for (int corner = 0; corner < 8; ++corner) {
+    const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
+    const double wx = bx ? f.x() : 1 - f.x(), wy = by ? f.y() : 1 - f.y(), wz = bz ? f.z() : 1 - f.z();
+    const double sx = bx ? dfd.x() : -dfd.x(), sy = by ? dfd.y() : -dfd.y(), sz = bz ? dfd.z() : -dfd.z();
+    const int32_t b = brick_[brick[0][bx] + nb0 * (brick[1][by] + nb1 * brick[2][bz])];
+    if (b < 0) {
+      c.node[corner] = {&uniform_ids_[size_t(-1 - b) * size_t(k_)], uniform_values_.data(), uniform_floor_};
+    } else {
+      const size_t s = size_t(uint64_t(b) * kBrickNodes + local[0][bx] + kBrick * (local[1][by] + kBrick * local[2][bz]));
+      c.node[corner] = {&ids_[s * size_t(k_)], &values_[s * size_t(k_)], floor_[s]};
+    }
+    c.w[corner] = wx * wy * wz;
+    c.dw[corner] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
+    // Corners all in uniform bricks of one phase hold the same values.
+    if (corner == 0) c.uniform = b < 0 ? -1 - b : -1;
+    else if (b != -1 - c.uniform) c.uniform = -1;
+  }
+}
+
+float TopKGridField::node_value(const Node& n, int32_t phase) const {
+  for (size_t slot = 0; slot < size_t(k_); ++slot)
+    if (n.ids[slot] == phase) return n.vals[slot];
+  return n.floor;
+}
+
+double TopKGridField::floor_at(const Cell& c) const {
+  double v = 0;
+  for (int corner = 0; corner < 8; ++corner) v += c.w[corner] * c.node[corner].floor;
+  return v;
+}
+
+double TopKGridField::value(int i, const Vec3& x) const {
+  const Cell& c = cell(x);
+  double v = 0;
+  for (int corner = 0; corner < 8; ++corner) v += c.w[corner] * node_value(c.node[corner], i);
+  return v;
+}
+
+Vec3 TopKGridField::gradient(int i, const Vec3& x) const {
+  const Cell& c = cell(x);
+  Vec3 g = Vec3::Zero();
+  for (int corner = 0; corner < 8; ++corner) g += c.dw[corner] * double(node_value(c.node[corner], i));
+  return g;
+}
+
+void TopKGridField::values(const Vec3& x, std::span<double> out) const {
+  const Cell& c = cell(x);
+  std::fill(out.begin(), out.end(), floor_at(c));
+  for (int corner = 0; corner < 8; ++corner)
+    for (size_t slot = 0; slot < size_t(k_); ++slot) {
+      const int32_t id = c.node[corner].ids[slot];
+      double v = 0;
+      for (int other = 0; other < 8; ++other) v += c.w[other] * node_value(c.node[other], id);
+      out[size_t(id)] = v;
+    }
+}
+
+void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
+  Cell c; // not cell(): sampling asks once per point
+  fill_cell(x, c);
+  // The phases stored at some corner (plain arrays: this runs once per grid
+  // node when sampling); every other phase is at the interpolated floor, below them all.
+  int32_t seen_id[8 * 16];
+  double seen_value[8 * 16];
+  size_t count = 0;
+  double floor = 0;
+  if (c.uniform >= 0) {
+    // Every corner holds the same values, already in rank order: interpolation gives them back.
+    for (size_t slot = 0; slot < size_t(k_); ++slot) seen_id[count] = c.node[0].ids[slot], seen_value[count++] = c.node[0].vals[slot];
+    floor = c.node[0].floor;
+  } else {
+    for (int corner = 0; corner < 8; ++corner)
+      for (size_t slot = 0; slot < size_t(k_); ++slot) {
+        const int32_t id = c.node[corner].ids[slot];
+        if (std::find(seen_id, seen_id + count, id) != seen_id + count) continue;
+        double v = 0;
+        for (int other = 0; other < 8; ++other) v += c.w[other] * node_value(c.node[other], id);
+        seen_id[count] = id, seen_value[count++] = v;
+      }
+    floor = floor_at(c);
+  }
+  int order[8 * 16];
+  for (size_t i = 0; i < count; ++i) order[i] = int(i);
+  const size_t keep = std::min(count, ids.size());
+  if (c.uniform < 0)
+    std::partial_sort(order, order + keep, order + count, [&](int a, int b) {
+      return ranks_before(seen_value[a], seen_id[a], seen_value[b], seen_id[b]);
+    });
+  for (size_t slot = 0; slot < keep; ++slot) ids[slot] = seen_id[order[slot]], vals[slot] = seen_value[order[slot]];
+  int32_t next = 0;
+  for (size_t slot = keep; slot < ids.size(); ++slot) {
+    while (std::find(seen_id, seen_id + count, next) != seen_id + count) ++next;
+    ids[slot] = next++;
+    vals[slot] = floor;
+  }
+}
+
+} // namespace vm::detail

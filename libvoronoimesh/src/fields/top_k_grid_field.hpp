@@ -1,0 +1,103 @@
+#pragma once
+/// @file fields/top_k_grid_field.hpp
+/// A phase field stored on the nodes of a grid as the K largest phases per node
+/// (the same top-K and floor rule as SampledField) and interpolated trilinearly
+/// in between, so that label volumes and distance grids with thousands of
+/// phases take memory O(nodes x K) and can be evaluated, with gradients, anywhere.
+///
+/// Nodes are stored in bricks of 4^3. A brick may be *uniform*: every node in it
+/// holds one phase at value `top` and no other phase offered, as deep inside a
+/// label's region, so a label volume stores values only in a band around its
+/// label changes (a few bytes per voxel elsewhere: the brick table).
+
+#include "voronoimesh/core/types.hpp"
+#include "voronoimesh/fields/phase_field.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace vm::detail {
+
+class TopKGridField final : public PhaseField {
+public:
+  static constexpr int64_t kBrick = 4; ///< nodes per brick along each axis
+
+  /// An empty store on `grid`'s nodes for `names.size()` phases, k slots per node
+  /// (at most the number of phases). `labels` as PhaseField::phase_label (empty = identity).
+  /// `uniform` gives per brick (bricks(), x fastest) the phase of a uniform
+  /// brick, or -1 for a brick whose nodes take offers; empty = every brick
+  /// takes offers. A uniform brick's nodes hold their phase at `top` and every
+  /// other phase as if none was offered (see finish()).
+  TopKGridField(const GridSpec& grid, int k, std::vector<std::string> names, std::vector<int32_t> labels,
+                std::vector<int32_t> uniform = {}, float top = 0.f);
+
+  const GridSpec& grid() const { return grid_; }
+  /// Bricks along each axis: ceil(nodes / kBrick).
+  const std::array<int64_t, 3>& bricks() const { return bricks_; }
+
+  /// Offers phase `id` with `value` at node n (or (i, j, k)) of a brick that is
+  /// not uniform: kept if among the k largest offered there. Nodes are
+  /// independent, so different nodes may be offered to from different threads at once.
+  void offer(int64_t n, int32_t id, float value);
+  void offer(int64_t i, int64_t j, int64_t k, int32_t id, float value);
+  /// Ends the offers: slots a node did not fill take the lowest ids not kept
+  /// there at value `far` (the value of every phase not offered), and each
+  /// node gets its floor. Returns the first node (linear index) that was
+  /// offered nothing, or -1; nodes of uniform bricks count as offered.
+  int64_t finish(float far);
+
+  int num_phases() const override { return int(names_.size()); }
+  std::string phase_name(int i) const override { return names_.at(size_t(i)); }
+  int32_t phase_label(int i) const override { return labels_.empty() ? i : labels_[size_t(i)]; }
+  void values(const Vec3& x, std::span<double> out) const override;
+  double value(int i, const Vec3& x) const override;
+  Vec3 gradient(int i, const Vec3& x) const override;
+  void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const override;
+
+private:
+  /// One node's kept phases: k ids and values, largest first, and the floor.
+  struct Node {
+    const int16_t* ids;
+    const float* vals;
+    float floor;
+  };
+  /// The 8 corner nodes of the cell holding x (clamped into the domain), their
+  /// trilinear weights and the weights' derivatives along each axis. `uniform`
+  /// is the phase when all 8 corners are in uniform bricks of that phase, else -1.
+  struct Cell {
+    Node node[8];
+    double w[8];
+    Vec3 dw[8];
+    int32_t uniform;
+  };
+  /// The cell at x. The passes ask for the value and gradient of each phase of
+  /// a vertex one by one at the same point, so the last cell each thread
+  /// computed is kept and returned again for the same field and point.
+  const Cell& cell(const Vec3& x) const;
+  void fill_cell(const Vec3& x, Cell& c) const;
+  /// Slot of node (i, j, k) in the dense arrays; precondition: its brick is not uniform.
+  size_t slot(int64_t i, int64_t j, int64_t k) const;
+  float node_value(const Node& n, int32_t phase) const;
+  double floor_at(const Cell& c) const;
+
+  uint64_t serial_; ///< tells this field's cached cells from another's (cell())
+  GridSpec grid_;
+  int k_;
+  std::vector<std::string> names_;
+  std::vector<int32_t> labels_;
+  std::array<int64_t, 3> bricks_{};
+  /// Per brick: >= 0 its index among the dense bricks, < 0 a uniform brick of phase -1 - value.
+  std::vector<int32_t> brick_;
+  /// Per phase, the ids and values every node of a uniform brick of it holds.
+  std::vector<int16_t> uniform_ids_;
+  std::vector<float> uniform_values_;
+  float uniform_floor_ = 0;
+  float top_;
+  std::vector<int16_t> ids_; ///< dense bricks, kBrick^3 nodes each (x fastest), k per node
+  std::vector<float> values_;
+  std::vector<float> floor_;
+  std::vector<uint8_t> filled_; ///< slots offered per dense node, until finish()
+};
+
+} // namespace vm::detail

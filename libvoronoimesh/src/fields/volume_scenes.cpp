@@ -1,0 +1,141 @@
+#include "fields/volume_scenes.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+
+#include "core/memory.hpp"
+#include "core/parallel.hpp"
+#include "core/text.hpp"
+#include "fields/label_field.hpp"
+#include "fields/top_k_grid_field.hpp"
+#include "fields/voxel_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace vm::detail {
+
+namespace {
+
+/// The distinct values of `labels`, sorted (runs of equal labels cost one lookup).
+std::vector<int32_t> distinct(const std::vector<int32_t>& labels) {
+  std::unordered_set<int32_t> seen;
+  int32_t last = 0;
+  bool any = false;
+  for (int32_t l : labels)
+    if (!any || l != last) seen.insert(l), last = l, any = true;
+  std::vector<int32_t> out(seen.begin(), seen.end());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// What each label present becomes after --drop-labels, --merge-labels and the
+/// background rule: a label value, or -1 for no phase.
+std::vector<int32_t> label_targets(const std::vector<int32_t>& present, const InputOptions& o, const std::string& path) {
+  auto require_present = [&](int32_t l, const char* option) {
+    if (!std::binary_search(present.begin(), present.end(), l))
+      throw InvalidInput(located(path, cat(option, ": label ", l, " is not in the volume")));
+  };
+  std::vector<int32_t> target = present;
+  for (int32_t l : o.drop_labels) require_present(l, "--drop-labels");
+  for (const auto& group : o.merge_labels) for (int32_t l : group) require_present(l, "--merge-labels");
+  for (size_t i = 0; i < present.size(); ++i) {
+    int32_t& t = target[i];
+    if (std::find(o.drop_labels.begin(), o.drop_labels.end(), t) != o.drop_labels.end()) t = o.background;
+    for (const auto& group : o.merge_labels)
+      if (std::find(group.begin(), group.end(), t) != group.end()) t = *std::min_element(group.begin(), group.end());
+    if (o.no_background && t == o.background) t = -1;
+  }
+  return target;
+}
+
+/// Refuses, before building them, phase functions that cannot fit in memory:
+/// per node K ids (16-bit) and values and a floor (all of them for a distance
+/// grid, whose every node is stored), and `extra` bytes per node besides.
+void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string& path) {
+  refuse_beyond_memory(double(nodes) * (4.0 + 6.0 * top_k + extra), path,
+                       cat("building the phase functions of ", double(nodes), " voxels"));
+}
+
+void check_phase_count(size_t count, const std::string& source, const char* what) {
+  if (count < 2) throw InvalidInput(located(source, cat("has ", count, " phase(s)", what, "; meshing needs 2 or more")));
+  if (count > kMaxPhases) throw InvalidInput(located(source, cat("has ", count, " phases; at most ", kMaxPhases)));
+}
+
+} // namespace
+
+void check_input_options(const InputOptions& o) {
+  if (!(o.smoothing > 0 && o.smoothing <= 8)) throw InvalidInput(cat("--smoothing: must be in (0, 8] voxels, got ", o.smoothing));
+  if (!(o.band >= 1 && o.band <= 64)) throw InvalidInput(cat("--band: must be in [1, 64] voxels, got ", o.band));
+  if (o.top_k < 1 || o.top_k > 16) throw InvalidInput("--top-k: must be between 1 and 16");
+  if (!(o.voxels_per_cell >= 1 && o.voxels_per_cell <= 64))
+    throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
+  for (const auto& group : o.merge_labels)
+    if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
+}
+
+Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string& path) {
+  if (v.components != 1)
+    throw InvalidInput(located(path, cat("has ", v.components, " integer components per voxel; a label volume has one")));
+  refuse_huge_field(v.voxel_count(), o.top_k, 6, path); // the labels and their phases
+  const std::vector<int32_t> present = distinct(v.labels);
+  const std::vector<int32_t> target = label_targets(present, o, path);
+  PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
+  for (int32_t t : target) if (t >= 0) pv.labels.push_back(t);
+  std::sort(pv.labels.begin(), pv.labels.end());
+  pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
+  check_phase_count(pv.labels.size(), path, " after the label options");
+  for (int32_t l : pv.labels) pv.names.push_back(l == o.background ? std::string("background") : cat("label", l));
+  // Label value -> phase id, through the position of the label among `present`.
+  std::vector<int32_t> phase_of(present.size());
+  for (size_t i = 0; i < present.size(); ++i)
+    phase_of[i] = target[i] < 0 ? -1
+                                : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), target[i]) - pv.labels.begin());
+  pv.phase.resize(v.labels.size());
+  // Label value -> phase id: a table over the labels' range when it is small (8- and 16-bit files).
+  const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;
+  std::vector<int16_t> table(span <= (1 << 20) ? size_t(span) : 0);
+  for (size_t i = 0; i < present.size() && !table.empty(); ++i) table[size_t(present[i] - first)] = int16_t(phase_of[i]);
+  parallel_for_each_index(v.labels.size(), [&](size_t n) {
+    pv.phase[n] = !table.empty() ? table[size_t(v.labels[n] - first)]
+                                 : int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) -
+                                                           present.begin())]);
+  }, 1 << 16);
+  v.labels = {}; // the phases replace the labels: free them before the field grows
+  LabelFieldParams params;
+  params.signed_distance = o.label_function == LabelFunction::signed_distance;
+  params.smoothing = o.smoothing;
+  params.band = o.band;
+  params.k = o.top_k;
+  auto field = label_field(pv, params, path);
+  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field};
+}
+
+Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,
+                         std::vector<int32_t> labels, int top_k, const std::string& source) {
+  check_phase_count(size_t(std::max(num_phases, 0)), source, "");
+  if (!names.empty() && names.size() != size_t(num_phases))
+    throw InvalidInput(located(source, cat(names.size(), " phase names for ", num_phases, " phases")));
+  if (!labels.empty() && labels.size() != size_t(num_phases))
+    throw InvalidInput(located(source, cat(labels.size(), " phase labels for ", num_phases, " phases")));
+  if (std::adjacent_find(labels.begin(), labels.end(), std::greater_equal<>()) != labels.end())
+    throw InvalidInput(located(source, "phase labels must be strictly increasing"));
+  refuse_huge_field(grid.node_count(), top_k, 0, source);
+  for (int i = int(names.size()); i < num_phases; ++i) names.push_back(cat("phase", i));
+  auto field = std::make_shared<TopKGridField>(grid, top_k, std::move(names), std::move(labels));
+  std::vector<float> values(static_cast<size_t>(num_phases));
+  const auto n0 = grid.nodes()[0], n1 = grid.nodes()[1];
+  for (int64_t n = 0; n < grid.node_count(); ++n) {
+    fill(n, values);
+    for (int32_t i = 0; i < num_phases; ++i) {
+      if (!std::isfinite(values[size_t(i)]))
+        throw InvalidInput(located(source, cat("phase ", i, " at node (", n % n0, ", ", n / n0 % n1, ", ", n / (n0 * n1),
+                                               "): value ", values[size_t(i)], " is not a finite float")));
+      field->offer(n, i, values[size_t(i)]);
+    }
+  }
+  field->finish(0.f); // every phase was offered everywhere: nothing to pad
+  return Scene{even_scene_grid(grid, source), field};
+}
+
+} // namespace vm::detail

@@ -1,0 +1,78 @@
+/// @file improve/builtin_passes.cpp
+/// Thin adapters from the pass interface to the algorithms (improve/smooth.hpp,
+/// improve/project.hpp, improve/clamp.hpp, improve/flip.hpp, check/stats.hpp).
+/// Defaults are the paper's. smooth, project, clamp and flip also run on a part
+/// of a distributed mesh (PassContext::parts, improve/part_agreement.hpp).
+
+#include "voronoimesh/improve/clamp.hpp"
+#include "voronoimesh/improve/flip.hpp"
+#include "voronoimesh/improve/project.hpp"
+#include "voronoimesh/improve/registry.hpp"
+#include "voronoimesh/improve/smooth.hpp"
+
+#include "improve/part_agreement.hpp"
+
+namespace vm {
+namespace {
+
+/// A pass whose body is a function of the context and its parameters.
+class FunctionPass : public Pass {
+public:
+  using Body = std::function<void(PassContext&, const ParamValues&)>;
+  FunctionPass(Body body, ParamValues params) : body_(std::move(body)), params_(std::move(params)) {}
+  void run(PassContext& context) override { body_(context, params_); }
+
+private:
+  Body body_;
+  ParamValues params_;
+};
+
+PassInfo make_info(std::string name, std::string summary, std::vector<ParamSpec> params, bool moves, bool field,
+                   bool distributed, FunctionPass::Body body) {
+  PassInfo info{std::move(name), std::move(summary), std::move(params), moves, field, distributed, {}};
+  info.make = [body](const ParamValues& p) { return std::make_unique<FunctionPass>(body, p); };
+  return info;
+}
+
+} // namespace
+
+void register_builtin_passes(PassRegistry& registry) {
+  registry.add(make_info(
+      "smooth", "DistMesh repulsion on surfaces, half-Laplacian on and next to junctions (Alg. 4, sect. 4.2.1)",
+      {{"rest_factor", SmoothParams{}.rest_factor, 0.5, 3.0, false,
+        "rest length l0 = rest_factor x RMS edge length (eq. 3)"}},
+      true, true, true, [](PassContext& c, const ParamValues& p) {
+        // The rest length comes from the whole mesh, in a distributed run too.
+        const double rms = c.parts ? c.parts->rms_edge_length(c.mesh) : rms_edge_length(c.mesh);
+        add_smoothing_forces_with_rest_length(c.mesh, *c.field, p.at("rest_factor") * rms, c.displacement());
+      }));
+  registry.add(make_info(
+      "project", "Newton steps onto surfaces, triple curves and quadruple points with the original phases (eq. 4)",
+      {{"min_gradient_gap", ProjectParams{}.min_gradient_gap, 0.0, 1.0, false,
+        "skip phase pairs whose gradients differ by less (sect. 4.2.2)"}},
+      true, true, true, [](PassContext& c, const ParamValues& p) {
+        add_projection(c.mesh, *c.field, ProjectParams{p.at("min_gradient_gap")}, c.displacement());
+      }));
+  registry.add(make_info(
+      "clamp", "scale each pending move so that no triangle can invert (Alg. 3, eq. 5)",
+      {{"factor", ClampParams{}.factor, 0.0, 1.0, false, "fraction of the largest safe step (eq. 5: 1/2)"}}, true,
+      false, true, [](PassContext& c, const ParamValues& p) {
+        if (c.pending) clamp_displacements(c.mesh, ClampParams{p.at("factor")}, c.delta);
+      }));
+  registry.add(make_info(
+      "flip", "flip edges inside a surface when it raises the pair's smaller quality (Alg. 5, sect. 4.3)",
+      {{"skip_quality", FlipParams{}.skip_quality, 0.0, 1.0, false, "leave pairs of at least this quality (Alg. 5, line 7)"},
+       {"max_rounds", double(FlipParams{}.max_rounds), 1, 1000, true, "rounds of node-disjoint flips per iteration"},
+       {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
+        "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
+      false, false, true, [](PassContext& c, const ParamValues& p) {
+        const FlipParams params{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below"),
+                                c.guard_crossings, c.field};
+        c.flips += (c.parts ? detail::flip_edges(c.mesh, params, *c.parts) : flip_edges(c.mesh, params)).flips;
+      }));
+  registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (check/stats.hpp)", {},
+                         false, false, false,
+                         [](PassContext& c, const ParamValues&) { c.stats = compute_stats(c.mesh.to_node_mesh()); }));
+}
+
+} // namespace vm

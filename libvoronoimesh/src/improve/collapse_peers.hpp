@@ -1,0 +1,54 @@
+#pragma once
+/// @file improve/collapse_peers.hpp
+/// How the collapses of a distributed run agree across ranks
+/// (mpi/improve_part.cpp), as flip_peers.hpp does for flips. One process
+/// passes no peers. Nodes travel as ids (a distributed run's global vertex ids;
+/// in one process the node indices themselves), which order nodes alike.
+
+#include "voronoimesh/improve/collapse.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+/// A junction sliver that could be collapsed: its quality, its triangle's id,
+/// the edge b -> a it would collapse (a = -1: none allowed), and the nodes a
+/// collapse claims (a, b and their rings), as ids.
+struct SliverCollapse {
+  double quality;
+  int64_t triangle;
+  int64_t a, b;
+  std::vector<int64_t> claims;
+};
+
+class CollapsePeers {
+public:
+  virtual ~CollapsePeers() = default;
+  /// True when this rank answers for node n: its slivers (by lowest corner),
+  /// the validation around it as a collapse target, its failures.
+  virtual bool answers_for(int32_t n) = 0;
+  /// Every rank's slivers.
+  virtual std::vector<SliverCollapse> all(const std::vector<SliverCollapse>& mine) = 0;
+  /// Every rank's node ids, once each.
+  virtual std::vector<int64_t> all(const std::vector<int64_t>& mine) = 0;
+  /// True when any rank's `mine` is.
+  virtual bool any(bool mine) = 0;
+};
+
+/// What a distributed collapse kept of the mesh, to follow its nodes and
+/// triangles: the old index of each node and each triangle of the rebuilt mesh.
+struct CollapseKept {
+  std::vector<int32_t> nodes, triangles;
+};
+
+/// collapse_junction_slivers() agreed across ranks: `node_ids` and
+/// `triangle_ids` give this rank's nodes and triangles their ids. Unlike one
+/// process it keeps the nodes no triangle uses any more out of the rebuilt mesh
+/// the same way, and reports in `kept` what it kept.
+size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers& peers,
+                                 std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
+                                 CollapseKept& kept);
+
+} // namespace vm::detail

@@ -1,0 +1,263 @@
+#include "voronoimesh/improve/flip.hpp"
+
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/improve/collapse.hpp"
+
+#include "core/parallel.hpp"
+#include "improve/field_orientation.hpp"
+#include "improve/part_agreement.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <tuple>
+
+namespace vm {
+namespace {
+
+using detail::FlipCandidate;
+using detail::FlipPeers;
+
+/// Quality of every face, kept current across flips.
+class FaceQuality {
+public:
+  explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.omesh().n_faces()) {
+    detail::parallel_for_each_index(q_.size(), [&](size_t f) { update(OMesh::FaceHandle(int(f))); });
+  }
+  double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
+  void update(OMesh::FaceHandle f) {
+    const auto c = mesh_.face_nodes(f);
+    const auto& pos = mesh_.positions();
+    q_[size_t(f.idx())] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
+  }
+
+private:
+  const InterfaceMesh& mesh_;
+  std::vector<double> q_;
+};
+
+/// True when the face of halfedge h has boundary edges on both sides of h's
+/// opposite corner: an "ear" whose three corners lie on one junction curve (or
+/// the box). Projection pulls such corners onto the curve, so an ear can only
+/// degenerate; flipping h away is the only cure.
+bool is_ear_across(const OMesh& om, OMesh::HalfedgeHandle h) {
+  const auto n = om.next_halfedge_handle(h);
+  return om.is_boundary(om.edge_handle(n)) && om.is_boundary(om.edge_handle(om.next_halfedge_handle(n)));
+}
+
+/// Algorithm 5 for one edge, read-only. Returns the quality gain of flipping it,
+/// or a negative number if it must not flip. Beyond the paper: an ear on either
+/// side flips whenever the flip is legal (gain 1 + its quality gain, so ears go first).
+double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::EdgeHandle eh, const FlipParams& p,
+                 std::array<int32_t, 4>& nodes) {
+  const OMesh& om = mesh.omesh();
+  if (om.is_boundary(eh)) return -1; // junction or domain edge: never flips
+  // Judged from its lower node to its higher one, whichever way OpenMesh stores
+  // the edge: the result must depend on the nodes alone, not on the history of
+  // the mesh's halfedges (a part of the mesh built afresh must judge alike).
+  auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
+  if (mesh.node(om.from_vertex_handle(h0)) > mesh.node(om.to_vertex_handle(h0))) std::swap(h0, h1);
+  const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
+  const bool ear = is_ear_across(om, h0) || is_ear_across(om, h1);
+  if (before >= p.skip_quality && !ear) return -1;
+  // Triangles (i, j, k) and (i, l, j) as in the paper's Fig. 5.
+  nodes = {mesh.node(om.from_vertex_handle(h0)), mesh.node(om.to_vertex_handle(h0)),
+           mesh.node(om.to_vertex_handle(om.next_halfedge_handle(h0))),
+           mesh.node(om.to_vertex_handle(om.next_halfedge_handle(h1)))};
+  const auto& pos = mesh.positions();
+  const Vec3 &vi = pos[size_t(nodes[0])], &vj = pos[size_t(nodes[1])], &vk = pos[size_t(nodes[2])],
+             &vl = pos[size_t(nodes[3])];
+  const double after = std::min(triangle_quality(vi, vl, vk), triangle_quality(vl, vj, vk));
+  if (after <= before && !ear) return -1;
+  // An ear flips even when that lowers the pair's quality, but never into a
+  // triangle validate() calls zero-area (three nodes on one line, as planes
+  // through lattice nodes make them).
+  if (ear && (has_zero_area(vi, vl, vk) || has_zero_area(vl, vj, vk))) return -1;
+  const Vec3 n3 = (vl - vi).cross(vk - vi), n4 = (vk - vj).cross(vl - vj);
+  if (n3.dot(n4) <= 0) return -1; // the new pair would fold
+  // Nor may it turn the pair over: both new normals agree with the old ones.
+  const Vec3 old = (vj - vi).cross(vk - vi) + (vl - vi).cross(vj - vi);
+  if (n3.dot(old) <= 0 || n4.dot(old) <= 0) return -1;
+  // OpenMesh only sees this patch; the new edge must not exist in another one
+  // (openmesh-probe.md, pitfall 2).
+  if (nodes[2] == nodes[3] || mesh.adjacent(nodes[2], nodes[3])) return -1;
+  // An edge along a box edge (its nodes share box faces of two axes) is a crease
+  // of a closed domain's outside surface: flipping it would cut the box corner.
+  const uint8_t common = mesh.box_faces()[size_t(nodes[0])] & mesh.box_faces()[size_t(nodes[1])];
+  if (((common & 3) != 0) + ((common & 12) != 0) + ((common & 48) != 0) >= 2) return -1;
+  if (!om.is_flip_ok(eh)) return -1;
+  return ear ? 1 + (after - before) : after - before;
+}
+
+/// One process's choice among `found` (best first): each candidate whose nodes
+/// no better candidate took. Flips in one round share no node, so every
+/// judgement stays true until its own flip.
+void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>& found, std::vector<uint8_t>& take) {
+  std::vector<char> taken(mesh.num_nodes(), 0);
+  for (size_t c = 0; c < found.size(); ++c) {
+    const auto& nodes = found[c].nodes;
+    take[c] = std::none_of(nodes.begin(), nodes.end(), [&](int32_t n) { return taken[size_t(n)]; });
+    if (take[c])
+      for (int32_t n : nodes) taken[size_t(n)] = 1;
+  }
+}
+
+/// The rounds of Algorithm 5, never flipping a `banned` edge. Appends every
+/// flipped edge to `log`, in order, with its nodes before the flip to `flipped`.
+FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
+                      std::vector<int32_t>& log, std::vector<std::array<int32_t, 2>>& flipped, FlipPeers* peers) {
+  FlipStats stats;
+  FaceQuality quality(mesh);
+  // Round 1 judges every edge; later rounds only the edges of faces a flip changed
+  // and the candidates that lost to a neighbouring flip.
+  std::vector<int32_t> edges(mesh.omesh().n_edges());
+  std::iota(edges.begin(), edges.end(), 0);
+  std::vector<FlipCandidate> judged, found;
+  std::vector<uint8_t> take;
+  for (int round = 0; round < params.max_rounds; ++round) {
+    judged.assign(edges.size(), FlipCandidate{-1, -1, {}});
+    detail::parallel_for_each_index(edges.size(), [&](size_t i) {
+      judged[i].edge = edges[i];
+      if (banned[size_t(edges[i])]) return;
+      judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
+    });
+    found.clear();
+    for (const FlipCandidate& c : judged)
+      if (c.gain > 0) found.push_back(c);
+    if (peers ? !peers->any(!found.empty()) : found.empty()) break;
+    // Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
+    // order depends on the mesh alone).
+    std::sort(found.begin(), found.end(), [](const FlipCandidate& a, const FlipCandidate& b) {
+      if (a.gain != b.gain) return a.gain > b.gain;
+      return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
+    });
+    take.assign(found.size(), 0);
+    if (peers) peers->choose(found, take);
+    else choose_greedily(mesh, found, take);
+    OMesh& om = mesh.omesh_for_topology();
+    edges.clear();
+    for (size_t c = 0; c < found.size(); ++c) {
+      if (!take[c]) {
+        edges.push_back(found[c].edge); // lost to a better flip nearby: judge it again next round
+        continue;
+      }
+      const OMesh::EdgeHandle eh(found[c].edge);
+      om.flip(eh);
+      log.push_back(found[c].edge);
+      flipped.push_back({found[c].nodes[0], found[c].nodes[1]});
+      ++stats.flips;
+      for (int side = 0; side < 2; ++side) {
+        const auto f = om.face_handle(om.halfedge_handle(eh, side));
+        quality.update(f);
+        for (auto e : om.fe_range(f)) edges.push_back(e.idx());
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    stats.rounds = round + 1;
+  }
+  if (stats.flips) mesh.topology_changed();
+  return stats;
+}
+
+/// The flipped edges whose faces now cross another triangle, or (with a field)
+/// face against their phase pair's direction at a junction; each is charged to
+/// the last flip that made the face.
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const PhaseField* field,
+                                    FlipPeers* peers) {
+  const OMesh& om = mesh.omesh();
+  std::vector<int32_t> last_flip(om.n_faces(), -1);
+  std::vector<uint8_t> involved(om.n_faces(), 0);
+  for (size_t i = 0; i < log.size(); ++i)
+    for (int side = 0; side < 2; ++side) {
+      const auto f = size_t(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(log[i]), side)).idx());
+      last_flip[f] = int32_t(i);
+      involved[f] = 1;
+    }
+  const NodeMesh m = mesh.to_node_mesh();
+  if (peers) // another rank answers for the rest
+    for (size_t f = 0; f < last_flip.size(); ++f)
+      if (last_flip[f] >= 0 && !peers->answers_for(m.triangles[f])) last_flip[f] = -1;
+  const IntersectionReport found = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
+  std::vector<int32_t> culprits;
+  for (const auto& pair : found.pairs)
+    for (int32_t f : pair)
+      if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
+  if (field)
+    for (size_t f = 0; f < last_flip.size(); ++f)
+      if (last_flip[f] >= 0 && detail::touches_junction(mesh, m, f) && !detail::agrees_with_field(m, f, *field))
+        culprits.push_back(log[size_t(last_flip[f])]);
+  return culprits;
+}
+
+/// Flips the logged edges back, last first: flipping an edge twice restores the
+/// quad's first diagonal.
+void undo_flips(InterfaceMesh& mesh, const std::vector<int32_t>& log) {
+  OMesh& om = mesh.omesh_for_topology();
+  for (auto e = log.rbegin(); e != log.rend(); ++e) om.flip(OMesh::EdgeHandle(*e));
+  mesh.topology_changed();
+}
+
+/// flip_edges() without the collapses, with or without peers.
+FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
+  // A flip moves no node but can still push the new diagonal through a
+  // neighbouring surface where a phase is thinner than the quad. Such flips are
+  // found after the rounds, all flips are undone, the culprits banned, and the
+  // rounds run again; if that keeps failing, this call flips nothing.
+  std::vector<char> banned(mesh.omesh().n_edges(), 0);
+  FlipStats stats;
+  for (int attempt = 0;; ++attempt) {
+    std::vector<int32_t> log;
+    std::vector<std::array<int32_t, 2>> flipped;
+    stats = flip_rounds(mesh, params, banned, log, flipped, peers);
+    if (!params.guard_crossings) break;
+    std::vector<int32_t> culprits = log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params.field, peers);
+    if (peers) {
+      // The ranks' culprits, as nodes; mapped back to the edges this rank flipped.
+      std::vector<std::array<int32_t, 2>> nodes;
+      for (int32_t e : culprits)
+        nodes.push_back(flipped[size_t(std::find(log.begin(), log.end(), e) - log.begin())]);
+      const bool any = peers->agree_on_culprits(nodes);
+      culprits.clear();
+      for (size_t i = 0; i < log.size(); ++i)
+        if (std::find(nodes.begin(), nodes.end(), flipped[i]) != nodes.end()) culprits.push_back(log[i]);
+      if (!any) break;
+    } else if (culprits.empty()) {
+      break;
+    }
+    undo_flips(mesh, log);
+    stats = {};
+    if (attempt == kMaxFlipAttempts) break;
+    for (int32_t e : culprits) banned[size_t(e)] = 1;
+  }
+  return stats;
+}
+
+} // namespace
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
+  FlipStats stats = flip_all_rounds(mesh, params, nullptr);
+  stats.collapses = collapse_junction_slivers(
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings});
+  return stats;
+}
+
+namespace detail {
+
+FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params, PartAgreement& parts) {
+  parts.before_topology_change(mesh);
+  FlipStats stats = flip_all_rounds(mesh, params, &parts.flip_peers());
+  CollapseKept kept;
+  stats.collapses = collapse_junction_slivers(
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings},
+      parts.collapse_peers(), parts.node_ids(), parts.triangle_ids(), kept);
+  if (stats.collapses) parts.renumbered(kept);
+  return stats;
+}
+
+} // namespace detail
+
+} // namespace vm

@@ -1,0 +1,29 @@
+#include "voronoimesh/improve/pass.hpp"
+
+#include "voronoimesh/improve/guard.hpp"
+
+#include "improve/part_agreement.hpp"
+
+namespace vm {
+
+std::vector<Vec3>& PassContext::displacement() {
+  if (!pending) {
+    delta.assign(mesh.num_nodes(), Vec3::Zero());
+    pending = true;
+  }
+  return delta;
+}
+
+void PassContext::commit() {
+  if (!pending) return;
+  AgreeOnUndone agree;
+  if (parts) {
+    parts->share_moves(delta);
+    agree = [this](std::vector<int32_t>& undone) { return parts->agree_on_undone(undone); };
+  }
+  if (guard_crossings) undone_moves += commit_without_crossings(mesh, delta, field, agree).undone_nodes;
+  else mesh.move_nodes(delta);
+  pending = false;
+}
+
+} // namespace vm

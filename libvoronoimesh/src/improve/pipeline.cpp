@@ -1,0 +1,173 @@
+#include "voronoimesh/improve/pipeline.hpp"
+
+#include "core/text.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/core/errors.hpp"
+
+#include "core/fixed_point_sum.hpp"
+#include "core/parallel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace vm {
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, sep)) out.push_back(part);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+double parse_number(const std::string& text, const std::string& where) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  throw InvalidInput(located("pipeline", where + ": '" + text + "' is not a number"));
+}
+
+} // namespace
+
+Pipeline Pipeline::parse(const std::string& spec, const PassRegistry& registry) {
+  Pipeline p;
+  for (const std::string& raw : split(spec, ',')) {
+    const std::string item = trim(raw);
+    if (item.empty()) throw InvalidInput(located("pipeline", "empty pass name in '" + spec + "'"));
+    auto parts = split(item, ':');
+    const std::string name = trim(parts[0]);
+    ParamValues given;
+    for (size_t i = 1; i < parts.size(); ++i) {
+      const auto eq = parts[i].find('=');
+      if (eq == std::string::npos)
+        throw InvalidInput(located("pipeline", "'" + parts[i] + "' in '" + item + "': expected key=value"));
+      const std::string key = trim(parts[i].substr(0, eq));
+      given[key] = parse_number(trim(parts[i].substr(eq + 1)), name + "." + key);
+    }
+    p.steps_.push_back({registry.get(name), registry.resolve(name, given)});
+  }
+  if (p.steps_.empty()) throw InvalidInput(located("pipeline", "no passes given"));
+  return p;
+}
+
+bool Pipeline::needs_field() const {
+  for (const Step& s : steps_)
+    if (s.info.needs_field) return true;
+  return false;
+}
+
+std::string Pipeline::describe() const {
+  std::string out;
+  // Appends only: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+  for (const Step& s : steps_) {
+    if (!out.empty()) out += ", ";
+    out += s.info.name;
+    out += "(";
+    bool first = true;
+    for (const auto& [k, v] : s.params) {
+      if (!first) out += ", ";
+      out += detail::cat(k, "=", v);
+      first = false;
+    }
+    out += ")";
+  }
+  return out;
+}
+
+std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
+  const OMesh& om = mesh.omesh();
+  const size_t n = om.n_faces(), chunk = 8192, chunks = (n + chunk - 1) / chunk;
+  std::vector<double> lo(chunks, std::numeric_limits<double>::infinity());
+  // Qualities lie in [0, 1]; a fixed-point sum makes the mean independent of the
+  // face order (core/fixed_point_sum.hpp), as the stopping rule must be.
+  std::vector<detail::FixedPointSum> sum(chunks, detail::FixedPointSum(1.0));
+  const auto& pos = mesh.positions();
+  detail::parallel_for(size_t(0), chunks, [&](size_t c) {
+    for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
+      const auto t = mesh.face_nodes(OMesh::FaceHandle(int(f)));
+      const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);
+      lo[c] = std::min(lo[c], q);
+      sum[c].add(q);
+    }
+  });
+  double min_q = n ? std::numeric_limits<double>::infinity() : 0;
+  detail::FixedPointSum total(1.0);
+  for (size_t c = 0; c < chunks; ++c) min_q = std::min(min_q, lo[c]), total.add_raw(sum[c].raw());
+  return {min_q, n ? total.total() / double(n) : 0};
+}
+
+bool Pipeline::distributes() const {
+  return std::all_of(steps_.begin(), steps_.end(), [](const Step& s) { return s.info.distributed; });
+}
+
+std::vector<std::unique_ptr<Pass>> Pipeline::make_passes() const {
+  std::vector<std::unique_ptr<Pass>> passes;
+  for (const Step& s : steps_) passes.push_back(s.info.make(s.params));
+  return passes;
+}
+
+std::vector<double> Pipeline::iterate(PassContext& context, const std::vector<std::unique_ptr<Pass>>& passes) const {
+  std::vector<double> pass_seconds(passes.size(), 0.0);
+  size_t last_moving = 0;
+  auto timed = [&](size_t slot, auto&& work) {
+    const auto t0 = std::chrono::steady_clock::now();
+    work();
+    pass_seconds[slot] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  for (size_t i = 0; i < passes.size(); ++i) {
+    // Moves are committed at one point, before anything that looks at positions.
+    if (!steps_[i].info.moves_nodes) timed(last_moving, [&] { context.commit(); });
+    else last_moving = i;
+    timed(i, [&] { passes[i]->run(context); });
+  }
+  timed(last_moving, [&] { context.commit(); });
+  return pass_seconds;
+}
+
+int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions& options) const {
+  if (needs_field() && !field)
+    throw InvalidInput(located("pipeline", "'" + describe() + "' needs the phase functions (give --field)"));
+  const std::vector<std::unique_ptr<Pass>> passes = make_passes();
+  PassContext context(mesh, field);
+  context.guard_crossings = options.guard_crossings;
+  auto [best_min, best_mean] = quality_summary(mesh);
+  if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
+  int stalled = 0, done = 0;
+  for (int it = 1; it <= options.iterations; ++it) {
+    if (options.stop_requested && options.stop_requested()) break;
+    const auto start = std::chrono::steady_clock::now();
+    context.iteration = it;
+    context.flips = 0;
+    context.undone_moves = 0;
+    context.stats.reset();
+    const std::vector<double> pass_seconds = iterate(context, passes);
+    done = it;
+    const auto [min_q, mean_q] = quality_summary(mesh);
+    if (options.observer)
+      options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
+                        pass_seconds},
+                       mesh);
+    const bool improved = min_q > best_min + options.tolerance || mean_q > best_mean + options.tolerance;
+    best_min = std::max(best_min, min_q);
+    best_mean = std::max(best_mean, mean_q);
+    stalled = improved ? 0 : stalled + 1;
+    if (options.stop_when_converged && stalled >= options.patience) break;
+  }
+  return done;
+}
+
+} // namespace vm

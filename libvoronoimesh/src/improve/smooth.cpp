@@ -1,0 +1,120 @@
+#include "voronoimesh/improve/smooth.hpp"
+
+#include "core/parallel.hpp"
+#include "improve/edge_lengths.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace vm {
+namespace {
+
+/// Phases of node n as a span of ids.
+std::span<const int16_t> phases_of(const InterfaceMesh& m, int32_t n) {
+  const PhaseSet& s = m.phases()[size_t(n)];
+  return {s.data(), size_t(phase_count(s))};
+}
+
+} // namespace
+
+int junction_order(const InterfaceMesh& mesh, int32_t n) {
+  return phase_count(mesh.phases()[size_t(n)]) + std::popcount(unsigned(mesh.box_faces()[size_t(n)]));
+}
+
+void constrain_to_box(Vec3& d, uint8_t box_faces) {
+  for (int a = 0; a < 3; ++a)
+    if (box_faces >> (2 * a) & 3u) d[a] = 0;
+}
+
+namespace detail {
+
+SquaredEdgeLengths squared_edge_lengths(const InterfaceMesh& mesh, std::span<const uint8_t> counted) {
+  // The box faces of a closed mesh are not interfaces: their triangles are the
+  // lattice's faces, about twice the interface edges, and would set l0 too long.
+  const int32_t outside = mesh.outside_phase();
+  auto on_box_surface = [&](int32_t v, int32_t w) {
+    return outside >= 0 && mesh.has_phase(v, outside) && mesh.has_phase(w, outside);
+  };
+  // Fixed-point partial sums over chunks of nodes: the total does not depend on
+  // the chunks, the threads or the node numbering (core/fixed_point_sum.hpp).
+  const double unit = (mesh.domain().max - mesh.domain().min).squaredNorm();
+  const size_t n = mesh.num_nodes(), chunk = 4096, chunks = (n + chunk - 1) / chunk;
+  std::vector<FixedPointSum> sum(chunks, FixedPointSum(unit));
+  std::vector<uint64_t> count(chunks, 0);
+  const auto& pos = mesh.positions();
+  parallel_for_each_index(chunks, [&](size_t c) {
+    for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v) {
+      if (!counted.empty() && !counted[v]) continue;
+      for (int32_t w : mesh.neighbours(int32_t(v)))
+        if (size_t(w) > v && !on_box_surface(int32_t(v), w)) {
+          sum[c].add((pos[v] - pos[size_t(w)]).squaredNorm());
+          ++count[c];
+        }
+    }
+  });
+  SquaredEdgeLengths total{FixedPointSum(unit), 0};
+  for (size_t c = 0; c < chunks; ++c) total.sum.add_raw(sum[c].raw()), total.edges += count[c];
+  return total;
+}
+
+} // namespace detail
+
+double rms_edge_length(const InterfaceMesh& mesh) {
+  const detail::SquaredEdgeLengths s = detail::squared_edge_lengths(mesh, {});
+  return s.edges ? std::sqrt(s.sum.total() / double(s.edges)) : 0.0;
+}
+
+void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
+                          std::vector<Vec3>& delta) {
+  add_smoothing_forces_with_rest_length(mesh, field, params.rest_factor * rms_edge_length(mesh), delta);
+}
+
+void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const PhaseField& field, double l0,
+                                           std::vector<Vec3>& delta) {
+  const auto& pos = mesh.positions();
+  detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t vi) {
+    const int32_t v = int32_t(vi);
+    const int order = junction_order(mesh, v);
+    if (order > 3) return;
+    auto ring = mesh.neighbours(v);
+    if (ring.empty()) return;
+    bool near_junction = order == 3;
+    for (int32_t w : ring) near_junction = near_junction || junction_order(mesh, w) >= 3;
+
+    Vec3 force = Vec3::Zero();
+    const Vec3& x = pos[vi];
+    if (near_junction) {
+      // Laplacian smoothing works on and next to junctions, where flips cannot
+      // help and repulsion pushes nodes off their curves (sect. 4.2.1).
+      int same = 0;
+      for (int32_t w : ring)
+        if (mesh.constraints_within(v, w)) {
+          force += 0.5 * (pos[size_t(w)] - x);
+          ++same;
+        }
+      if (same) force /= double(same);
+    } else {
+      for (int32_t w : ring) {
+        const Vec3 d = x - pos[size_t(w)];
+        const double len = d.norm();
+        if (len > 0 && len < l0) force += d * ((l0 - len) / len);
+      }
+      force /= double(ring.size());
+    }
+    if (order == 2) {
+      // Tangential only: a normal component would fight the projection (sect. 4.2.4).
+      auto ph = phases_of(mesh, v);
+      Vec3 n = field.gradient(ph[0], x) - field.gradient(ph[1], x);
+      const double len = n.norm();
+      if (len > 0) {
+        n /= len;
+        force -= force.dot(n) * n;
+      }
+    }
+    constrain_to_box(force, mesh.box_faces()[vi]);
+    delta[vi] += force;
+  });
+}
+
+} // namespace vm

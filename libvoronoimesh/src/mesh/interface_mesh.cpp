@@ -1,0 +1,262 @@
+/// @file mesh/interface_mesh.cpp
+/// The patch-split build of openmesh-probe.md "Recommended representation":
+/// triangle corners are merged across patch-interior edges (exactly two
+/// triangles of one pair, opposite directions); each class of corners becomes
+/// one OpenMesh vertex, so a node gets one copy per (patch, fan).
+
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+
+#include "core/parallel.hpp"
+#include "core/text.hpp"
+#include "core/union_find.hpp"
+#include "mesh/topology.hpp"
+#include "voronoimesh/core/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace vm {
+
+namespace {
+
+const char* const kSource = "interface mesh";
+
+std::string describe(size_t t, const std::array<int32_t, 3>& tri) {
+  return detail::cat("triangle ", t, " (", tri[0], ", ", tri[1], ", ", tri[2], ")");
+}
+
+/// Rejects what OpenMesh cannot take safely: a repeated vertex aborts inside
+/// libOpenMeshCore (openmesh-probe.md, pitfall 1), and pairs must fit Vec2s.
+void check_input(const NodeMesh& m) {
+  if (m.pairs.size() != m.triangles.size())
+    throw TopologyError(
+        located(kSource, detail::cat(m.triangles.size(), " triangles but ", m.pairs.size(), " phase pairs")));
+  if (m.points.size() > size_t(std::numeric_limits<int32_t>::max()) ||
+      m.triangles.size() > size_t(std::numeric_limits<int32_t>::max() / 3))
+    throw TopologyError(located(kSource, "too many nodes or triangles for 32-bit ids"));
+  const auto n = int64_t(m.points.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    for (int32_t v : tri)
+      if (v < 0 || v >= n)
+        throw TopologyError(
+            located(kSource, detail::cat(describe(t, tri), ": node ", v, " out of range (", n, " nodes)")));
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      throw TopologyError(located(kSource, detail::cat(describe(t, tri), ": repeated node")));
+    const auto& p = m.pairs[t];
+    if (p[0] < 0 || p[0] >= p[1] || p[1] > std::numeric_limits<int16_t>::max())
+      throw TopologyError(located(kSource, detail::cat(describe(t, tri), ": bad phase pair (", p[0], ", ", p[1], ")")));
+  }
+}
+
+} // namespace
+
+int phase_count(const PhaseSet& s) {
+  return int(std::count_if(s.begin(), s.end(), [](int16_t p) { return p >= 0; }));
+}
+
+PhasePair InterfaceMesh::pair(OMesh::FaceHandle f) const {
+  const auto& p = mesh_.property(pair_, f);
+  return {int32_t(p[0]), int32_t(p[1])};
+}
+
+InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
+  check_input(m);
+  const auto& tris = m.triangles;
+  const size_t num_nodes = m.points.size(), num_tris = tris.size();
+
+  InterfaceMesh im;
+  im.pos_ = m.points;
+  im.domain_ = m.domain;
+  im.names_ = m.phase_names;
+  im.labels_ = m.phase_labels;
+  im.outside_ = m.outside_phase;
+
+  const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
+  const detail::EdgeTable et = detail::edge_table(tris, nt);
+
+  // Phase sets.
+  const detail::NodePhases np = detail::node_phases(nt, m.pairs);
+  im.phases_.assign(num_nodes, PhaseSet{});
+  for (size_t n = 0; n < num_nodes; ++n) {
+    auto ph = np.of(n);
+    if (ph.size() > im.phases_[n].size())
+      throw TopologyError(
+          located(kSource, detail::cat("node ", n, ": ", ph.size(), " phases meet (at most 8 supported)")));
+    im.phases_[n].fill(-1);
+    std::copy(ph.begin(), ph.end(), im.phases_[n].begin());
+  }
+
+  // Corner classes: corner 3t+k is node tris[t][k] in triangle t.
+  detail::UnionFind corners(3 * num_tris);
+  size_t om_edges = 0;
+  for (size_t e = 0; e < et.size(); ++e) {
+    auto hs = et.halfedges(e);
+    if (!detail::is_patch_interior(et, e, tris, m.pairs)) {
+      om_edges += hs.size();
+      continue;
+    }
+    ++om_edges;
+    // Halfedge h runs corner h%3 -> corner (h%3+1)%3 of its triangle; the two
+    // halfedges run in opposite directions, so from-corner of one meets to-corner of the other.
+    auto to_corner = [](int32_t h) { return 3 * (h / 3) + (h % 3 + 1) % 3; };
+    corners.unite(hs[0], to_corner(hs[1]));
+    corners.unite(to_corner(hs[0]), hs[1]);
+  }
+
+  // One OpenMesh vertex per class, numbered by node so each node's copies are
+  // contiguous. The representative of a class is its smallest corner, which is
+  // met first because each node's triangles are visited in ascending order.
+  std::vector<int32_t> vertex_of_corner(3 * num_tris, -1);
+  im.copy_off_.assign(num_nodes + 1, 0);
+  int32_t num_vertices = 0;
+  for (size_t n = 0; n < num_nodes; ++n) {
+    im.copy_off_[n] = num_vertices;
+    for (int32_t t : nt.of(n)) {
+      const auto& tri = tris[size_t(t)];
+      int32_t c = 3 * t + int32_t(std::find(tri.begin(), tri.end(), int32_t(n)) - tri.begin());
+      int32_t r = corners.find(c);
+      vertex_of_corner[size_t(c)] = r == c ? num_vertices++ : vertex_of_corner[size_t(r)];
+    }
+  }
+  im.copy_off_[num_nodes] = num_vertices;
+  im.copy_v_.resize(size_t(num_vertices));
+  for (int32_t v = 0; v < num_vertices; ++v) im.copy_v_[size_t(v)] = v;
+
+  OMesh& mesh = im.mesh_;
+  mesh.add_property(im.node_, "node");
+  mesh.add_property(im.pair_, "pair");
+  mesh.property(im.node_).set_persistent(true);
+  mesh.property(im.pair_).set_persistent(true);
+  mesh.reserve(size_t(num_vertices), om_edges, num_tris);
+  for (size_t n = 0; n < num_nodes; ++n)
+    for (int32_t v = im.copy_off_[n]; v < im.copy_off_[n + 1]; ++v) {
+      auto vh = mesh.add_vertex(OMesh::Point(m.points[n].x(), m.points[n].y(), m.points[n].z()));
+      mesh.property(im.node_, vh) = int32_t(n);
+    }
+
+  // Faces go in input order, so face f is triangle f and to_node_mesh() gives
+  // the input back. Grouping them by patch (as the probe suggests) was measured
+  // on a 688k-triangle spatially ordered input: within noise (0.240 vs 0.245 s),
+  // and it does not rescue a shuffled input either (0.63 vs 0.76 s), so it is
+  // not worth keeping a permutation for the round trip.
+  // Every corner class is one fan, which OpenMesh always accepts (no refusal in
+  // 200k random soups); the check stays so a future change fails loudly.
+  for (size_t t = 0; t < num_tris; ++t) {
+    auto fh =
+        mesh.add_face(OMesh::VertexHandle(vertex_of_corner[3 * t]), OMesh::VertexHandle(vertex_of_corner[3 * t + 1]),
+                      OMesh::VertexHandle(vertex_of_corner[3 * t + 2]));
+    if (!fh.is_valid())
+      throw TopologyError(located(kSource, detail::cat("OpenMesh refused ", describe(t, tris[t]),
+                                                       " (non-manifold or inconsistently oriented surface)")));
+    const auto& p = m.pairs[t];
+    mesh.property(im.pair_, fh) = OpenMesh::Vec2s(int16_t(p[0]), int16_t(p[1]));
+  }
+  im.build_adjacency();
+  im.find_box_faces();
+  return im;
+}
+
+void InterfaceMesh::build_adjacency() {
+  // Two passes without per-node allocations: gather every copy's ring into a
+  // slot range sized by the copies' valences, then sort, deduplicate and pack.
+  const size_t n = pos_.size();
+  std::vector<int32_t> slot_off(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) {
+    int32_t valence = 0;
+    for (int32_t c : copies(int32_t(v))) valence += int32_t(mesh_.valence(OMesh::VertexHandle(c)));
+    slot_off[v + 1] = slot_off[v] + valence;
+  }
+  std::vector<int32_t> slots(static_cast<size_t>(slot_off[n]));
+  std::vector<int32_t> count(n);
+  detail::parallel_for_each_index(n, [&](size_t v) {
+    int32_t* out = slots.data() + slot_off[v];
+    int32_t* end = out;
+    for (int32_t c : copies(int32_t(v)))
+      for (auto w : mesh_.vv_range(OMesh::VertexHandle(c))) *end++ = node(w);
+    std::sort(out, end);
+    count[v] = int32_t(std::unique(out, end) - out);
+  });
+  adj_off_.assign(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + count[v];
+  adj_.resize(size_t(adj_off_[n]));
+  detail::parallel_for_each_index(
+      n, [&](size_t v) { std::copy_n(slots.begin() + slot_off[v], count[v], adj_.begin() + adj_off_[v]); });
+}
+
+bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {
+  // From the OpenMesh rings, so it is exact between flips too.
+  for (int32_t c : copies(a))
+    for (auto w : mesh_.vv_range(OMesh::VertexHandle(c)))
+      if (node(w) == b) return true;
+  return false;
+}
+
+void InterfaceMesh::find_box_faces() {
+  const double tol = 1e-9 * (domain_.max - domain_.min).norm();
+  box_.assign(pos_.size(), 0);
+  for (size_t n = 0; n < pos_.size(); ++n)
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(pos_[n][a] - domain_.min[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a));
+      if (std::abs(pos_[n][a] - domain_.max[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a + 1));
+    }
+}
+
+void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
+  detail::parallel_for_each_index(pos_.size(), [&](size_t n) {
+    pos_[n] += delta[n];
+    for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+  });
+}
+
+void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions) {
+  detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
+    const auto n = size_t(nodes[i]);
+    pos_[n] = positions[i];
+    for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+  });
+}
+
+bool InterfaceMesh::has_phase(int32_t n, int32_t p) const {
+  const PhaseSet& s = phases_[size_t(n)];
+  return std::find(s.begin(), s.end(), int16_t(p)) != s.end();
+}
+
+NodeMesh InterfaceMesh::to_node_mesh() const {
+  NodeMesh m;
+  m.points = pos_;
+  m.domain = domain_;
+  m.phase_names = names_;
+  m.phase_labels = labels_;
+  m.outside_phase = outside_;
+  m.triangles.reserve(mesh_.n_faces());
+  m.pairs.reserve(mesh_.n_faces());
+  for (auto fh : mesh_.faces()) {
+    m.triangles.push_back(face_nodes(fh));
+    m.pairs.push_back(pair(fh));
+  }
+  return m;
+}
+
+std::array<int32_t, 3> InterfaceMesh::face_nodes(OMesh::FaceHandle f) const {
+  // add_face stores the halfedge v2->v0 on the face, so walking from its target
+  // gives the corners back in their input order.
+  auto h = mesh_.halfedge_handle(f);
+  std::array<int32_t, 3> tri{};
+  for (auto& n : tri) {
+    n = node(mesh_.to_vertex_handle(h));
+    h = mesh_.next_halfedge_handle(h);
+  }
+  return tri;
+}
+
+bool InterfaceMesh::constraints_within(int32_t a, int32_t b) const {
+  if (box_[size_t(a)] & ~box_[size_t(b)]) return false;
+  const PhaseSet &pa = phases_[size_t(a)], &pb = phases_[size_t(b)];
+  return std::includes(pb.begin(), pb.begin() + phase_count(pb), pa.begin(), pa.begin() + phase_count(pa));
+}
+
+} // namespace vm

@@ -1,0 +1,232 @@
+/// @file run/meshing.cpp
+/// The run path: read, create, improve, write (run/meshing.hpp).
+
+#include "voronoimesh/run/meshing.hpp"
+
+#include "core/memory.hpp"
+#include "core/text.hpp"
+#include "run/run_job.hpp"
+#include "voronoimesh/check/history.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/io/ply.hpp"
+#include "voronoimesh/io/write_mesh.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace vm {
+
+void RunObserver::stage(Stage, const std::string&) {}
+void RunObserver::input_read(const std::string&, const Scene&, double) {}
+void RunObserver::created(const CreateReport&) {}
+void RunObserver::iteration(const IterationReport&, const InterfaceMesh&) {}
+void RunObserver::improved(const ImproveReport&) {}
+void RunObserver::written(const std::vector<std::string>&, const std::vector<std::string>&) {}
+void RunObserver::note(const std::string&) {}
+bool RunObserver::stop_requested() { return false; }
+
+namespace {
+
+using detail::cat;
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void require_field(const Scene& scene) {
+  if (!scene.field) throw InvalidInput("scene: no phase field");
+}
+
+void begin(RunObserver* observer, Stage stage, const std::string& what) {
+  if (observer) observer->stage(stage, what);
+}
+
+/// Throws Cancelled if the observer asks to stop.
+void stop_if_asked(RunObserver* observer) {
+  if (observer && observer->stop_requested()) throw Cancelled();
+}
+
+/// improve_mesh(), recording every iteration in `history` if given.
+int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& o, RunObserver* observer,
+            QualityHistory* history) {
+  detail::check_options(o);
+  const auto limit = detail::thread_limit(o);
+  const Pipeline pipeline = detail::parse_pipeline(o);
+  // A closed mesh has one more phase, outside the box; the passes need its function too.
+  const auto phases = field ? phases_of_mesh(mesh, std::move(field)) : nullptr;
+  if (pipeline.needs_field() && !phases)
+    throw InvalidOption("pipeline", "'" + o.pipeline + "' needs the phase functions, and the mesh has none");
+  begin(observer, Stage::improve, "improving...");
+  InterfaceMesh im = InterfaceMesh::from_node_mesh(mesh);
+  RunOptions run;
+  run.iterations = o.iterations;
+  run.stop_when_converged = o.stop_when_converged;
+  run.guard_crossings = o.guard_crossings;
+  if (observer) run.stop_requested = [observer] { return observer->stop_requested(); };
+  ImproveReport report;
+  report.pipeline = o.pipeline;
+  run.observer = [&](const IterationReport& r, const InterfaceMesh& current) {
+    if (r.iteration == 0) report.initial_min_quality = r.min_quality, report.initial_mean_quality = r.mean_quality;
+    report.min_quality = r.min_quality;
+    report.mean_quality = r.mean_quality;
+    report.seconds += r.seconds;
+    if (history) history->record(r.iteration, current.to_node_mesh());
+    if (observer) observer->iteration(r, current);
+  };
+  report.iterations = pipeline.run(im, phases.get(), run);
+  stop_if_asked(observer);
+  mesh = im.to_node_mesh();
+  if (o.validate) require_valid(mesh, "the improved mesh");
+  if (observer) observer->improved(report);
+  return report.iterations;
+}
+
+/// Refuses an input that cannot be the one `mesh` was made from: phase ids its
+/// phase functions do not have, or nodes outside its domain.
+void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
+                         const std::string& input) {
+  const int phases = phases_of_mesh(mesh, scene.field)->num_phases();
+  int top = -1;
+  for (const auto& p : mesh.pairs) top = std::max(top, p[1]);
+  if (top >= phases)
+    throw InvalidInput(located(input, cat("has ", scene.field->num_phases(), " phases, but ", mesh_path,
+                                          " uses phase ", top)));
+  const Box& box = scene.grid.domain;
+  const double tol = 1e-6 * (box.max - box.min).norm();
+  for (const Vec3& p : mesh.points)
+    if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
+      throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
+}
+
+/// The mesh at `path` (a PLY written by voronoimesh), which must be valid.
+NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
+  begin(observer, Stage::read, "reading " + path + "...");
+  NodeMesh mesh = io::read_ply(path);
+  require_valid(mesh, path);
+  return mesh;
+}
+
+} // namespace
+
+Scene read_input(const std::string& path, const InputOptions& options, RunObserver* observer) {
+  if (path.empty()) {
+    refuse_options_that_do_not_apply(options, false, false, "a scene", "the built-in demo");
+    return demo_scene();
+  }
+  begin(observer, Stage::read, "reading " + path + "...");
+  const auto start = std::chrono::steady_clock::now();
+  Scene scene = load_input(path, options);
+  if (observer) observer->input_read(path, scene, seconds_since(start));
+  return scene;
+}
+
+GridSpec create_grid(const Scene& scene, const MeshOptions& o) {
+  require_field(scene);
+  detail::check_options(o);
+  GridSpec grid = scene.grid;
+  if (o.grid) grid.cells = *o.grid;
+  return grid_for_lattice(grid, o.lattice);
+}
+
+CreateParams create_params(const MeshOptions& o) {
+  CreateParams params;
+  params.lattice = o.lattice;
+  params.snap = o.snap;
+  params.close = o.close;
+  return params;
+}
+
+NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* observer) {
+  const GridSpec grid = create_grid(scene, o);
+  const auto limit = detail::thread_limit(o);
+  const CreateParams params = create_params(o);
+  const std::string too_big =
+      detail::beyond_memory(double(estimate_create_memory(grid, o.top_k, params.lattice)),
+                            cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid"));
+  if (!too_big.empty()) throw InvalidOption("grid", too_big);
+
+  CreateReport report;
+  report.grid = grid;
+  report.lattice = o.lattice;
+  begin(observer, Stage::sample, cat("sampling ", grid.node_count(), " grid nodes..."));
+  const auto start = std::chrono::steady_clock::now();
+  const SampledField samples = SampledField::sample(*scene.field, grid, o.top_k);
+  report.sampling_seconds = seconds_since(start);
+
+  begin(observer, Stage::create, "creating the mesh...");
+  NodeMesh mesh;
+  report.stats = create_initial_mesh(samples, params, mesh);
+  name_phases(mesh, *phases_of_mesh(mesh, scene.field));
+  if (o.validate && !report.stats.validated) require_valid(mesh, "the created mesh");
+  report.nodes = mesh.num_nodes();
+  report.triangles = mesh.num_triangles();
+  if (observer) observer->created(report);
+  stop_if_asked(observer); // create itself runs to its end; nothing after it does
+  return mesh;
+}
+
+int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& o,
+                 RunObserver* observer) {
+  return improve(mesh, std::move(field), o, observer, nullptr);
+}
+
+NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options) {
+  NodeMesh mesh = create_mesh(scene, options);
+  improve_mesh(mesh, scene.field, options);
+  return mesh;
+}
+
+void write_outputs(const NodeMesh& mesh, const RunOutputs& outputs, RunObserver* observer) {
+  stop_if_asked(observer); // a run stopped before the end writes nothing
+  begin(observer, Stage::write, "writing...");
+  io::WriteOptions options;
+  options.ascii = outputs.ascii;
+  std::vector<std::string> mesh_files, phase_files;
+  if (!outputs.mesh.empty()) mesh_files = io::write_mesh(mesh, outputs.mesh, options);
+  if (!outputs.per_phase.empty()) phase_files = io::write_per_phase_stl(mesh, outputs.per_phase, options);
+  if (observer) observer->written(mesh_files, phase_files);
+}
+
+NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
+  check_job(job);
+  const auto limit = detail::thread_limit(job.options);
+  InputOptions input = job.input_options;
+  input.top_k = job.options.top_k;
+  NodeMesh mesh;
+  std::shared_ptr<const PhaseField> field;
+  if (job.mesh.empty()) {
+    const Scene scene = read_input(job.input, input, observer);
+    mesh = create_mesh(scene, job.options, observer);
+    field = scene.field;
+  } else {
+    mesh = read_mesh(job.mesh, observer);
+    if (!job.input.empty()) {
+      const Scene scene = read_input(job.input, input, observer);
+      check_field_matches(mesh, job.mesh, scene, job.input);
+      field = scene.field;
+    }
+  }
+  detail::finish_job(mesh, field, job, observer);
+  return mesh;
+}
+
+namespace detail {
+
+void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshJob& job, RunObserver* observer) {
+  // With no iterations and no history there is nothing to improve.
+  QualityHistory history;
+  const bool recording = !job.outputs.history.empty();
+  if (job.options.iterations > 0 || recording)
+    improve(mesh, std::move(field), job.options, observer, recording ? &history : nullptr);
+  stop_if_asked(observer);
+  if (recording) history.write(job.outputs.history);
+  write_outputs(mesh, job.outputs, observer);
+}
+
+} // namespace detail
+
+} // namespace vm

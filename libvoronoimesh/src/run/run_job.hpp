@@ -1,0 +1,39 @@
+#pragma once
+/// @file run/run_job.hpp
+/// The parts of run_job() that the distributed run (mpi/) shares: the checks
+/// made before any work (check_job(), job_checks.cpp) and the end of a job.
+
+#include "voronoimesh/run/meshing.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <tbb/global_control.h>
+
+namespace vm::detail {
+
+/// Throws InvalidOption for a MeshOptions value out of range: grid, snap,
+/// top_k, iterations, threads.
+void check_options(const MeshOptions& options);
+
+/// Limits TBB to options.threads while alive (none when 0).
+std::optional<tbb::global_control> thread_limit(const MeshOptions& options);
+
+/// The pipeline of `options`, parsed against options.passes (or the built-in
+/// passes). Throws InvalidInput naming the bad pass or parameter.
+Pipeline parse_pipeline(const MeshOptions& options);
+
+/// Throws IoError "<path>: cannot write: ..." when `path` cannot be written: its
+/// folder is missing or not writable, or it is a folder.
+void check_writable(const std::string& path);
+
+/// Checks the outputs' formats (InvalidInput) and that they can be written (IoError).
+void check_outputs(const RunOutputs& outputs);
+
+/// The end of run_job() once the mesh is there: improve it (when there are
+/// iterations or a history to record; `field` as improve_mesh() takes it),
+/// write the history and the outputs (meshing.cpp).
+void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshJob& job, RunObserver* observer);
+
+} // namespace vm::detail

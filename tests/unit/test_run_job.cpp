@@ -1,0 +1,164 @@
+// The one run path (run/meshing.hpp): run_job() makes what the stages make one
+// by one, tells its observer every stage in order, stops when asked without
+// writing anything, refuses a bad job before reading its input, and keeps a
+// closed mesh closed through a file (NodeMesh::outside_phase).
+
+#include "fixtures.hpp"
+#include "scratch_dir.hpp"
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/io/ply.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+#include "voronoimesh/run/meshing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <vector>
+
+namespace vm {
+namespace {
+
+using RunJob = test::ScratchDir;
+
+const std::string kFourSpheres = std::string(VM_EXAMPLES_DIR) + "/four_spheres.json";
+
+/// Records what a run tells its observer; asks to stop after `stop_after` iterations.
+struct Recorder : RunObserver {
+  std::vector<Stage> stages;
+  std::vector<int> iterations;
+  int creates = 0, improvements = 0, inputs = 0;
+  std::vector<std::string> files;
+  int stop_after = -1;
+
+  void stage(Stage s, const std::string&) override {
+    if (stages.empty() || stages.back() != s) stages.push_back(s);
+  }
+  void input_read(const std::string&, const Scene&, double) override { ++inputs; }
+  void created(const CreateReport& r) override {
+    ++creates;
+    EXPECT_GT(r.triangles, 0u);
+    EXPECT_GT(r.stats.tets_cut, 0u);
+  }
+  void iteration(const IterationReport& r, const InterfaceMesh&) override { iterations.push_back(r.iteration); }
+  void improved(const ImproveReport& r) override {
+    ++improvements;
+    EXPECT_EQ(r.iterations, int(iterations.size()) - 1);
+    EXPECT_GE(r.mean_quality, r.initial_mean_quality);
+  }
+  void written(const std::vector<std::string>& mesh, const std::vector<std::string>& phases) override {
+    files = mesh;
+    files.insert(files.end(), phases.begin(), phases.end());
+  }
+  bool stop_requested() override { return stop_after >= 0 && int(iterations.size()) > stop_after; }
+};
+
+MeshJob four_spheres_job(const std::string& output, int iterations = 3) {
+  MeshJob job;
+  job.input = kFourSpheres;
+  job.options.grid = std::array{16, 16, 16};
+  job.options.iterations = iterations;
+  job.outputs.mesh = output;
+  return job;
+}
+
+TEST_F(RunJob, makes_what_the_stages_make_and_tells_every_stage_in_order) {
+  Recorder seen;
+  const NodeMesh written = run_job(four_spheres_job(path("m.ply")), &seen);
+  const std::vector<Stage> order{Stage::read, Stage::sample, Stage::create, Stage::improve, Stage::write};
+  EXPECT_EQ(seen.stages, order);
+  EXPECT_EQ(seen.inputs, 1);
+  EXPECT_EQ(seen.creates, 1);
+  EXPECT_EQ(seen.improvements, 1);
+  EXPECT_EQ(seen.iterations, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(seen.files, std::vector<std::string>{path("m.ply")});
+
+  MeshOptions o = four_spheres_job("").options;
+  const Scene scene = read_input(kFourSpheres);
+  NodeMesh by_stages = create_mesh(scene, o);
+  improve_mesh(by_stages, scene.field, o);
+  EXPECT_EQ(written.points, by_stages.points);
+  EXPECT_EQ(written.triangles, by_stages.triangles);
+  const NodeMesh read = io::read_ply(path("m.ply"));
+  EXPECT_EQ(read.points, by_stages.points);
+  EXPECT_EQ(read.triangles, by_stages.triangles);
+}
+
+TEST_F(RunJob, a_stop_request_throws_cancelled_and_writes_nothing) {
+  Recorder stopper;
+  stopper.stop_after = 1;
+  MeshJob job = four_spheres_job(path("m.ply"), 10);
+  job.outputs.history = path("h.csv");
+  EXPECT_THROW(run_job(job, &stopper), Cancelled);
+  EXPECT_LT(stopper.iterations.size(), 4u);
+  EXPECT_TRUE(std::filesystem::is_empty(dir_)) << "a stopped run wrote a file";
+}
+
+TEST_F(RunJob, a_bad_job_is_refused_before_its_input_is_read) {
+  Recorder seen;
+  MeshJob job = four_spheres_job(path("m.off"));
+  EXPECT_THROW(run_job(job, &seen), InvalidInput);
+  job = four_spheres_job(path("m.ply"));
+  job.options.pipeline = "smooth,wiggle";
+  EXPECT_THROW(run_job(job, &seen), InvalidInput);
+  job = four_spheres_job(path("m.ply"));
+  job.options.top_k = 0;
+  EXPECT_THROW(run_job(job, &seen), InvalidOption);
+  job = four_spheres_job(path("missing/m.ply"));
+  EXPECT_THROW(run_job(job, &seen), IoError);
+  EXPECT_EQ(seen.inputs, 0);
+  EXPECT_TRUE(seen.stages.empty());
+}
+
+TEST_F(RunJob, improving_a_mesh_from_a_file_needs_its_input_only_for_passes_that_evaluate_it) {
+  run_job(four_spheres_job(path("created.ply"), 0));
+  MeshJob smooth;
+  smooth.mesh = path("created.ply");
+  smooth.options.iterations = 2;
+  smooth.outputs.mesh = path("smoothed.ply");
+  try {
+    run_job(smooth);
+    ADD_FAILURE() << "a pipeline that needs the phase functions ran without them";
+  } catch (const InvalidOption& e) {
+    EXPECT_EQ(e.option(), "pipeline");
+  }
+  smooth.input = kFourSpheres;
+  EXPECT_NO_THROW(run_job(smooth));
+  MeshJob flip = smooth;
+  flip.input.clear();
+  flip.options.pipeline = "flip";
+  EXPECT_NO_THROW(run_job(flip));
+}
+
+TEST_F(RunJob, a_closed_mesh_stays_closed_through_a_file) {
+  MeshJob job = four_spheres_job(path("closed.ply"), 0);
+  job.options.close = true;
+  const NodeMesh created = run_job(job);
+  ASSERT_EQ(created.outside_phase, 5);
+  EXPECT_EQ(created.phase_names.back(), kOutsidePhaseName);
+  EXPECT_EQ(io::read_ply(path("closed.ply")).outside_phase, 5);
+  EXPECT_EQ(InterfaceMesh::from_node_mesh(created).outside_phase(), 5);
+  EXPECT_EQ(phases_of_mesh(created, read_input(kFourSpheres).field)->num_phases(), 6);
+  // Improving it from the file moves box nodes only within the box.
+  MeshJob smooth;
+  smooth.mesh = path("closed.ply");
+  smooth.input = kFourSpheres;
+  smooth.options.iterations = 2;
+  const NodeMesh smoothed = run_job(smooth);
+  EXPECT_EQ(smoothed.outside_phase, 5);
+  for (const Vec3& p : smoothed.points)
+    EXPECT_TRUE((p.array() >= created.domain.min.array() - 1e-12).all() &&
+                (p.array() <= created.domain.max.array() + 1e-12).all());
+}
+
+TEST_F(RunJob, a_phase_of_a_scene_named_like_the_outside_is_not_the_outside) {
+  // The last phase of an open mesh is named "exterior" by its scene: its
+  // triangles lie inside the box, so the file does not make the mesh closed.
+  NodeMesh open = test::four_spheres(12);
+  open.phase_names = {"outside", "a", "b", "c", kOutsidePhaseName};
+  io::write_ply(open, path("open.ply"));
+  EXPECT_EQ(io::read_ply(path("open.ply")).outside_phase, -1);
+}
+
+} // namespace
+} // namespace vm

@@ -1,0 +1,157 @@
+/// @file options.cpp
+/// The options the subcommands share, and their translation into a vm::MeshJob.
+
+#include "commands.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+
+#include <charconv>
+
+namespace vmcli {
+
+void add_common_options(CLI::App* cmd, CommonOptions& o, bool writes_mesh) {
+  cmd->add_option("--threads", o.threads, "Worker threads (default: all cores); results do not depend on it");
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  if (writes_mesh)
+    cmd->add_flag("--ascii", o.ascii,
+                  "Write ASCII PLY and STL instead of binary (TetGen reads only ASCII STL; other formats are text)");
+}
+
+void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase) {
+  cmd->add_option("-o,--output", o.path,
+                  "Output mesh; the extension picks the format: .ply, .obj (a group per phase pair), .stl (one "
+                  "STL per phase pair, named <stem>_<pair>.stl, e.g. out_0-outside_1-sphere1.stl), .msh (Gmsh 4.1 "
+                  "with physical surfaces, curves and points), .vtu or .vtp (ParaView), .mesh (MEDIT, for MMG and "
+                  "TetGen)")
+      ->required()
+      ->type_name("FILE");
+  if (per_phase)
+    cmd->add_option("--per-phase", o.per_phase,
+                    "Also write one STL per phase into DIR (made if missing), named phase_<label>[-<name>].stl: the "
+                    "phase's boundary with outward normals, a closed surface for a phase inside the domain")
+        ->type_name("DIR");
+}
+
+void add_create_options(CLI::App* cmd, CreateOptions& o) {
+  cmd->add_option("--grid", o.grid, "Grid cells per axis, N or NX,NY,NZ (overrides the scene's \"grid\")")
+      ->delimiter(',');
+  cmd->add_option("--snap", o.snap, "Snapping threshold in units of the grid spacing h; 0 turns it off")
+      ->capture_default_str();
+  cmd->add_option("--lattice", o.lattice, "Background tetrahedra: bcc (every second grid point) or cube6")
+      ->check(CLI::IsMember({"bcc", "cube6"}))
+      ->capture_default_str();
+  cmd->add_option("--top-k", o.top_k, "Phases kept per grid point (memory does not grow with the phase count)")
+      ->capture_default_str();
+  cmd->add_flag("--no-validate", o.skip_validation, "Skip the topological checks of the created and improved mesh");
+  cmd->add_flag("--close", o.close,
+                "Close the domain: the box faces become surfaces between each phase and an extra phase 'exterior', "
+                "so every phase is a closed, watertight volume (for volume meshing)");
+}
+
+void add_input_options(CLI::App* cmd, InputCliOptions& o) {
+  const char* labels = "Label volumes";
+  cmd->add_option("--drop-labels", o.input.drop_labels, "Labels whose voxels become background, L,L,...")
+      ->delimiter(',')->group(labels);
+  cmd->add_option("--merge-labels", o.merge, "Label groups merged into their smallest label, A+B,C+D+E,...")
+      ->delimiter(',')->group(labels);
+  cmd->add_option("--background", o.input.background, "The background label (a phase named 'background')")
+      ->capture_default_str()->group(labels);
+  cmd->add_flag("--no-background", o.input.no_background,
+                "Background voxels are no phase: the labels around them fill them, meeting halfway across gaps "
+                "(grain maps with unindexed voxels); a gap wider than the smoothing radius or band is an error")
+      ->group(labels);
+  cmd->add_flag("--signed-distance", o.signed_distance,
+                "Phase functions by exact signed distance (clamped to --band) instead of the smoothed indicator")
+      ->group(labels);
+  cmd->add_option("--smoothing", o.input.smoothing, "Gaussian sigma of the smoothed indicator, in voxels")
+      ->capture_default_str()->group(labels);
+  cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
+      ->capture_default_str()->group(labels);
+  cmd->add_option("--voxels-per-cell", o.input.voxels_per_cell,
+                  "Mesh a volume on cells of about F voxels per axis (2: about a quarter of the triangles of the voxel "
+                  "grid); --grid overrides it")
+      ->capture_default_str()->group(labels);
+  cmd->add_flag("--ignore-direction", o.input.ignore_direction,
+                "Use the voxel axes as they are when the volume's direction matrix is oblique")
+      ->group(labels);
+}
+
+void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {
+  o.iterations = default_iterations;
+  cmd->add_option("--iterations", o.iterations, "Iterations of the pipeline")->capture_default_str();
+  cmd->add_option("--pipeline", o.pipeline,
+                  "Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh passes')")
+      ->capture_default_str();
+  add_plugin_option(cmd, o.plugins);
+  cmd->add_flag("--stop-when-converged", o.stop_when_converged,
+                "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
+  cmd->add_flag("--no-crossing-guard", o.unguarded,
+                "Do not undo moves and flips that make two surfaces cross (faster; only safe on well-resolved scenes)");
+  cmd->add_option("--history", o.history,
+                  "Write per-iteration histograms of inradius, circumradius, edge length, quality, angles and vertex "
+                  "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
+}
+
+vm::InputOptions input_options(const InputCliOptions& o) {
+  vm::InputOptions input = o.input;
+  for (const std::string& group : o.merge) {
+    std::vector<int32_t> labels;
+    size_t start = 0;
+    for (size_t plus = 0; plus != std::string::npos; start = plus + 1) {
+      plus = group.find('+', start);
+      const std::string part = group.substr(start, plus == std::string::npos ? std::string::npos : plus - start);
+      int32_t value = 0;
+      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+      if (ec != std::errc() || end != part.data() + part.size() || part.empty())
+        throw vm::InvalidInput("--merge-labels: expected groups of integer labels as A+B, got '" + group + "'");
+      labels.push_back(value);
+    }
+    input.merge_labels.push_back(labels);
+  }
+  input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
+  return input;
+}
+
+void set_create_options(const CreateOptions& create, vm::MeshOptions& options) {
+  if (!create.grid.empty()) {
+    if (create.grid.size() != 1 && create.grid.size() != 3)
+      throw vm::InvalidInput("--grid: give one number or three (nx,ny,nz)");
+    options.grid.emplace();
+    for (size_t a = 0; a < 3; ++a) (*options.grid)[a] = create.grid[create.grid.size() == 1 ? 0 : a];
+  }
+  options.snap = create.snap;
+  options.lattice = create.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
+  options.top_k = create.top_k;
+  options.close = create.close;
+  options.validate = !create.skip_validation;
+}
+
+void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
+  job.options.iterations = improve.iterations;
+  job.options.pipeline = improve.pipeline;
+  job.options.stop_when_converged = improve.stop_when_converged;
+  job.options.guard_crossings = !improve.unguarded;
+  job.outputs.history = improve.history;
+}
+
+vm::RunOutputs run_outputs(const OutputOptions& output, const CommonOptions& common) {
+  vm::RunOutputs outputs;
+  outputs.mesh = output.path;
+  outputs.per_phase = output.per_phase;
+  outputs.ascii = common.ascii;
+  return outputs;
+}
+
+vm::MeshJob creating_job(const MeshCommandOptions& o, const vm::PassRegistry& registry) {
+  vm::MeshJob job;
+  job.input = o.input;
+  job.input_options = input_options(o.input_options);
+  set_create_options(o.create, job.options);
+  job.outputs = run_outputs(o.output, o.common);
+  set_improve_options(o.improve, job);
+  job.options.passes = &registry;
+  job.options.threads = o.common.threads;
+  return job;
+}
+
+} // namespace vmcli

@@ -1,0 +1,83 @@
+/// @file report.cpp
+/// The tool's progress and summary lines (report.hpp).
+
+#include "report.hpp"
+
+#include "interrupt.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace vmcli {
+
+Report::Report(bool quiet, int iterations, std::string output, bool tell_input)
+    : quiet_(quiet), terminal_(!quiet && isatty(STDERR_FILENO)), tell_input_(tell_input), iterations_(iterations),
+      output_(std::move(output)) {}
+
+void Report::status(const std::string& text) {
+  if (!terminal_) return;
+  std::fprintf(stderr, "\r\033[K%s", text.c_str());
+  std::fflush(stderr);
+}
+
+void Report::say(const std::string& line) {
+  if (quiet_) return;
+  status("");
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+void Report::stage(vm::Stage, const std::string& what) { status(what); }
+
+void Report::input_read(const std::string&, const vm::Scene& scene, double seconds) {
+  if (!tell_input_) return;
+  char line[160];
+  std::snprintf(line, sizeof line, "input: %d phases, grid %dx%dx%d; read and phase functions %.3f s",
+                scene.field->num_phases(), scene.grid.cells[0], scene.grid.cells[1], scene.grid.cells[2], seconds);
+  say(line);
+}
+
+void Report::created(const vm::CreateReport& r) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "create: grid %dx%dx%d (%s), %zu vertices, %zu triangles; sampling %.3f s, create %.3f s "
+                "(%llu tets, %llu cut; check %.3f s); snapping undone at %llu nodes",
+                r.grid.cells[0], r.grid.cells[1], r.grid.cells[2], r.lattice == vm::Lattice::cube6 ? "cube6" : "bcc",
+                r.nodes, r.triangles, r.sampling_seconds, r.stats.seconds, (unsigned long long)r.stats.tets_visited,
+                (unsigned long long)r.stats.tets_cut, r.stats.check_seconds,
+                (unsigned long long)r.stats.unsnapped_nodes);
+  say(line);
+}
+
+void Report::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {
+  char line[192];
+  std::snprintf(line, sizeof line, "iteration %d/%d: min q %.3f, mean q %.3f, %zu flips, %zu moves undone, %.1f ms",
+                r.iteration, iterations_, r.min_quality, r.mean_quality, r.flips, r.undone_moves, r.seconds * 1e3);
+  status(line);
+}
+
+void Report::improved(const vm::ImproveReport& r) {
+  char line[320];
+  std::snprintf(line, sizeof line, "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f",
+                r.iterations, r.pipeline.c_str(), r.seconds, r.initial_min_quality, r.min_quality,
+                r.initial_mean_quality, r.mean_quality);
+  say(line);
+}
+
+void Report::written(const std::vector<std::string>& mesh_files, const std::vector<std::string>& phase_files) {
+  namespace fs = std::filesystem;
+  status("");
+  if (!mesh_files.empty() && mesh_files != std::vector<std::string>{output_})
+    say("output: " + std::to_string(mesh_files.size()) + " STL files, one per phase pair (" +
+        (fs::path(output_).parent_path() / fs::path(output_).stem()).string() + "_<pair>.stl)");
+  if (!phase_files.empty())
+    say("per-phase: " + std::to_string(phase_files.size()) + " STL files in " +
+        fs::path(phase_files.front()).parent_path().string() + " (phase_<label>.stl)");
+}
+
+void Report::note(const std::string& line) { say(line); }
+
+bool Report::stop_requested() { return interrupted(); }
+
+} // namespace vmcli
