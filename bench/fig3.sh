@@ -5,14 +5,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 grid=${1:-64}
-vm=build/tools/voronoimesh/voronoimesh
-mkdir -p out
+vm=${BUILD:-build}/tools/voronoimesh/voronoimesh
+out=${OUT:-out}
+mkdir -p "$out"
 echo "| lattice | snap | vertices | triangles | q < 0.1 (slivers) | q < 0.5 | min q | mean q | min angle | max angle |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for lattice in cube6 bcc; do
   for snap in 0 0.2; do
-    "$vm" create -q examples/four_spheres.json --grid "$grid" --lattice "$lattice" --snap "$snap" -o out/fig3.ply
-    "$vm" stats --json out/fig3.ply | python3 -c '
+    "$vm" create -q examples/four_spheres.json --grid "$grid" --lattice "$lattice" --snap "$snap" -o "$out/fig3.ply"
+    "$vm" stats --json "$out/fig3.ply" | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
 print("| {} | {} h | {} | {} | {} | {} | {:.3f} | {:.3f} | {:.2f} | {:.1f} |".format(

@@ -73,14 +73,6 @@ else
 fi
 
 # The table replaces whatever lies between the markers, with the command above it.
-python3 - "$table" "bench/run_table.sh${1:+ $1}" <<'PY'
-import sys, datetime
-table, command = open(sys.argv[1]).read(), sys.argv[2]
-begin, end = "<!-- bench-table:begin -->", "<!-- bench-table:end -->"
-readme = open("docs/benchmarks.md").read()
-head, rest = readme.split(begin, 1)
-_, tail = rest.split(end, 1)
-when = datetime.date.today().isoformat()
-open("docs/benchmarks.md", "w").write(f"{head}{begin}\n`{command}` ({when}):\n\n{table}{end}{tail}")
-PY
+{ printf '`bench/run_table.sh%s` (%s):\n\n' "${1:+ $1}" "$(date +%F)"; cat "$table"; } >"$table.doc"
+scripts/doc_tables.py replace docs/benchmarks.md bench-table "$table.doc"
 echo "docs/benchmarks.md: table written between the bench-table markers" >&2

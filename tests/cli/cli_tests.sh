@@ -3,32 +3,9 @@
 # Usage: cli_tests.sh VORONOIMESH EXAMPLES_DIR WORK_DIR
 set -uo pipefail
 vm=$1 examples=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-passed=0 failed=0
-
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
-
-# expect_error NAME EXIT_CODE PATTERN -- command...: the command fails with that
-# exit code, prints exactly one line on stderr matching PATTERN, and leaves no out.ply.
-expect_error() {
-  local name=$1 code=$2 pattern=$3
-  shift 4
-  rm -f out.ply
-  "$@" >stdout.txt 2>stderr.txt
-  local got=$?
-  local lines
-  lines=$(wc -l <stderr.txt)
-  if [ "$got" -ne "$code" ]; then fail "$name: exit $got, expected $code ($(cat stderr.txt))"
-  elif [ "$lines" -ne 1 ]; then fail "$name: $lines lines on stderr, expected 1: $(cat stderr.txt)"
-  elif ! grep -qE -e "$pattern" stderr.txt; then fail "$name: message '$(cat stderr.txt)' does not match '$pattern'"
-  elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "$name: left an output file behind"
-  else pass; fi
-  # scripts/bad_input_table.sh collects every case's message for docs/reliability.md.
-  if [ -n "${BAD_INPUT_TABLE:-}" ]; then
-    printf '| %s | %s | %s |\n' "$name" "$got" "$(sed -e "s#$work/##g" -e 's/|/\\|/g' stderr.txt)" >>"$BAD_INPUT_TABLE"
-  fi
-}
+source "$here/expect.sh"
 
 # The main job on the built-in demo, read back by stats.
 if "$vm" create -q -o demo.ply && "$vm" stats demo.ply >stats.txt; then pass; else fail "create/stats on the demo"; fi
@@ -95,13 +72,17 @@ else fail "smooth"; fi
 if cmp -s sm.ply im.ply; then pass; else fail "improve is not smooth's synonym"; fi
 if "$vm" flip -q demo.ply -o fl.ply && "$vm" stats fl.ply >/dev/null; then pass; else fail "flip"; fi
 if "$vm" passes | grep -q "rest_factor" && "$vm" passes | grep -q "^flip"; then pass; else fail "passes listing"; fi
-if "$vm" mesh -q --grid 24 --iterations 50 --stop-when-converged -o conv.ply; then pass; else fail "--stop-when-converged"; fi
+# --stop-when-converged stops early, and where it stops is the mesh of that many iterations.
+"$vm" mesh --grid 24 --iterations 50 --stop-when-converged -o conv.ply 2>conv.txt
+done_its=$(sed -n 's/^improve: \([0-9]*\) iterations.*/\1/p' conv.txt)
+if [ -n "$done_its" ] && [ "$done_its" -lt 50 ] && "$vm" mesh -q --grid 24 --iterations "$done_its" -o conv_n.ply &&
+  cmp -s conv.ply conv_n.ply; then pass; else fail "--stop-when-converged: stopped after '$done_its' of 50, or not as --iterations"; fi
 
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >nophase.ply
 echo '{"phases": [{"kind": "constant", "value": 0}, {"kind": "constant", "value": 1}]}' >twophases.json
-echo '{"domain": {"min": [5,5,5], "max": [6,6,6]}, "phases": [{"kind": "constant", "value": 0}, {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2},
-  {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}, {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2},
-  {"kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}]}' >elsewhere.json
+echo '{"domain": {"min": [5,5,5], "max": [6,6,6]}, "phases": [{"name": "outside", "kind": "constant", "value": 0},
+  {"name": "sphere1", "kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}, {"name": "sphere2", "kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2},
+  {"name": "sphere3", "kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}, {"name": "sphere4", "kind": "sphere", "center": [5.5,5.5,5.5], "radius": 0.2}]}' >elsewhere.json
 expect_error "mesh without phases" 3 "nophase\.ply: .*phase0" -- "$vm" smooth nophase.ply --field "$examples/four_spheres.json" -o out.ply
 expect_error "field with too few phases" 2 "twophases\.json: has 2 phases" -- "$vm" smooth demo.ply --field twophases.json -o out.ply
 expect_error "field elsewhere" 2 "elsewhere\.json: its domain" -- "$vm" smooth demo.ply --field elsewhere.json -o out.ply
@@ -124,8 +105,11 @@ nrrd_labels oblique.nrrd 'space dimension: 3\nspace directions: (1,0.2,0) (0,1,0
 if "$vm" create -q labels.nrrd -o l.ply && "$vm" stats l.ply | grep -qE "^phases +3" ; then pass; else fail "create on a label volume"; fi
 if "$vm" stats l.ply | grep -qE "^topology +valid"; then pass; else fail "label volume mesh is not valid"; fi
 if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | grep -qE "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
-if "$vm" smooth -q l.ply --field labels.nrrd --iterations 2 -o ls.ply; then pass; else fail "smooth --field on a label volume"; fi
-if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply; then pass; else fail "--signed-distance"; fi
+# smooth --field improves a created mesh as mesh does: the same file, byte for byte.
+if "$vm" smooth -q l.ply --field labels.nrrd --iterations 2 -o ls.ply && "$vm" mesh -q labels.nrrd --iterations 2 -o lm2.ply &&
+  cmp -s ls.ply lm2.ply && ! cmp -s ls.ply l.ply; then pass; else fail "smooth --field on a label volume is not mesh's improvement"; fi
+if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&
+  "$vm" stats sd.ply | grep -qE "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
 if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | grep -qE "^phases +2"; then pass; else fail "--merge-labels"; fi
 if "$vm" create -q labels.nrrd --drop-labels 5 --background 3 -o d.ply && "$vm" stats d.ply | grep -qE "^phases +2"; then pass; else fail "--drop-labels"; fi
 if "$vm" create --help | grep -q "Label volumes"; then pass; else fail "--help lacks the 'Label volumes' group"; fi
@@ -144,7 +128,8 @@ expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud
 { printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nproperty int label\nend_header\n'
   grep -v '^#' cloud.xyz; } >cloud.ply
 if "$vm" create -q cloud.ply -o cp.ply && "$vm" stats cp.ply | grep -qE "^phases +3" && cmp -s c.ply cp.ply; then pass; else fail "create on a PLY point cloud (same mesh as its .xyz)"; fi
-if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply; then pass; else fail "smooth --field on a PLY point cloud"; fi
+if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply && "$vm" mesh -q cloud.ply --iterations 2 -o cpm.ply &&
+  cmp -s cps.ply cpm.ply && ! cmp -s cps.ply cp.ply; then pass; else fail "smooth --field on a PLY point cloud is not mesh's improvement"; fi
 if python3 "$examples/../scripts/make_point_cloud.py" --count 2000 four.ply 2>/dev/null \
   && "$vm" mesh -q four.ply --grid 32 --iterations 20 -o four_mesh.ply && "$vm" stats four_mesh.ply >four.txt \
   && grep -qE "^phases +4" four.txt && grep -qE "^quadruple points +[1-9]" four.txt; then pass; else fail "four-region point cloud: $(cat four.txt)"; fi

@@ -11,14 +11,14 @@ fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
 # Only the plugins a test names (and those of the installed folder).
 export VORONOIMESH_PLUGIN_PATH=
 
-# expect_refusal NAME PATTERN -- command...: exit 2 and one line on stderr matching PATTERN.
+# expect_refusal NAME PATTERN -- command...: exit 2 (or $CODE) and one line on stderr matching PATTERN.
 expect_refusal() {
-  local name=$1 pattern=$2
+  local name=$1 pattern=$2 code=${CODE:-2}
   shift 3
   "$@" >stdout.txt 2>stderr.txt
   local got=$? lines
   lines=$(wc -l <stderr.txt)
-  if [ "$got" -ne 2 ]; then fail "$name: exit $got, expected 2 ($(cat stderr.txt))"
+  if [ "$got" -ne "$code" ]; then fail "$name: exit $got, expected $code ($(cat stderr.txt))"
   elif [ "$lines" -ne 1 ]; then fail "$name: $lines lines on stderr: $(cat stderr.txt)"
   elif ! grep -qE -e "$pattern" stderr.txt; then fail "$name: '$(cat stderr.txt)' does not match '$pattern'"
   else pass; fi
@@ -59,11 +59,26 @@ expect_refusal "no entry point" "^voronoimesh: $fakes/fake_no_entry.so: not a vo
   "$vm" mesh -q --plugin "$fakes/fake_no_entry.so" -o x.ply
 expect_refusal "name clash" "^voronoimesh: $fakes/fake_clash.so: plugin 'fake' cannot add its passes: a pass named 'smooth' is already registered$" -- \
   "$vm" passes --plugin "$fakes/fake_clash.so"
-expect_refusal "failing pass" "^voronoimesh: pass 'fake': cannot relax [0-9]+ nodes today$" -- \
+# A plugin's fault is its own exit code, 6, naming the plugin and the pass.
+CODE=6 expect_refusal "failing pass" "^voronoimesh: $fakes/fake_failing.so: pass 'fake': cannot relax [0-9]+ nodes today$" -- \
   "$vm" mesh -q --grid 12 --plugin "$fakes/fake_failing.so" --pipeline fake -o x.ply
+CODE=6 expect_refusal "pass moving by NaN" "^voronoimesh: $fakes/fake_nan.so: pass 'nan_move' moved node 0 by \(nan, " -- \
+  "$vm" mesh -q --grid 12 --plugin "$fakes/fake_nan.so" --pipeline nan_move,project,clamp,flip -o x.ply
 # A broken plugin in a folder is named once on stderr; the command still works.
 VORONOIMESH_PLUGIN_PATH=$fakes "$vm" passes >passes.txt 2>stderr.txt
 if [ $? -eq 0 ] && [ "$(grep -c "plugin skipped" stderr.txt)" -eq 3 ]; then pass; else fail "skipped plugins: $(cat stderr.txt)"; fi
+
+# A plugin hidden by one of the same name says so, naming the one loaded.
+mkdir -p mine && cp "$plugins/relax.so" mine/relax.so
+VORONOIMESH_PLUGIN_PATH=$plugins "$vm" passes --plugin mine/relax.so >passes.txt 2>stderr.txt
+if grep -qF "plugin skipped: $plugins/relax.so: a plugin named 'relax' was loaded before, from mine/relax.so" stderr.txt
+then pass; else fail "a shadowed plugin is not named: $(cat stderr.txt)"; fi
+# A plugin anyone could have put there loads with a warning.
+mkdir -p open && cp "$plugins/cvt.so" open/cvt.so && chmod 777 open
+VORONOIMESH_PLUGIN_PATH=open "$vm" passes >passes.txt 2>stderr.txt
+if grep -qF "warning: plugin open/cvt.so: loaded, but anyone may write its folder open" stderr.txt &&
+   VORONOIMESH_PLUGIN_PATH=open "$vm" plugins | grep -qF "warning: open/cvt.so: loaded, but anyone may write its folder open"
+then pass; else fail "a plugin in a world-writable folder loads silently: $(cat stderr.txt)"; fi
 
 # The example host loads a plugin and runs a pipeline through the library.
 if "$host" "$plugins/relax.so" relax,project,clamp,flip host.ply >host.txt 2>&1 &&

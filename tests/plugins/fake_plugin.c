@@ -3,9 +3,13 @@
  *   FAKE_NO_ENTRY    a shared library without the entry point
  *   FAKE_CLASH       registers a pass named "smooth", which is built in
  *   FAKE_FAILING     a good plugin whose pass fails at run time
+ *   FAKE_NAN         a moving pass whose first move is not a number
+ *   FAKE_ODD_NAME    names itself with a line break in its name
+ *   FAKE_BAD_PARAMETER a pass whose parameter's name holds a ':', which pipelines split at
  * Written in C: the boundary must work for plugins in plain C. */
 #include "voronoimesh/plugin/plugin_abi.h"
 
+#include <math.h>
 #include <stdio.h>
 
 #ifndef FAKE_NO_ENTRY
@@ -15,6 +19,11 @@ static int run(void* user, const vm_mesh_view* mesh, const double* params, char*
 #ifdef FAKE_FAILING
   snprintf(error, error_size, "cannot relax %zu nodes today", mesh->num_nodes);
   return 1;
+#elif defined(FAKE_NAN)
+  (void)error;
+  (void)error_size;
+  mesh->displacement[0] = NAN;
+  return 0;
 #else
   (void)mesh;
   (void)error;
@@ -25,6 +34,8 @@ static int run(void* user, const vm_mesh_view* mesh, const double* params, char*
 
 #ifdef FAKE_CLASH
 static const char* const kPassName = "smooth";
+#elif defined(FAKE_NAN)
+static const char* const kPassName = "nan_move";
 #else
 static const char* const kPassName = "fake";
 #endif
@@ -42,8 +53,21 @@ VM_PLUGIN_EXPORT uint32_t voronoimesh_plugin_abi_version(void) {
 VM_PLUGIN_EXPORT int not_an_entry_point(void) { return 0; }
 #else
 VM_PLUGIN_EXPORT int voronoimesh_plugin_v1(const vm_plugin_host* host) {
+#ifdef FAKE_NAN
+  vm_pass_desc pass = {kPassName, "moves the first node nowhere", NULL, 0, 1, 0, run, NULL};
+#elif defined(FAKE_BAD_PARAMETER)
+  static const vm_param_spec params[] = {{"a:b", 1.0, 0.0, 2.0, 0, "a name a pipeline cannot give"}};
+  vm_pass_desc pass = {kPassName, "has a parameter no pipeline can name", params, 1, 1, 0, run, NULL};
+#else
   vm_pass_desc pass = {kPassName, "does nothing", NULL, 0, 1, 0, run, NULL};
+#endif
+#ifdef FAKE_NAN
+  host->set_info(host->context, "fake_nan", "0.0");
+#elif defined(FAKE_ODD_NAME)
+  host->set_info(host->context, "fake\nodd", "0.0");
+#else
   host->set_info(host->context, "fake", "0.0");
+#endif
   return host->add_pass(host->context, &pass);
 }
 #endif

@@ -124,23 +124,49 @@ TEST(Plugins, refuses_a_missing_file) {
   EXPECT_EQ(refusal("/nonexistent/relax.so"), "/nonexistent/relax.so: cannot read the plugin: no such file");
 }
 
+TEST(Plugins, refuses_a_name_that_is_not_one_printable_line) {
+  const std::string odd = std::string(VM_FAKE_PLUGIN_DIR) + "/refused/fake_odd_name.so";
+  EXPECT_EQ(refusal(odd), odd + ": the plugin's name and version must be at most 64 printable characters, got "
+                                "'fake\\x0aodd'");
+}
+
+TEST(Plugins, refuses_a_parameter_name_a_pipeline_cannot_give) {
+  const std::string bad = std::string(VM_FAKE_PLUGIN_DIR) + "/refused/fake_bad_parameter.so";
+  const std::string message = refusal(bad);
+  EXPECT_NE(message.find("bad parameter name 'a:b'"), std::string::npos) << message;
+}
+
 TEST(Plugins, refuses_a_pass_name_that_exists) {
   EXPECT_EQ(refusal(fake("clash")),
             fake("clash") + ": plugin 'fake' cannot add its passes: a pass named 'smooth' is already registered");
 }
 
-TEST(Plugins, a_failing_pass_throws_its_message) {
+/// The message of the PluginError the fake plugin `kind`'s pass throws in one iteration.
+std::string plugin_error(const std::string& kind, const std::string& pass, size_t& nodes) {
   vm::PassRegistry registry = vm::builtin_registry();
-  vm::load_plugin(fake("failing"), registry);
+  vm::load_plugin(fake(kind), registry);
   vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(vm::test::two_cubes(2));
+  nodes = mesh.num_nodes();
   vm::RunOptions run;
   run.iterations = 1;
   try {
-    vm::Pipeline::parse("fake", registry).run(mesh, nullptr, run);
-    FAIL() << "no exception";
-  } catch (const vm::InvalidInput& e) {
-    EXPECT_EQ(std::string(e.what()), "pass 'fake': cannot relax " + std::to_string(mesh.num_nodes()) + " nodes today");
+    vm::Pipeline::parse(pass, registry).run(mesh, nullptr, run);
+  } catch (const vm::PluginError& e) {
+    return e.what();
   }
+  return "no PluginError";
+}
+
+TEST(Plugins, a_failing_pass_throws_its_message_naming_the_plugin) {
+  size_t nodes = 0;
+  const std::string message = plugin_error("failing", "fake", nodes);
+  EXPECT_EQ(message, fake("failing") + ": pass 'fake': cannot relax " + std::to_string(nodes) + " nodes today");
+}
+
+TEST(Plugins, a_pass_writing_moves_that_are_not_finite_is_a_plugin_error) {
+  size_t nodes = 0;
+  const std::string message = plugin_error("nan", "nan_move", nodes);
+  EXPECT_EQ(message.rfind(fake("nan") + ": pass 'nan_move' moved node 0 by (nan, ", 0), 0u) << message;
 }
 
 TEST(Plugins, passes_outlive_the_registry_that_loaded_them) {

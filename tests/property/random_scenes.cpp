@@ -277,8 +277,12 @@ Scene labels(Rng& rng, const Frame& f, int top_k) {
   InputOptions o;
   o.background = names[0];
   o.label_function = rng.chance(0.5) ? LabelFunction::smoothed_indicator : LabelFunction::signed_distance;
-  o.smoothing = rng.pick(std::array{0.5, 1.0, 2.0});
-  o.band = rng.pick(std::array{1.0, 3.0});
+  // Both drawn, so the random stream (and every later case) stays as it was; only
+  // the label function's own option is given (the other is refused, not ignored).
+  const double smoothing = rng.pick(std::array{0.5, 1.0, 2.0});
+  const double band = rng.pick(std::array{1.0, 3.0});
+  if (o.label_function == LabelFunction::signed_distance) o.band = band;
+  else o.smoothing = smoothing;
   o.top_k = top_k;
   return scene_from_labels(grid, labels, o);
 }

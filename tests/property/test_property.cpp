@@ -19,22 +19,31 @@ constexpr int kCasesPerShard = 36; // 288 cases: each kind 36 times
 /// Every this many cases are also meshed on 1 and 2 threads and compared.
 constexpr uint64_t kThreadsEvery = 6;
 
+/// Triangles against their pair's direction after the last iteration, per shard,
+/// over its closed-form cases (CaseResult::against_field), as of this commit: a
+/// statistic (coarse grids and junctions closer than a cell have them
+/// legitimately) that may only shrink. Cases and improvement are deterministic.
+constexpr std::array<size_t, kShards> kAgainstAtMost = {678, 864, 104, 1314, 791, 198, 554, 305};
+
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 
 // Each shard is its own test so that ctest spreads them over the cores.
 TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
   int failed = 0;
+  size_t against = 0; // triangles against their pair's direction, over the shard's closed-form cases
   for (int i = 0; i < kCasesPerShard; ++i) {
     const uint64_t index = uint64_t(GetParam() * kCasesPerShard + i);
     const RandomCase c = random_case(kSeed, index);
     CheckOptions o;
     o.compare_threads = index % kThreadsEvery == 0;
     const CaseResult r = check_case(c, o);
+    against += r.against_field;
     if (!r.ok() && ++failed <= 3)
       ADD_FAILURE() << c.description() << "\n  " << r.failures.front()
                     << "\n  reproduce: property_runner --seed " << kSeed << " --case " << index << " --verbose";
   }
   EXPECT_EQ(failed, 0);
+  EXPECT_LE(against, kAgainstAtMost[size_t(GetParam())]) << "more triangles against their pair's direction";
 }
 
 INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));

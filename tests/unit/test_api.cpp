@@ -170,12 +170,26 @@ TEST(Meshing, options_reach_create_and_improve) {
   EXPECT_EQ(improved.num_nodes(), initial.num_nodes());
   EXPECT_NE(improved.points, initial.points);
   EXPECT_GT(compute_stats(improved).min_quality, compute_stats(initial).min_quality);
-  // The pipeline's passes come from the registry given.
-  const PassRegistry passes = builtin_registry();
+  // The pipeline's passes come from the registry given: one the built-ins lack
+  // runs, and does what it says (pins node 0, which smoothing would move).
+  PassRegistry passes = builtin_registry();
+  PassInfo pin;
+  pin.name = "pin_first";
+  pin.summary = "keeps node 0 where it is";
+  pin.moves_nodes = true;
+  struct Pin : Pass {
+    void run(PassContext& c) override { c.displacement()[0] = Vec3::Zero(); }
+  };
+  pin.make = [](const ParamValues&) { return std::make_unique<Pin>(); };
+  passes.add(pin);
   o.passes = &passes;
-  NodeMesh again = initial;
-  improve_mesh(again, s.scene().field, o);
-  expect_same_mesh(again, improved);
+  o.pipeline = "smooth,pin_first,flip";
+  NodeMesh pinned = initial;
+  EXPECT_EQ(improve_mesh(pinned, s.scene().field, o), 4);
+  EXPECT_EQ(pinned.points[0], initial.points[0]);
+  EXPECT_NE(improved.points[0], initial.points[0]);
+  o.passes = nullptr; // the built-ins alone do not know it
+  EXPECT_THROW(improve_mesh(pinned, s.scene().field, o), InvalidInput);
 }
 
 TEST(Meshing, threads_do_not_change_the_mesh) {

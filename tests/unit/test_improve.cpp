@@ -103,8 +103,9 @@ TEST(Improve, nodes_end_on_their_surfaces_curves_and_points) {
     Pipeline::parse(kDefaultPipeline, registry).run(mesh, scene.field.get(), iterations(20));
     const std::vector<double> d = distances_in_h(mesh, *scene.field, scene.grid.h());
     EXPECT_LT(d[d.size() * 99 / 100], 0.05);
+    // The bounds docs/algorithm.md gives, which may only shrink.
     if (std::string(name) == "four_spheres.json") EXPECT_LT(d.back(), 0.05);
-    else EXPECT_LT(d.back(), 0.2);
+    else EXPECT_LT(d.back(), 0.14) << "worst node " << d.back() << " h off";
   }
 }
 

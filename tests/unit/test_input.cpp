@@ -11,6 +11,7 @@
 #include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
+#include "fields/top_k_grid_field.hpp"
 #include "nrrd_file.hpp"
 
 #include <gtest/gtest.h>
@@ -183,17 +184,30 @@ TEST(LabelVolume, no_background_fills_gaps_between_grains) {
   for (const Vec3& p : mesh.points) EXPECT_NEAR((p.x() - origin.x()) / voxel, 15.5, 0.05);
 }
 
-// A few hundred labels: the field keeps K per voxel whatever the label count
-// (time and memory are measured in bench/, not here).
+// A few hundred labels: the field keeps K per voxel whatever the label count.
+// Its store holds as much as that of 16 labels in the same blocks (every block's
+// neighbours differ in both), and O(voxels x K) bytes. (Time is measured in bench/.)
 TEST(LabelVolume, many_labels_stay_cheap) {
-  std::vector<uint16_t> v;
+  std::vector<uint16_t> many, few;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) v.push_back(uint16_t(1 + i / 4 + 8 * (j / 4) + 64 * (k / 8))); // 8x8x4 = 256 blocks
-  const Scene scene = load_input(write_nrrd("blocks.nrrd", sphere_header, v));
+      for (int i = 0; i < n; ++i) {
+        const int block = i / 4 + 8 * (j / 4) + 64 * (k / 8); // 8x8x4 = 256 blocks
+        many.push_back(uint16_t(1 + block));
+        few.push_back(uint16_t(1 + (i / 4 + 3 * (j / 4) + 5 * (k / 8)) % 16)); // neighbouring blocks differ
+      }
+  const Scene scene = load_input(write_nrrd("blocks.nrrd", sphere_header, many));
   EXPECT_EQ(scene.field->num_phases(), 256);
   const NodeMesh mesh = create(scene);
   EXPECT_TRUE(validate(mesh).ok());
+  const Scene sixteen = load_input(write_nrrd("few.nrrd", sphere_header, few));
+  EXPECT_EQ(sixteen.field->num_phases(), 16);
+  const auto* store_many = dynamic_cast<const detail::TopKGridField*>(scene.field.get());
+  const auto* store_few = dynamic_cast<const detail::TopKGridField*>(sixteen.field.get());
+  ASSERT_TRUE(store_many && store_few);
+  const size_t nodes = size_t(scene.grid.node_count()), k = size_t(InputOptions{}.top_k);
+  EXPECT_LE(store_many->bytes(), nodes * (k * 6 + 4 + 1));
+  EXPECT_LE(double(store_many->bytes()), 1.05 * double(store_few->bytes())) << store_few->bytes();
 }
 
 // Values are computed only near label changes; a node whose voxels within the

@@ -30,6 +30,7 @@ struct Recorder : RunObserver {
   int creates = 0, improvements = 0, inputs = 0;
   std::vector<std::string> files;
   int stop_after = -1;
+  bool stop_when_writing = false; ///< ask to stop once the write stage has begun (Ctrl-C during the write)
 
   void stage(Stage s, const std::string&) override {
     if (stages.empty() || stages.back() != s) stages.push_back(s);
@@ -50,7 +51,10 @@ struct Recorder : RunObserver {
     files = mesh;
     files.insert(files.end(), phases.begin(), phases.end());
   }
-  bool stop_requested() override { return stop_after >= 0 && int(iterations.size()) > stop_after; }
+  bool stop_requested() override {
+    if (stop_when_writing) return !stages.empty() && stages.back() == Stage::write;
+    return stop_after >= 0 && int(iterations.size()) > stop_after;
+  }
 };
 
 MeshJob four_spheres_job(const std::string& output, int iterations = 3) {
@@ -92,6 +96,40 @@ TEST_F(RunJob, a_stop_request_throws_cancelled_and_writes_nothing) {
   EXPECT_THROW(run_job(job, &stopper), Cancelled);
   EXPECT_LT(stopper.iterations.size(), 4u);
   EXPECT_TRUE(std::filesystem::is_empty(dir_)) << "a stopped run wrote a file";
+}
+
+TEST_F(RunJob, a_stop_request_while_writing_writes_nothing) {
+  Recorder stopper;
+  stopper.stop_when_writing = true;
+  MeshJob job = four_spheres_job(path("m.stl"), 1);
+  job.outputs.per_phase = path("phases");
+  job.outputs.history = path("h.svg");
+  EXPECT_THROW(run_job(job, &stopper), Cancelled);
+  EXPECT_EQ(stopper.stages.back(), Stage::write);
+  size_t files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir_)) files += e.is_regular_file();
+  EXPECT_EQ(files, 0u) << "a run stopped while writing left files";
+}
+
+TEST_F(RunJob, an_output_is_never_an_input_of_the_job) {
+  run_job(four_spheres_job(path("created.ply"), 0));
+  MeshJob smooth;
+  smooth.mesh = path("created.ply");
+  smooth.input = kFourSpheres;
+  smooth.options.iterations = 1;
+  smooth.outputs.mesh = path("created.ply");
+  EXPECT_THROW(run_job(smooth), InvalidInput);
+  std::filesystem::copy_file(kFourSpheres, path("scene.json"));
+  smooth.input = path("scene.json");
+  smooth.outputs.mesh = path("smoothed.ply");
+  smooth.outputs.history = path("scene.json");
+  try {
+    run_job(smooth);
+    ADD_FAILURE() << "the history replaced the scene";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("is also an input of this run"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path("smoothed.ply")));
 }
 
 TEST_F(RunJob, a_bad_job_is_refused_before_its_input_is_read) {

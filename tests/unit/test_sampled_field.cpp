@@ -152,12 +152,12 @@ TEST(SampledField, k_below_one_is_invalid) {
 TEST(SampledField, nan_and_infinity_name_phase_and_point) {
   for (const char* expr : {"sqrt(-1)", "0/0"}) {
     const std::string what = sample_error(scene_with(expr));
-    EXPECT_EQ(what, "phase bad: value is NaN at (0, 0, 0)") << expr;
+    EXPECT_EQ(what, "nan.json: phase bad: value is NaN at (0, 0, 0)") << expr;
   }
-  EXPECT_EQ(sample_error(scene_with("1/x")), "phase bad: value is infinite at (0, 0, 0)");
+  EXPECT_EQ(sample_error(scene_with("1/x")), "nan.json: phase bad: value is infinite at (0, 0, 0)");
   // Whatever the scheduling, the lowest bad node is reported: (3, 0, 0) of a 4-cell grid.
   for (int round = 0; round < 5; ++round)
-    EXPECT_EQ(sample_error(scene_with("x > 0.5 ? 0/0 : x")), "phase bad: value is NaN at (0.75, 0, 0)");
+    EXPECT_EQ(sample_error(scene_with("x > 0.5 ? 0/0 : x")), "nan.json: phase bad: value is NaN at (0.75, 0, 0)");
 }
 
 TEST(SampledField, parallel_sampling_of_expressions_equals_serial) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace vm;
@@ -121,4 +122,19 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_LE(s.quality_p01, s.mean_quality);
   EXPECT_EQ(j.at("rms_edge").get<double>(), s.rms_edge);
   EXPECT_EQ(j.at("max_angle_deg").get<double>(), s.max_angle_deg);
+}
+
+TEST(Stats, the_first_percentile_is_the_qualitys_own) {
+  // Enough triangles (thousands) that the 1st percentile is neither the minimum nor the mean.
+  const NodeMesh m = test::four_spheres(16);
+  const MeshStats s = compute_stats(m);
+  std::vector<double> q;
+  for (const auto& t : m.triangles)
+    q.push_back(triangle_quality(m.points[size_t(t[0])], m.points[size_t(t[1])], m.points[size_t(t[2])]));
+  std::sort(q.begin(), q.end());
+  ASSERT_GT(q.size(), 1000u);
+  EXPECT_EQ(s.quality_p01, q[q.size() / 100]);
+  EXPECT_GT(s.quality_p01, s.min_quality);
+  EXPECT_LT(s.quality_p01, s.mean_quality);
+  EXPECT_EQ(nlohmann::json::parse(to_json(s)).at("quality_p01").get<double>(), s.quality_p01);
 }

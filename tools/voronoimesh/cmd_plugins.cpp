@@ -25,8 +25,13 @@ vm::PassRegistry pass_registry(const std::vector<std::string>& files, bool quiet
   vm::PassRegistry registry = vm::builtin_registry();
   std::vector<vm::PluginRecord> found = vm::load_plugins(registry, files);
   if (!quiet)
-    for (const vm::PluginRecord& r : found)
+    for (const vm::PluginRecord& r : found) {
       if (!r.refused.empty()) std::fprintf(stderr, "voronoimesh: plugin skipped: %s\n", r.refused.c_str());
+      if (r.shadowed)
+        std::fprintf(stderr, "voronoimesh: plugin skipped: %s: a plugin named '%s' was loaded before, from %s\n",
+                     r.file.c_str(), r.name.c_str(), r.shadowed_by.c_str());
+      if (!r.warning.empty()) std::fprintf(stderr, "voronoimesh: warning: plugin %s\n", r.warning.c_str());
+    }
   if (records) *records = std::move(found);
   return registry;
 }
@@ -53,14 +58,15 @@ void add_plugins_command(CLI::App& app, int& exit_code) {
           ++refused;
           std::printf("refused  %s (%s)\n         %s\n", r.file.c_str(), r.found_by.c_str(), r.refused.c_str());
         } else if (r.shadowed) {
-          std::printf("skipped  %s %s  %s (%s): a plugin named '%s' was loaded before\n", r.name.c_str(),
-                      r.version.c_str(), r.file.c_str(), r.found_by.c_str(), r.name.c_str());
+          std::printf("skipped  %s %s  %s (%s): a plugin named '%s' was loaded before, from %s\n", r.name.c_str(),
+                      r.version.c_str(), r.file.c_str(), r.found_by.c_str(), r.name.c_str(), r.shadowed_by.c_str());
         } else {
           ++loaded;
           std::string passes;
           for (const std::string& p : r.passes) passes += (passes.empty() ? "" : ", ") + p;
           std::printf("loaded   %s %s  %s (%s)\n         passes: %s\n", r.name.c_str(), r.version.c_str(),
                       r.file.c_str(), r.found_by.c_str(), passes.empty() ? "none" : passes.c_str());
+          if (!r.warning.empty()) std::printf("         warning: %s\n", r.warning.c_str());
         }
       }
       std::printf("%s%zu loaded, %zu refused\n", records.empty() ? "" : "\n", loaded, refused);

@@ -24,6 +24,7 @@ enum ExitCode : int {
   kIoError = 3,       ///< a file could not be read or written
   kTopology = 4,      ///< the mesh failed validation
   kInternal = 5,      ///< anything else (a bug)
+  kPlugin = 6,        ///< a plugin's pass failed or broke the plugin ABI's rules
   kInterrupted = 130, ///< stopped by Ctrl-C or SIGTERM (128 + SIGINT, as shells report it)
 };
 

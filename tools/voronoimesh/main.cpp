@@ -7,6 +7,7 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/core/version.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <string>
 
@@ -41,6 +42,9 @@ int run_guarded(const std::function<int()>& body, bool report) {
   } catch (const vm::TopologyError& e) {
     say(e.what());
     return kTopology;
+  } catch (const vm::PluginError& e) {
+    say(e.what());
+    return kPlugin;
   } catch (const vm::Cancelled&) {
     say("interrupted; nothing was written");
     return kInterrupted;
@@ -63,6 +67,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "voronoimesh " + vm::library_version());
   int exit_code = 0;
   vmcli::install_interrupt_handlers();
+  // Beyond a file-size limit (ulimit -f) a write fails with EFBIG, which the run
+  // reports (removing its temporary files), instead of the signal killing it.
+  std::signal(SIGXFSZ, SIG_IGN);
   vmcli::add_mesh_command(app, exit_code);
   vmcli::add_create_command(app, exit_code);
   vmcli::add_smooth_command(app, exit_code);

@@ -4,7 +4,7 @@
 
 #include "voronoimesh/check/history.hpp"
 
-#include "core/atomic_write.hpp"
+#include "core/staged_outputs.hpp"
 #include "core/text.hpp"
 #include "mesh/topology.hpp"
 #include "voronoimesh/check/stats.hpp"
@@ -411,16 +411,15 @@ void QualityHistory::check_format(const std::string& path) {
     throw InvalidInput(located(path, "unknown history format (the extension must be .csv, .json or .svg)"));
 }
 
-void QualityHistory::write(const std::string& path) const {
+std::string QualityHistory::text_for(const std::string& path) const {
+  check_format(path);
   const std::string ext = lower_extension(path);
-  if (ext == ".csv")
-    write_csv(path);
-  else if (ext == ".json")
-    write_json(path);
-  else if (ext == ".svg")
-    write_svg(path);
-  else
-    check_format(path); // throws
+  return ext == ".csv" ? csv() : ext == ".json" ? json() : svg();
+}
+
+void QualityHistory::write(const std::string& path) const {
+  const std::string text = text_for(path);
+  detail::write_atomically(path, [&](std::ostream& f) { f << text; });
 }
 
 } // namespace vm

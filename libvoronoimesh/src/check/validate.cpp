@@ -395,7 +395,36 @@ void check_nodes(const Tables& tables, ProblemLog& log) {
   });
 }
 
+/// Most a coordinate or the mesh's extent may be, and least its extent may be:
+/// within them squared lengths and areas neither overflow nor underflow.
+constexpr double kLargestCoordinate = 1e100, kSmallestExtent = 1e-100;
+
+/// False (and a problem logged) when the mesh's scale lies outside what double
+/// precision squares safely. (Coordinates that are not finite are the
+/// triangles' problems, reported with them.)
+bool check_scale(const NodeMesh& m, ProblemLog& log) {
+  double largest = 0;
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const Vec3& p : m.points) {
+    if (!p.allFinite()) continue;
+    largest = std::max(largest, p.cwiseAbs().maxCoeff());
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = largest > 0 || lo.allFinite() ? (hi - lo).maxCoeff() : 0;
+  if (largest > kLargestCoordinate || (extent > 0 && extent < kSmallestExtent)) {
+    log.add({}, [&] {
+      return cat("scale: the mesh spans ", extent, " with coordinates up to ", largest,
+                 "; voronoimesh works on meshes between ", kSmallestExtent, " and ", kLargestCoordinate,
+                 " in size (scale it into that range)");
+    });
+    return false;
+  }
+  return true;
+}
+
 void check_node_mesh(const NodeMesh& m, size_t checked, ProblemLog& log) {
+  if (!check_scale(m, log)) return; // every other check would fail at this scale
   const size_t num_tris = m.triangles.size(), num_nodes = m.points.size();
   if (m.pairs.size() != num_tris)
     log.add({}, [&] { return cat("size mismatch: ", num_tris, " triangles but ", m.pairs.size(), " phase pairs"); });

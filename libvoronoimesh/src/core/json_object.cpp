@@ -1,13 +1,74 @@
 #include "core/json_object.hpp"
 
+#include "core/text.hpp"
 #include "voronoimesh/core/errors.hpp"
+
+#include <set>
+#include <string>
+#include <vector>
 
 #include <cmath>
 
 namespace vm::detail {
 
-std::string brief(const nlohmann::json& v) {
-  std::string s = v.dump();
+namespace {
+
+using nlohmann::json;
+
+/// "malformed JSON at line L, column C: <reason>" from nlohmann's message, which
+/// reads "[json.exception.parse_error.101] parse error at line L, column C: <reason>"
+/// (or "[json.exception.out_of_range.406] number overflow parsing '1e999'").
+std::string malformed(const json::exception& e) {
+  std::string what = e.what();
+  const size_t tag_end = what.find("] ");
+  if (what.starts_with("[json.exception.") && tag_end != std::string::npos) what.erase(0, tag_end + 2);
+  const std::string marker = "parse error ";
+  if (what.starts_with(marker)) return "malformed JSON " + what.substr(marker.size());
+  return "malformed JSON: " + what;
+}
+
+/// Thrown from the parser's callback, so that parse_json() can say where.
+struct Refusal {
+  std::string problem;
+};
+
+} // namespace
+
+json parse_json(const std::string& text, const std::string& source) {
+  // The keys seen in each object being read, innermost last.
+  std::vector<std::set<std::string>> keys;
+  auto check = [&](int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+    case json::parse_event_t::object_start:
+    case json::parse_event_t::array_start:
+      if (depth >= kMaxJsonDepth) throw Refusal{"JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"};
+      if (event == json::parse_event_t::object_start) keys.emplace_back();
+      break;
+    case json::parse_event_t::object_end:
+      keys.pop_back();
+      break;
+    case json::parse_event_t::key:
+      if (!keys.back().insert(parsed.get<std::string>()).second)
+        throw Refusal{"key " + quote(parsed.get<std::string>()) + " appears twice in one object"};
+      break;
+    default:
+      break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, check);
+  } catch (const json::exception& e) {
+    throw InvalidInput(located(source, malformed(e)));
+  } catch (const Refusal& r) {
+    throw InvalidInput(located(source, r.problem));
+  }
+}
+
+std::string brief(const json& v) {
+  if (v.is_array()) return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " item" : " items");
+  if (v.is_object()) return "an object of " + std::to_string(v.size()) + (v.size() == 1 ? " key" : " keys");
+  std::string s = v.dump(); // a single value: no recursion
   constexpr size_t max_len = 40;
   return s.size() <= max_len ? s : s.substr(0, max_len - 3) + "...";
 }

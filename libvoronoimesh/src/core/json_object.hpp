@@ -41,6 +41,8 @@ public:
 
   const nlohmann::json& json() const { return json_; }
   const std::string& source() const { return source_; }
+  /// "<source>: <where>", the place of this object in messages.
+  std::string place() const { return where_.empty() ? source_ : source_ + ": " + where_; }
 
   /// Throws InvalidInput "<source>: <where>: <problem>".
   [[noreturn]] void fail(const std::string& problem) const;
@@ -50,7 +52,20 @@ private:
   std::string source_, where_;
 };
 
-/// A JSON value shortened for an error message.
+/// Deepest nesting of arrays and objects parse_json() accepts. Scenes nest a few
+/// levels; a bound keeps every walk over a value (dumping it, destroying it)
+/// shallow, whatever a file holds.
+constexpr int kMaxJsonDepth = 64;
+
+/// The JSON value of `text`, read from `source`. Throws InvalidInput
+/// "<source>: malformed JSON at line L, column C: <reason>", "<source>: JSON
+/// nested deeper than 64 levels at line L" or "<source>: key 'k' appears twice in
+/// one object" (a later value would silently replace the first).
+nlohmann::json parse_json(const std::string& text, const std::string& source);
+
+/// A JSON value shortened for an error message: a number, or a string of at most
+/// 40 characters, as written; an array or object by its size only (so a value
+/// of any size or depth costs as little to describe).
 std::string brief(const nlohmann::json& v);
 
 } // namespace vm::detail

@@ -32,6 +32,15 @@ std::string cat(const Parts&... parts) {
   return s;
 }
 
+/// `text` in single quotes for a message, cut to its first `max` characters
+/// with "..." after them when longer (a quote must not carry a whole file).
+inline std::string quote(std::string_view text, size_t max = 60) {
+  std::string s = "'";
+  s += text.size() <= max ? text : text.substr(0, max);
+  s += text.size() <= max ? "'" : "...'";
+  return s;
+}
+
 /// `s` in lower case (ASCII), e.g. to compare file extensions.
 inline std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));

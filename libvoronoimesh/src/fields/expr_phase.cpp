@@ -1,5 +1,7 @@
 #include "fields/expr_phase.hpp"
 
+#include "core/text.hpp"
+
 #include <muParser.h>
 
 #include <array>
@@ -34,17 +36,20 @@ void compile(mu::Parser& p, std::array<double, 3>& at, const ExprSpec& spec,
     for (const auto& [name, v] : spec.constants) {
       // muparser would let a constant silently shadow a coordinate.
       if (name == "x" || name == "y" || name == "z")
-        throw ExprError("constant '" + name + "' would hide the coordinate " + name);
+        throw ExprError("constant " + quote(name) + " would hide the coordinate " + name);
       p.DefineConst(name, v);
     }
     p.SetExpr(formula);
     int results = 0;
     p.Eval(results); // parses on first use
     if (results != 1)
-      throw ExprError(label + " '" + formula + "' gives " + std::to_string(results) +
+      throw ExprError(label + " " + quote(formula) + " gives " + std::to_string(results) +
                       " comma-separated values, expected one");
   } catch (const mu::Parser::exception_type& e) {
-    throw ExprError("bad " + label + " '" + formula + "': " + e.GetMsg());
+    // muparser's message quotes the token at fault, which may be most of a long formula.
+    const std::string why = e.GetMsg();
+    throw ExprError("bad " + label + " " + quote(formula) + ": " +
+                    (why.size() <= 160 ? why : why.substr(0, 157) + "..."));
   }
 }
 

@@ -35,6 +35,9 @@ public:
 
   int num_phases() const override { return n_ + 1; }
   std::string phase_name(int i) const override { return i == n_ ? kOutsidePhaseName : inner_->phase_name(i); }
+  std::string describe_phase(int i) const override {
+    return i == n_ ? "the phase outside the domain box" : inner_->describe_phase(i);
+  }
   int32_t phase_label(int i) const override { return i == n_ ? inner_->phase_label(n_ - 1) + 1 : inner_->phase_label(i); }
 
   void values(const Vec3& x, std::span<double> out) const override {

@@ -9,6 +9,8 @@
 
 namespace vm {
 
+std::string PhaseField::describe_phase(int i) const { return "phase " + phase_name(i); }
+
 void PhaseField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
   // Scratch space per thread: this runs once per grid node.
   thread_local std::vector<double> v;

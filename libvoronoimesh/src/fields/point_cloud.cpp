@@ -3,7 +3,7 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include "core/text.hpp"
-#include "core/text_file.hpp"
+#include "core/input_file.hpp"
 #include "fields/top_k.hpp"
 
 #include <nanoflann.hpp>
@@ -163,7 +163,8 @@ namespace {
 
 /// "x y z label" lines (point_cloud_scene).
 LabelledPoints read_text_points(const std::string& path) {
-  std::istringstream text(read_text_file(path));
+  // Bounded by the memory the points will take (read_text_file checks it).
+  std::istringstream text(read_text_file(path, UINT64_MAX, "a point file"));
   LabelledPoints out;
   int line_no = 0;
   bool first = true;

@@ -44,7 +44,7 @@ void check_grid(const GridSpec& grid) {
   int i = 0;
   while (i + 1 < int(v.size()) && std::isfinite(v[size_t(i)])) ++i;
   const std::string what = std::isnan(v[size_t(i)]) ? "NaN" : "infinite";
-  throw InvalidInput(located("phase " + field.phase_name(i), "value is " + what + " at " + point_text(x)));
+  throw InvalidInput(located(field.describe_phase(i), "value is " + what + " at " + point_text(x)));
 }
 
 /// The node's floor value, from its kept values (largest first).

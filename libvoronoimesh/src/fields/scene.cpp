@@ -2,8 +2,9 @@
 
 #include "voronoimesh/core/errors.hpp"
 
+#include "core/input_file.hpp"
 #include "core/json_object.hpp"
-#include "core/text_file.hpp"
+#include "core/text.hpp"
 #include "fields/phase_function.hpp"
 #include "fields/phase_reader.hpp"
 #include "fields/voxel_grid.hpp"
@@ -21,18 +22,6 @@ using nlohmann::json;
 
 /// Largest grid a scene may ask for: 4096^3 nodes is already far beyond memory.
 constexpr int max_grid_cells = 4096;
-
-/// "malformed JSON at line L, column C: <reason>" from nlohmann's message, which
-/// reads "[json.exception.parse_error.101] parse error at line L, column C: <reason>"
-/// (or "[json.exception.out_of_range.406] number overflow parsing '1e999'").
-std::string malformed(const json::exception& e) {
-  std::string what = e.what();
-  const size_t tag_end = what.find("] ");
-  if (what.starts_with("[json.exception.") && tag_end != std::string::npos) what.erase(0, tag_end + 2);
-  const std::string marker = "parse error ";
-  if (what.starts_with(marker)) return "malformed JSON " + what.substr(marker.size());
-  return "malformed JSON: " + what;
-}
 
 int grid_cells(const JsonObject& scene, const json& v, const std::string& what) {
   if (v.is_number()) {
@@ -62,6 +51,10 @@ Box read_domain(const JsonObject& domain) {
   for (int a = 0; a < 3; ++a)
     if (!(box.min[a] < box.max[a]))
       domain.fail("'min' must be below 'max' on every axis, not on axis " + std::string(1, "xyz"[a]));
+  // Distances across it are squared: beyond this they overflow, and every phase would be blamed.
+  constexpr double largest = 1e100;
+  if (box.min.cwiseAbs().maxCoeff() > largest || box.max.cwiseAbs().maxCoeff() > largest)
+    domain.fail(detail::cat("must lie within -", largest, " and ", largest, " on every axis"));
   return box;
 }
 
@@ -81,7 +74,7 @@ std::shared_ptr<const PhaseField> read_phases(const JsonObject& scene, const det
   if (list.size() > kMaxPhases)
     scene.fail("too many phases (" + std::to_string(list.size()) + "; at most " +
                std::to_string(kMaxPhases) + ")");
-  auto field = std::make_shared<detail::CompositeField>();
+  auto field = std::make_shared<detail::CompositeField>(scene.source());
   std::map<std::string, size_t> used; // names are how outputs tell phases apart
   for (size_t i = 0; i < list.size(); ++i) {
     const JsonObject phase(list[i], scene.source(), "phase " + std::to_string(i));
@@ -111,12 +104,7 @@ constexpr const char* four_spheres_json = R"({
 } // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(json_text);
-  } catch (const json::exception& e) {
-    throw InvalidInput(located(source, malformed(e)));
-  }
+  const json root = detail::parse_json(json_text, source);
   const JsonObject scene(root, source, "");
   scene.allow_only({"description", "domain", "grid", "phases"});
   if (scene.has("description")) scene.string("description"); // checks that it is text
@@ -137,7 +125,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   return out;
 }
 
-Scene load_scene(const std::string& path) { return parse_scene(detail::read_text_file(path), path); }
+/// A scene is small: grid data lives in files of its own.
+constexpr uint64_t kMaxSceneBytes = uint64_t(64) << 20;
+
+Scene load_scene(const std::string& path) {
+  return parse_scene(detail::read_text_file(path, kMaxSceneBytes, "a scene"), path);
+}
 
 Scene demo_scene() { return parse_scene(four_spheres_json, "demo scene"); }
 

@@ -47,6 +47,16 @@ public:
   /// offered nothing, or -1; nodes of uniform bricks count as offered.
   int64_t finish(float far);
 
+  /// Bytes the store holds: per node of a dense brick k ids and values and a
+  /// floor, a word per brick, and per phase the ids and values of its uniform
+  /// bricks. Grows with the nodes near label changes and with k, barely with
+  /// the number of phases.
+  size_t bytes() const {
+    return ids_.size() * sizeof(int16_t) + values_.size() * sizeof(float) + floor_.size() * sizeof(float) +
+           brick_.size() * sizeof(int32_t) + uniform_ids_.size() * sizeof(int16_t) +
+           uniform_values_.size() * sizeof(float);
+  }
+
   int num_phases() const override { return int(names_.size()); }
   std::string phase_name(int i) const override { return names_.at(size_t(i)); }
   int32_t phase_label(int i) const override { return labels_.empty() ? i : labels_[size_t(i)]; }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_set>
 
 namespace vm::detail {
@@ -30,21 +31,22 @@ std::vector<int32_t> distinct(const std::vector<int32_t>& labels) {
 }
 
 /// What each label present becomes after --drop-labels, --merge-labels and the
-/// background rule: a label value, or -1 for no phase.
-std::vector<int32_t> label_targets(const std::vector<int32_t>& present, const InputOptions& o, const std::string& path) {
+/// background rule: a label value (any 32-bit integer), or none for no phase.
+std::vector<std::optional<int32_t>> label_targets(const std::vector<int32_t>& present, const InputOptions& o,
+                                                  const std::string& path) {
   auto require_present = [&](int32_t l, const char* option) {
     if (!std::binary_search(present.begin(), present.end(), l))
       throw InvalidInput(located(path, cat(option, ": label ", l, " is not in the volume")));
   };
-  std::vector<int32_t> target = present;
   for (int32_t l : o.drop_labels) require_present(l, "--drop-labels");
   for (const auto& group : o.merge_labels) for (int32_t l : group) require_present(l, "--merge-labels");
+  std::vector<std::optional<int32_t>> target(present.size());
   for (size_t i = 0; i < present.size(); ++i) {
-    int32_t& t = target[i];
+    int32_t t = present[i];
     if (std::find(o.drop_labels.begin(), o.drop_labels.end(), t) != o.drop_labels.end()) t = o.background;
     for (const auto& group : o.merge_labels)
       if (std::find(group.begin(), group.end(), t) != group.end()) t = *std::min_element(group.begin(), group.end());
-    if (o.no_background && t == o.background) t = -1;
+    if (!(o.no_background && t == o.background)) target[i] = t;
   }
   return target;
 }
@@ -72,6 +74,12 @@ void check_input_options(const InputOptions& o) {
     throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
+  // An option of the other label function would change nothing: refused, not ignored.
+  const InputOptions defaults;
+  if (o.label_function == LabelFunction::signed_distance && o.smoothing != defaults.smoothing)
+    throw InvalidInput("--smoothing: applies to the smoothed indicator, not with --signed-distance");
+  if (o.label_function != LabelFunction::signed_distance && o.band != defaults.band)
+    throw InvalidInput("--band: applies to signed distances: give it with --signed-distance");
 }
 
 Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string& path) {
@@ -79,9 +87,10 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
     throw InvalidInput(located(path, cat("has ", v.components, " integer components per voxel; a label volume has one")));
   refuse_huge_field(v.voxel_count(), o.top_k, 6, path); // the labels and their phases
   const std::vector<int32_t> present = distinct(v.labels);
-  const std::vector<int32_t> target = label_targets(present, o, path);
+  const std::vector<std::optional<int32_t>> target = label_targets(present, o, path);
   PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
-  for (int32_t t : target) if (t >= 0) pv.labels.push_back(t);
+  for (const auto& t : target)
+    if (t) pv.labels.push_back(*t);
   std::sort(pv.labels.begin(), pv.labels.end());
   pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
   check_phase_count(pv.labels.size(), path, " after the label options");
@@ -89,8 +98,8 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   // Label value -> phase id, through the position of the label among `present`.
   std::vector<int32_t> phase_of(present.size());
   for (size_t i = 0; i < present.size(); ++i)
-    phase_of[i] = target[i] < 0 ? -1
-                                : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), target[i]) - pv.labels.begin());
+    phase_of[i] = !target[i] ? -1 // no phase
+                             : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), *target[i]) - pv.labels.begin());
   pv.phase.resize(v.labels.size());
   // Label value -> phase id: a table over the labels' range when it is small (8- and 16-bit files).
   const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;

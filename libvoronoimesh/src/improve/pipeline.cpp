@@ -55,6 +55,8 @@ Pipeline Pipeline::parse(const std::string& spec, const PassRegistry& registry) 
       if (eq == std::string::npos)
         throw InvalidInput(located("pipeline", "'" + parts[i] + "' in '" + item + "': expected key=value"));
       const std::string key = trim(parts[i].substr(0, eq));
+      if (given.count(key))
+        throw InvalidInput(located("pipeline", "'" + item + "' gives " + name + "." + key + " twice"));
       given[key] = parse_number(trim(parts[i].substr(eq + 1)), name + "." + key);
     }
     p.steps_.push_back({registry.get(name), registry.resolve(name, given)});

@@ -3,6 +3,7 @@
 #include "voronoimesh/improve/smooth.hpp"
 
 #include "core/parallel.hpp"
+#include "improve/field_checks.hpp"
 
 #include <array>
 
@@ -31,15 +32,21 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
 
 void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const ProjectParams& params,
                     std::vector<Vec3>& delta) {
+  std::vector<uint8_t> not_finite(mesh.num_nodes(), 0);
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
     const PhaseSet& s = mesh.phases()[v];
     std::array<int32_t, 8> ids;
     const int n = phase_count(s);
     for (int i = 0; i < n; ++i) ids[size_t(i)] = s[size_t(i)];
     Vec3 p = projection_step(field, mesh.positions()[v], {ids.data(), size_t(n)}, params);
+    if (!p.allFinite()) {
+      not_finite[v] = 1;
+      return;
+    }
     constrain_to_box(p, mesh.box_faces()[v]);
     delta[v] += p;
   });
+  detail::refuse_not_finite(mesh, field, not_finite);
 }
 
 } // namespace vm

@@ -8,16 +8,35 @@
 
 namespace vm {
 
-void PassRegistry::add(PassInfo info) {
-  const bool name_ok = !info.name.empty() && std::all_of(info.name.begin(), info.name.end(), [](char c) {
+namespace {
+
+/// True when `name` is a pipeline word: a-z, 0-9, _ and - (a pipeline string
+/// splits at ',', ':' and '=', and names are shown in one-line messages).
+bool is_pipeline_word(const std::string& name) {
+  return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
   });
-  if (!name_ok) throw InvalidInput(located("pass registry", "bad pass name '" + info.name + "' (use a-z, 0-9, _ and -)"));
+}
+
+} // namespace
+
+void PassRegistry::add(PassInfo info) {
+  if (!is_pipeline_word(info.name))
+    throw InvalidInput(located("pass registry", "bad pass name " + detail::quote(info.name) +
+                                                    " (use a-z, 0-9, _ and -, at most 64 of them)"));
   if (std::any_of(passes_.begin(), passes_.end(), [&](const PassInfo& p) { return p.name == info.name; }))
     throw InvalidInput(located("pass registry", "a pass named '" + info.name + "' is already registered"));
-  for (const ParamSpec& s : info.params)
+  for (size_t i = 0; i < info.params.size(); ++i) {
+    const ParamSpec& s = info.params[i];
+    if (!is_pipeline_word(s.name))
+      throw InvalidInput(located("pass registry", "pass '" + info.name + "': bad parameter name " +
+                                                      detail::quote(s.name) + " (use a-z, 0-9, _ and -)"));
+    for (size_t j = 0; j < i; ++j)
+      if (info.params[j].name == s.name)
+        throw InvalidInput(located("pass registry", "pass '" + info.name + "': parameter '" + s.name + "' twice"));
     if (!(s.min <= s.default_value && s.default_value <= s.max))
       throw InvalidInput(located("pass registry", "pass '" + info.name + "': default of " + s.name + " out of range"));
+  }
   passes_.push_back(std::move(info));
 }
 

@@ -1,6 +1,7 @@
 #include "voronoimesh/improve/smooth.hpp"
 
 #include "core/parallel.hpp"
+#include "improve/field_checks.hpp"
 #include "improve/edge_lengths.hpp"
 
 #include <algorithm>
@@ -73,6 +74,7 @@ void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, co
 void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const PhaseField& field, double l0,
                                            std::vector<Vec3>& delta) {
   const auto& pos = mesh.positions();
+  std::vector<uint8_t> not_finite(mesh.num_nodes(), 0);
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t vi) {
     const int32_t v = int32_t(vi);
     const int order = junction_order(mesh, v);
@@ -106,6 +108,10 @@ void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const Phas
       // Tangential only: a normal component would fight the projection (sect. 4.2.4).
       auto ph = phases_of(mesh, v);
       Vec3 n = field.gradient(ph[0], x) - field.gradient(ph[1], x);
+      if (!n.allFinite()) {
+        not_finite[vi] = 1;
+        return;
+      }
       const double len = n.norm();
       if (len > 0) {
         n /= len;
@@ -115,6 +121,7 @@ void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const Phas
     constrain_to_box(force, mesh.box_faces()[vi]);
     delta[vi] += force;
   });
+  detail::refuse_not_finite(mesh, field, not_finite);
 }
 
 } // namespace vm

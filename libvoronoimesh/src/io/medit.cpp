@@ -33,7 +33,7 @@ void block(ChunkedOutput& out, const char* keyword, size_t count, Row row) {
 
 } // namespace
 
-void write_medit(const NodeMesh& m, const std::string& path) {
+void write_medit(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path) {
   const std::vector<PhasePair> pairs = distinct_pairs(m);
   const std::vector<int32_t> pair_ref = pair_indices(m, pairs);
   const Junctions junctions = find_junctions(m);
@@ -47,7 +47,7 @@ void write_medit(const NodeMesh& m, const std::string& path) {
     curve_ref[c] = int32_t(triples.size());
     for (size_t i = 0; i < curve.num_edges(); ++i) edges.emplace_back(int32_t(c), int32_t(i));
   }
-  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) {
+  vm::detail::write_in_chunks(staged, path, [&](ChunkedOutput& out) {
     std::string& buf = out.text();
     buf += "MeshVersionFormatted 2\nDimension 3\n"
            "# voronoimesh interface mesh. Phases are named <label>-<name>.\n"

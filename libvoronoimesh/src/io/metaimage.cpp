@@ -5,8 +5,8 @@
 
 #include "voronoimesh/io/volume.hpp"
 
+#include "core/input_file.hpp"
 #include "core/text.hpp"
-#include "core/text_file.hpp"
 #include "io/inflate.hpp"
 #include "io/voxel_data.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -200,15 +200,13 @@ std::string_view data_bytes(const std::string& path, const Fields& f, const std:
     if (name.find('%') != std::string::npos)
       throw InvalidInput(located(path, cat("ElementDataFile '", name, "' is a file-name pattern, not supported")));
     const std::filesystem::path data_path = std::filesystem::path(path).parent_path() / name;
-    // A device or a pipe (/dev/zero, /dev/stdin) would be read without end.
-    std::error_code ec;
-    if (const auto status = std::filesystem::status(data_path, ec);
-        std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-      throw IoError(located(path, cat("ElementDataFile ", data_path.string(), " is not a regular file")));
     try {
-      storage = detail::read_text_file(data_path.string());
+      // A device or a pipe (/dev/zero, /dev/stdin) is refused, not read without end.
+      storage = detail::read_text_file(data_path.string(), UINT64_MAX, "a data file");
     } catch (const IoError& e) {
       throw IoError(located(path, cat("ElementDataFile ", e.what())));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(located(path, cat("ElementDataFile ", e.what())));
     }
     bytes = storage;
     if (skip == -1) skip = int64_t(bytes.size() >= raw_bytes ? bytes.size() - raw_bytes : 0);
@@ -222,7 +220,7 @@ std::string_view data_bytes(const std::string& path, const Fields& f, const std:
 } // namespace
 
 Volume read_metaimage(const std::string& path) {
-  const std::string text = detail::read_text_file(path);
+  const std::string text = detail::read_text_file(path, UINT64_MAX, "a MetaImage file");
   const Header h = parse_header(path, text);
   const Fields f(path, h);
   Volume v;

@@ -291,9 +291,9 @@ private:
 
 } // namespace
 
-void write_msh(const NodeMesh& m, const std::string& path) {
+void write_msh(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path) {
   const MshModel model(m);
-  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) { model.write(out); });
+  vm::detail::write_in_chunks(staged, path, [&](ChunkedOutput& out) { model.write(out); });
 }
 
 } // namespace vm::io::detail

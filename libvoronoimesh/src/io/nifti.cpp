@@ -7,6 +7,7 @@
 
 #include "voronoimesh/io/volume.hpp"
 
+#include "core/input_file.hpp"
 #include "core/text.hpp"
 #include "io/voxel_data.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -16,6 +17,7 @@
 #include <bit>
 #include <cerrno>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -35,8 +37,17 @@ struct CFree {
   void operator()(char* p) const { std::free(p); }
 };
 
-/// Throws IoError unless `file` can be opened, with the system's reason.
+/// Throws IoError unless `file` can be opened, with the system's reason, and
+/// InvalidInput unless it is a regular file (a device would be read without end).
 void require_readable(const std::string& path, const std::string& file) {
+  std::error_code missing;
+  if (file != path && std::filesystem::exists(file, missing)) { // a missing one: opening it below says so
+    try {
+      detail::require_regular_file(file);
+    } catch (const IoError& e) {
+      throw IoError(located(path, cat("its image file ", e.what())));
+    }
+  }
   std::FILE* f = std::fopen(file.c_str(), "rb");
   if (!f) {
     const std::string reason = std::strerror(errno);
@@ -88,6 +99,10 @@ public:
       : raw_(nifti_read_header(header_name, &version_, 0), std::free) {
     if (!raw_ || (version_ != 1 && version_ != 2))
       throw InvalidInput(located(path, "not a NIfTI file (no valid 348- or 540-byte header)"));
+    // nifti_read_header leaves the bytes as the file holds them: a header of the
+    // other byte order shows its size swapped, and is swapped here.
+    const int size = version_ == 2 ? n2()->sizeof_hdr : n1()->sizeof_hdr;
+    if (size != (version_ == 2 ? 540 : 348)) swap_nifti_header(raw_.get(), version_);
     const char* m = version_ == 2 ? n2()->magic : n1()->magic;
     if (m[0] != 'n' || (m[1] != '+' && m[1] != 'i') || m[2] != char('0' + version_) || m[3] != '\0')
       throw InvalidInput(located(path, cat("no NIfTI-", version_, " magic ('n+", version_, "', 'ni", version_,
@@ -101,6 +116,23 @@ public:
       if (!(d > 0) || !std::isfinite(d))
         throw InvalidInput(located(path, cat("pixdim[", a, "] is ", d, ", must be > 0")));
     }
+  }
+
+  /// Throws unless vox_offset, where the voxel data starts, is a whole number of
+  /// bytes the image file of `size` bytes holds (-1: not known, gzipped): in a single .nii file at least
+  /// past the header and its 4 extension bytes (352 for NIfTI-1, 544 for
+  /// NIfTI-2), in the .img of a pair 0 or more. nifti2_io reads a NaN, huge or
+  /// too small offset from just past the header: shifted data, not an error.
+  void check_vox_offset(const std::string& path, int64_t size) const {
+    const double offset = version_ == 2 ? double(n2()->vox_offset) : double(n1()->vox_offset);
+    const bool single = (version_ == 2 ? n2()->magic : n1()->magic)[1] == '+';
+    const double least = !single ? 0 : version_ == 2 ? 544 : 352;
+    const bool beyond = size >= 0 && offset > double(size);
+    if (!std::isfinite(offset) || offset != std::floor(offset) || offset < least || beyond)
+      throw InvalidInput(located(path, cat("vox_offset ", offset, " is not where voxel data can start: a whole ",
+                                           "number ",
+                                           single ? cat("from ", least, " (past the header)") : std::string("from 0"),
+                                           size >= 0 ? cat(" to the image file's ", size, " bytes") : std::string())));
   }
 
 private:
@@ -183,6 +215,7 @@ Volume read_nifti(const std::string& path) {
   require_readable(path, nim->iname);
   const int64_t file_size = nifti_get_filesize(nim->iname);
   if (file_size < 0) throw IoError(located(path, cat("cannot read the size of ", nim->iname)));
+  raw.check_vox_offset(path, nifti_is_gzfile(nim->iname) ? -1 : file_size);
   if (nifti_is_gzfile(nim->iname))
     detail::check_inflatable(path, needed, uint64_t(file_size));
   else if (const auto held = uint64_t(std::max<int64_t>(0, file_size - nim->iname_offset)); held < needed)

@@ -5,6 +5,7 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include <bzlib.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -66,15 +67,53 @@ uint64_t bzip2_bytes(const std::string& path, std::FILE* file, uint64_t want, co
   return got;
 }
 
-/// Throws unless each bzip2 data file inflates to its share of `needed` bytes
-/// plus its byte skip (Teem reads the same number of samples from each).
-void check_bzip2_inflates(const std::string& path, NrrdIoState& io, const std::vector<fs::path>& files,
-                          uint64_t samples, uint64_t needed) {
+/// The bytes the gzip (or zlib) data at `file`'s position inflates to, members
+/// one after the other as Teem reads them, counted up to `want` and not kept.
+/// Throws InvalidInput naming `name` when it is not such data.
+uint64_t gzip_bytes(const std::string& path, std::FILE* file, uint64_t want, const fs::path& name) {
+  z_stream z{};
+  if (inflateInit2(&z, 15 + 32) != Z_OK) throw InvalidInput(located(path, "cannot start zlib"));
+  std::vector<unsigned char> in(1 << 16), out(1 << 16);
+  uint64_t got = 0;
+  int status = Z_OK;
+  while (got < want) {
+    if (z.avail_in == 0) {
+      const size_t n = std::fread(in.data(), 1, in.size(), file);
+      if (n == 0) break; // the file ends: the caller reports how much it held
+      z.next_in = in.data();
+      z.avail_in = unsigned(n);
+    }
+    z.next_out = out.data();
+    z.avail_out = unsigned(std::min<uint64_t>(out.size(), want - got));
+    const unsigned before = z.avail_out;
+    status = inflate(&z, Z_NO_FLUSH);
+    got += before - z.avail_out;
+    if (status == Z_STREAM_END) {
+      if (z.avail_in == 0 && std::feof(file)) break;
+      inflateReset(&z); // another member follows
+      continue;
+    }
+    if (status != Z_OK && status != Z_BUF_ERROR) break;
+  }
+  inflateEnd(&z);
+  if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR)
+    throw InvalidInput(located(path, cat(describe(path, {name}), " is not valid gzip data (",
+                                         status == Z_DATA_ERROR ? "Z_DATA_ERROR" : cat("zlib error ", status), ")")));
+  return got;
+}
+
+/// Throws unless each compressed data file inflates to its share of `needed`
+/// bytes plus its byte skip (Teem reads the same number of samples from each),
+/// inflating it as `count` does, without keeping what it inflates: the memory
+/// touched grows with the data, not with what the header claims.
+void check_inflates(const std::string& path, NrrdIoState& io, const std::vector<fs::path>& files, uint64_t samples,
+                    uint64_t needed, const char* encoding,
+                    uint64_t (*count)(const std::string&, std::FILE*, uint64_t, const fs::path&)) {
   for (size_t i = 0; i < files.size(); ++i) {
     const uint64_t want = saturating_add(needed / files.size(), byte_skip(io, i));
     uint64_t got = 0;
     if (files.size() == 1 && io.dataFile) {
-      got = bzip2_bytes(path, io.dataFile, want, files[i]); // Teem left it where the data starts
+      got = count(path, io.dataFile, want, files[i]); // Teem left it where the data starts
     } else {
       File f(std::fopen(files[i].c_str(), "rb"), &std::fclose);
       if (!f) throw IoError(located(path, cat("cannot open its data file ", files[i].string())));
@@ -83,12 +122,12 @@ void check_bzip2_inflates(const std::string& path, NrrdIoState& io, const std::v
         throw InvalidInput(
             located(path, cat("its data file ", files[i].string(), " has fewer lines than 'line skip'")));
       }
-      got = bzip2_bytes(path, f.get(), want, files[i]);
+      got = count(path, f.get(), want, files[i]);
     }
     if (got < want)
       throw InvalidInput(located(path, cat("truncated: the header describes ", samples, " samples (", needed,
-                                           " bytes) of bzip2 data; ", describe(path, {files[i]}), " inflates to ", got,
-                                           " of the ", want, " bytes it must hold")));
+                                           " bytes) of ", encoding, " data; ", describe(path, {files[i]}),
+                                           " inflates to ", got, " of the ", want, " bytes it must hold")));
   }
 }
 
@@ -115,8 +154,11 @@ void check_data_fits(const std::string& path, NrrdIoState& io, const std::vector
   const uint64_t needed = samples * sample_bytes; // below the memory, so no overflow
   const std::string skip_note = skips > 0 ? cat(" after skipping ", skips, " bytes") : "";
   if (e->isCompression) {
-    if (saturating_add(needed, skips) <= detail::max_inflated_bytes(held)) return;
-    if (e == nrrdEncodingBzip2) return check_bzip2_inflates(path, io, files, samples, needed);
+    if (e == nrrdEncodingBzip2) return check_inflates(path, io, files, samples, needed, "bzip2", bzip2_bytes);
+    if (saturating_add(needed, skips) <= detail::max_inflated_bytes(held)) {
+      if (e == nrrdEncodingGzip) check_inflates(path, io, files, samples, needed, "gzip", gzip_bytes);
+      return;
+    }
     throw InvalidInput(
         located(path, cat("the header describes ", samples, " samples (", needed, " bytes)", skip_note, " of ", e->name,
                           " data; ", describe(path, files), files.size() > 1 ? " hold " : " holds ", held,

@@ -11,14 +11,14 @@
 
 namespace vm::io::detail {
 
-void write_obj(const NodeMesh& m, const std::string& path) {
+void write_obj(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path) {
   const std::vector<PhasePair> pairs = distinct_pairs(m);
   const std::vector<int32_t> index = pair_indices(m, pairs);
   // Triangles grouped by pair, in their own order within a group.
   std::vector<int32_t> order(m.triangles.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return index[size_t(a)] < index[size_t(b)]; });
-  vm::detail::write_in_chunks(path, [&](vm::detail::ChunkedOutput& out) {
+  vm::detail::write_in_chunks(staged, path, [&](vm::detail::ChunkedOutput& out) {
     std::string& buf = out.text();
     buf += vm::detail::cat("# voronoimesh interface mesh: ", m.points.size(), " vertices, ", m.triangles.size(),
                            " triangles, ", pairs.size(), " phase pairs\n",

@@ -5,7 +5,7 @@
 /// that goes to the stream in large chunks (so memory stays small and the
 /// stream sees few writes, whatever the mesh size).
 
-#include "core/atomic_write.hpp"
+#include "core/staged_outputs.hpp"
 #include "voronoimesh/core/types.hpp"
 
 #include <bit>
@@ -73,10 +73,11 @@ private:
   std::string buf_;
 };
 
-/// Writes `path` atomically (write_atomically()) through a ChunkedOutput:
+/// Writes `path` among `staged` (StagedOutputs::write()) through a ChunkedOutput:
 /// `body` appends to out.text(), calling out.maybe_flush() as it goes.
-inline void write_in_chunks(const std::string& path, const std::function<void(ChunkedOutput&)>& body) {
-  write_atomically(path, [&](std::ostream& f) {
+inline void write_in_chunks(StagedOutputs& staged, const std::string& path,
+                            const std::function<void(ChunkedOutput&)>& body) {
+  staged.write(path, [&](std::ostream& f) {
     ChunkedOutput out(f);
     body(out);
     out.finish();

@@ -79,12 +79,22 @@ void write_body(vm::detail::ChunkedOutput& out, const NodeMesh& m, bool ascii) {
 
 } // namespace
 
-void write_ply(const NodeMesh& m, const std::string& path, bool ascii) {
-  detail::check_output_mesh(m, path);
-  vm::detail::write_in_chunks(path, [&](vm::detail::ChunkedOutput& out) {
+namespace detail {
+
+void write_ply(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path, bool ascii) {
+  check_output_mesh(m, path);
+  vm::detail::write_in_chunks(staged, path, [&](vm::detail::ChunkedOutput& out) {
     out.text() += header(m, ascii);
     write_body(out, m, ascii);
   });
+}
+
+} // namespace detail
+
+void write_ply(const NodeMesh& m, const std::string& path, bool ascii) {
+  vm::detail::StagedOutputs staged;
+  detail::write_ply(staged, m, path, ascii);
+  staged.commit();
 }
 
 } // namespace vm::io

@@ -4,6 +4,8 @@
 
 #include "io/ply_format.hpp"
 
+#include "core/input_file.hpp"
+#include "core/memory.hpp"
 #include "core/text.hpp"
 #include "voronoimesh/core/errors.hpp"
 
@@ -44,8 +46,7 @@ T load(const unsigned char* b) {
 }
 
 std::string slurp(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError(located(path, "is a directory, not a PLY file"));
+  detail::refuse_beyond_memory(double(detail::require_regular_file(path)), path, "reading it");
   std::ifstream f(path, std::ios::binary | std::ios::ate);
   if (!f) throw IoError(located(path, cat("cannot open: ", std::strerror(errno))));
   const std::streamoff size = f.tellg();

@@ -38,9 +38,9 @@ struct Solid {
 /// Writes `facets` as STL, binary or ASCII. The 80-byte binary header holds the
 /// description (it must not start with "solid", which some readers take for an
 /// ASCII STL); ASCII coordinates are written exactly, binary ones as float32.
-void write_stl(const NodeMesh& m, const std::string& path, const Solid& solid, const std::vector<Facet>& facets,
-               bool ascii) {
-  vm::detail::write_in_chunks(path, [&](vm::detail::ChunkedOutput& out) {
+void write_stl(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path, const Solid& solid,
+               const std::vector<Facet>& facets, bool ascii) {
+  vm::detail::write_in_chunks(staged, path, [&](vm::detail::ChunkedOutput& out) {
     std::string& buf = out.text();
     if (ascii) {
       buf += cat("solid ", solid.name, "\n");
@@ -81,7 +81,8 @@ void write_stl(const NodeMesh& m, const std::string& path, const Solid& solid, c
 
 namespace detail {
 
-std::vector<std::string> write_stl_per_pair(const NodeMesh& m, const std::string& path, bool ascii) {
+std::vector<std::string> write_stl_per_pair(vm::detail::StagedOutputs& staged, const NodeMesh& m,
+                                            const std::string& path, bool ascii) {
   const std::vector<PhasePair> pairs = distinct_pairs(m);
   const std::vector<int32_t> index = pair_indices(m, pairs);
   std::vector<std::vector<Facet>> facets(pairs.size());
@@ -91,22 +92,21 @@ std::vector<std::string> write_stl_per_pair(const NodeMesh& m, const std::string
   for (size_t i = 0; i < pairs.size(); ++i) {
     const std::string name = phases_token(m, pairs[i]);
     const std::string file = (p.parent_path() / (p.stem().string() + "_" + name + ".stl")).string();
-    write_stl(m, file, {name, "surface, normals from the first phase into the second"}, facets[i], ascii);
+    write_stl(staged, m, file, {name, "surface, normals from the first phase into the second"}, facets[i], ascii);
     written.push_back(file);
   }
   return written;
 }
 
-} // namespace detail
-
-std::vector<std::string> write_per_phase_stl(const NodeMesh& m, const std::string& dir, const WriteOptions& options) {
+std::vector<std::string> write_per_phase_stl(vm::detail::StagedOutputs& staged, const NodeMesh& m,
+                                             const std::string& dir, const WriteOptions& options) {
   const std::string probe = (fs::path(dir) / "phase.stl").string();
-  detail::check_output_mesh(m, probe);
+  check_output_mesh(m, probe);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw IoError(located(dir, cat("cannot make the directory (", ec ? ec.message() : "a file is in the way", ")")));
-  std::vector<std::vector<Facet>> facets(detail::phase_count(m));
+  std::vector<std::vector<Facet>> facets(phase_count(m));
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     // The normal points from pairs[t][0] into pairs[t][1]: out of the first.
     facets[size_t(m.pairs[t][0])].push_back({int32_t(t), false});
@@ -115,11 +115,20 @@ std::vector<std::string> write_per_phase_stl(const NodeMesh& m, const std::strin
   std::vector<std::string> written;
   for (size_t p = 0; p < facets.size(); ++p) {
     if (facets[p].empty()) continue;
-    const std::string name = detail::phase_token(m, int32_t(p));
+    const std::string name = phase_token(m, int32_t(p));
     const std::string file = (fs::path(dir) / ("phase_" + name + ".stl")).string();
-    write_stl(m, file, {name, "boundary of the phase, normals outward"}, facets[p], options.ascii);
+    write_stl(staged, m, file, {name, "boundary of the phase, normals outward"}, facets[p], options.ascii);
     written.push_back(file);
   }
+  return written;
+}
+
+} // namespace detail
+
+std::vector<std::string> write_per_phase_stl(const NodeMesh& m, const std::string& dir, const WriteOptions& options) {
+  vm::detail::StagedOutputs staged;
+  std::vector<std::string> written = detail::write_per_phase_stl(staged, m, dir, options);
+  staged.commit();
   return written;
 }
 

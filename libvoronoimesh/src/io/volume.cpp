@@ -4,6 +4,7 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
+#include "core/input_file.hpp"
 #include "core/text.hpp"
 
 #include <algorithm>
@@ -50,6 +51,7 @@ Volume read_volume(const std::string& path) {
   if (!f)
     throw InvalidInput(
         located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr or .inr.gz)"));
+  detail::require_regular_file(path); // the files it names are checked by its reader
   return f->read(path);
 }
 

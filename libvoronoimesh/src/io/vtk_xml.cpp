@@ -49,13 +49,14 @@ void int_array(ChunkedOutput& out, const char* type, const char* name, size_t n,
 
 } // namespace
 
-void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset dataset) {
+void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+                   VtkDataset dataset) {
   const Junctions junctions = find_junctions(m);
   const bool grid = dataset == VtkDataset::unstructured_grid;
   const char* const type = grid ? "UnstructuredGrid" : "PolyData";
   const char* const cells = grid ? "Cells" : "Polys";
   const size_t nt = m.triangles.size();
-  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) {
+  vm::detail::write_in_chunks(staged, path, [&](ChunkedOutput& out) {
     std::string& buf = out.text();
     buf += "<?xml version=\"1.0\"?>\n<!-- voronoimesh interface mesh. Cell data phase0, phase1: the phase labels of"
            " each triangle, its normal pointing from phase0 into phase1. Point data junction_order: the number of"
@@ -91,8 +92,9 @@ void write_vtk_xml(const NodeMesh& m, const std::string& path, VtkDataset datase
   });
 }
 
-void write_pvtu_index(const std::string& path, const std::vector<std::string>& pieces) {
-  vm::detail::write_in_chunks(path, [&](ChunkedOutput& out) {
+void write_pvtu_index(vm::detail::StagedOutputs& staged, const std::string& path,
+                      const std::vector<std::string>& pieces) {
+  vm::detail::write_in_chunks(staged, path, [&](ChunkedOutput& out) {
     std::string& buf = out.text();
     buf += "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"

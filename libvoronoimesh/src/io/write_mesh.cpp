@@ -27,34 +27,39 @@ std::string extension_of(const std::string& path) {
   return ext;
 }
 
-/// Writes one format; returns the files written.
-using FormatWriter = std::vector<std::string> (*)(const NodeMesh&, const std::string&, const WriteOptions&);
+using vm::detail::StagedOutputs;
+
+/// Writes one format among the staged outputs; returns the files written.
+using FormatWriter = std::vector<std::string> (*)(StagedOutputs&, const NodeMesh&, const std::string&,
+                                                  const WriteOptions&);
 
 /// Writers that write exactly the file asked for.
-template <void (*write)(const NodeMesh&, const std::string&)>
-std::vector<std::string> one_file(const NodeMesh& m, const std::string& path, const WriteOptions&) {
-  write(m, path);
+template <void (*write)(StagedOutputs&, const NodeMesh&, const std::string&)>
+std::vector<std::string> one_file(StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+                                  const WriteOptions&) {
+  write(staged, m, path);
   return {path};
 }
 
-void write_vtu(const NodeMesh& m, const std::string& path) {
-  detail::write_vtk_xml(m, path, detail::VtkDataset::unstructured_grid);
+void write_vtu(StagedOutputs& staged, const NodeMesh& m, const std::string& path) {
+  detail::write_vtk_xml(staged, m, path, detail::VtkDataset::unstructured_grid);
 }
-void write_vtp(const NodeMesh& m, const std::string& path) {
-  detail::write_vtk_xml(m, path, detail::VtkDataset::poly_data);
+void write_vtp(StagedOutputs& staged, const NodeMesh& m, const std::string& path) {
+  detail::write_vtk_xml(staged, m, path, detail::VtkDataset::poly_data);
 }
 
 /// Every format by extension: the one list output_extensions() and write_mesh() read.
 const std::vector<std::pair<std::string, FormatWriter>>& formats() {
   static const std::vector<std::pair<std::string, FormatWriter>> all{
       {".ply",
-       [](const NodeMesh& m, const std::string& path, const WriteOptions& o) -> std::vector<std::string> {
-         write_ply(m, path, o.ascii);
+       [](StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+          const WriteOptions& o) -> std::vector<std::string> {
+         detail::write_ply(staged, m, path, o.ascii);
          return {path};
        }},
       {".obj", one_file<detail::write_obj>},
-      {".stl", [](const NodeMesh& m, const std::string& path,
-                  const WriteOptions& o) { return detail::write_stl_per_pair(m, path, o.ascii); }},
+      {".stl", [](StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+                  const WriteOptions& o) { return detail::write_stl_per_pair(staged, m, path, o.ascii); }},
       {".msh", one_file<detail::write_msh>},
       {".vtu", one_file<write_vtu>},
       {".vtp", one_file<write_vtp>},
@@ -116,10 +121,22 @@ void check_output_format(const std::string& path) {
   writer_for(path);
 }
 
-std::vector<std::string> write_mesh(const NodeMesh& m, const std::string& path, const WriteOptions& options) {
+namespace detail {
+
+std::vector<std::string> write_mesh(StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+                                    const WriteOptions& options) {
   const FormatWriter write = writer_for(path);
-  detail::check_output_mesh(m, path);
-  return write(m, path, options);
+  check_output_mesh(m, path);
+  return write(staged, m, path, options);
+}
+
+} // namespace detail
+
+std::vector<std::string> write_mesh(const NodeMesh& m, const std::string& path, const WriteOptions& options) {
+  StagedOutputs staged;
+  std::vector<std::string> written = detail::write_mesh(staged, m, path, options);
+  staged.commit();
+  return written;
 }
 
 } // namespace vm::io

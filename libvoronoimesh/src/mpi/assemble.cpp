@@ -3,6 +3,7 @@
 
 #include "voronoimesh/mpi/distributed.hpp"
 
+#include "core/staged_outputs.hpp"
 #include "io/writers.hpp"
 #include "mpi/comm.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -106,19 +107,31 @@ void run_collectively(MPI_Comm c, const std::function<void()>& local) {
 
 void write_pvtu(MPI_Comm c, const MeshPart& part, const std::string& path) {
   detail::Comm comm(c);
+  vm::detail::StagedOutputs staged;
   comm.collectively([&] {
     namespace fs = std::filesystem;
     const fs::path index(path);
     if (index.extension() != ".pvtu")
       throw InvalidInput(located(path, "a parallel VTK index must end in .pvtu"));
-    auto piece = [&](int rank) { return index.stem().string() + "_" + std::to_string(rank) + ".vtu"; };
-    io::write_mesh(mesh_of(part), (index.parent_path() / piece(comm.rank())).string());
-    comm.check_in(); // every piece is there before the index names it
+    io::detail::write_mesh(staged, mesh_of(part), pvtu_pieces(path, comm.size())[size_t(comm.rank())], {});
     if (comm.rank() != 0) return;
     std::vector<std::string> pieces;
-    for (int r = 0; r < comm.size(); ++r) pieces.push_back(piece(r));
-    io::detail::write_pvtu_index(path, pieces);
+    for (const std::string& piece : pvtu_pieces(path, comm.size()))
+      pieces.push_back(fs::path(piece).filename().string());
+    io::detail::write_pvtu_index(staged, path, pieces);
   });
+  // Every rank has staged its files: they appear together, or (when any rank
+  // failed, and every rank threw above) none does.
+  comm.collectively([&] { staged.commit(); });
+}
+
+std::vector<std::string> pvtu_pieces(const std::string& path, int ranks) {
+  namespace fs = std::filesystem;
+  const fs::path index(path);
+  std::vector<std::string> pieces;
+  for (int r = 0; r < ranks; ++r)
+    pieces.push_back((index.parent_path() / (index.stem().string() + "_" + std::to_string(r) + ".vtu")).string());
+  return pieces;
 }
 
 } // namespace vm::mpi

@@ -15,6 +15,16 @@
 
 namespace vm::mpi {
 
+namespace {
+
+int comm_size(MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  return size;
+}
+
+} // namespace
+
 void RunObserver::created_part(const MeshPart&, const DistributedStats&) {}
 void RunObserver::improved_parts(int, const std::string&, const DistributedStats&) {}
 
@@ -39,6 +49,14 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
                                                      "no iterations"));
       if (!job.outputs.per_phase.empty()) throw InvalidOption("per_phase", "not with pieces per rank (.pvtu)");
       vm::detail::check_writable(job.outputs.mesh);
+      // No piece nor the index may be the input.
+      std::vector<std::string> files = pvtu_pieces(job.outputs.mesh, comm_size(comm));
+      files.push_back(job.outputs.mesh);
+      for (const std::string& file : files) {
+        RunOutputs one;
+        one.mesh = file;
+        vm::detail::check_outputs_apart(one, {job.input});
+      }
     } else {
       check_job(job);
     }

@@ -1,5 +1,6 @@
 #include "plugin/c_pass.hpp"
 
+#include "core/text.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
@@ -60,9 +61,10 @@ struct MeshArrays {
 
 class CPass : public Pass {
 public:
-  CPass(const vm_pass_desc& desc, std::shared_ptr<void> library, std::string name, std::vector<double> params)
+  CPass(const vm_pass_desc& desc, std::shared_ptr<void> library, std::string origin, std::string name,
+        std::vector<double> params)
       : run_(desc.run), user_(desc.user), moves_(desc.moves_nodes != 0), library_(std::move(library)),
-        name_(std::move(name)), params_(std::move(params)) {}
+        origin_(std::move(origin)), name_(std::move(name)), params_(std::move(params)) {}
 
   void run(PassContext& c) override {
     const InterfaceMesh& m = c.mesh;
@@ -92,15 +94,27 @@ public:
     std::array<char, 512> error{};
     if (run_(user_, &view, params_.data(), error.data(), error.size()) != 0) {
       error.back() = 0;
-      throw InvalidInput(located("pass '" + name_ + "'", error[0] ? error.data() : "failed without a message"));
+      throw PluginError(
+          located(origin_, "pass '" + name_ + "': " + (error[0] ? error.data() : "failed without a message")));
     }
+    if (moves_) refuse_moves_not_finite(c.delta);
   }
 
 private:
+  /// The plugin is the one place a non-finite move can come from: refused here,
+  /// naming the plugin and the pass, before anything uses it.
+  void refuse_moves_not_finite(const std::vector<Vec3>& delta) const {
+    for (size_t n = 0; n < delta.size(); ++n)
+      if (!delta[n].allFinite())
+        throw PluginError(located(origin_, cat("pass '", name_, "' moved node ", n, " by (", delta[n].x(), ", ",
+                                               delta[n].y(), ", ", delta[n].z(), "), which is not a finite move")));
+  }
+
   vm_pass_run run_;
   void* user_;
   bool moves_;
   std::shared_ptr<void> library_;
+  std::string origin_;
   std::string name_;
   std::vector<double> params_;
 };
@@ -124,10 +138,10 @@ PassInfo adapt_c_pass(const vm_pass_desc& desc, std::shared_ptr<void> library, c
   }
   // The C pass takes its values in declaration order; ParamValues is a map by name.
   const std::vector<ParamSpec> specs = info.params;
-  info.make = [desc, library, specs, name = info.name](const ParamValues& values) -> std::unique_ptr<Pass> {
+  info.make = [desc, library, origin, specs, name = info.name](const ParamValues& values) -> std::unique_ptr<Pass> {
     std::vector<double> ordered;
     for (const ParamSpec& s : specs) ordered.push_back(values.at(s.name));
-    return std::make_unique<CPass>(desc, library, name, std::move(ordered));
+    return std::make_unique<CPass>(desc, library, origin, name, std::move(ordered));
   };
   return info;
 }

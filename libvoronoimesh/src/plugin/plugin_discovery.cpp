@@ -6,9 +6,12 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/plugin/plugins.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <set>
 
 namespace vm {
@@ -25,6 +28,18 @@ std::vector<std::string> libraries_in(const std::string& dir) {
     if (it->path().extension() == ".so" && it->is_regular_file(ec)) out.push_back(it->path().string());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// Why a plugin at `path` could have been put there by anyone (its file or folder
+/// writable by all, a folder without the sticky bit), or "".
+std::string writable_by_anyone(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && (st.st_mode & S_IWOTH))
+    return located(path, "loaded, but anyone may write this file");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (::stat(folder.empty() ? "." : folder.c_str(), &st) == 0 && (st.st_mode & S_IWOTH) && !(st.st_mode & S_ISVTX))
+    return located(path, "loaded, but anyone may write its folder " + folder.string());
+  return {};
 }
 
 } // namespace
@@ -45,19 +60,21 @@ std::vector<std::string> plugin_search_path() {
 
 std::vector<PluginRecord> load_plugins(PassRegistry& registry, const std::vector<std::string>& files, bool search) {
   std::vector<PluginRecord> records;
-  std::set<std::string> loaded_names;
+  std::map<std::string, std::string> loaded; // plugin name -> its file
   auto load = [&](const std::string& path, const std::string& found_by) {
     PluginRecord record;
     record.file = path;
     record.found_by = found_by;
+    record.warning = writable_by_anyone(path);
     const detail::OpenedPlugin plugin = detail::open_plugin(path);
-    if (loaded_names.count(plugin.name)) {
+    if (const auto first = loaded.find(plugin.name); first != loaded.end()) {
       record.name = plugin.name;
       record.version = plugin.version;
       record.shadowed = true;
+      record.shadowed_by = first->second;
     } else {
       detail::add_plugin_passes(plugin, path, registry, record);
-      loaded_names.insert(plugin.name);
+      loaded.emplace(plugin.name, path);
     }
     records.push_back(std::move(record));
   };

@@ -2,12 +2,15 @@
 /// Opens one plugin file with dlopen, checks it speaks our plugin ABI, calls its
 /// entry point and adds its passes to a registry, all or none.
 
+#include "core/text.hpp"
 #include "plugin/c_pass.hpp"
 #include "plugin/plugin_file.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/plugin/plugins.hpp"
 
 #include <dlfcn.h>
+
+#include <algorithm>
 
 #include <filesystem>
 
@@ -81,6 +84,11 @@ OpenedPlugin open_plugin(const std::string& path) {
   if (status != 0)
     throw InvalidInput(located(path, "the plugin refused to load (its entry point returned " + std::to_string(status) + ")"));
   if (r.name.empty()) r.name = fs::path(path).stem().string();
+  // Names are printed in listings and messages: one line of printable text.
+  for (const std::string* text : {&r.name, &r.version})
+    if (text->size() > 64 || std::any_of(text->begin(), text->end(), [](char c) { return c < 0x20 || c == 0x7f; }))
+      throw InvalidInput(located(path, "the plugin's name and version must be at most 64 printable characters, got " +
+                                           vm::detail::quote(*text)));
   return {std::move(r.name), std::move(r.version), std::move(r.passes)};
 }
 

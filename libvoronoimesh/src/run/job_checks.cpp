@@ -4,7 +4,9 @@
 
 #include "run/run_job.hpp"
 
+#include "core/staged_outputs.hpp"
 #include "core/text.hpp"
+#include "fields/volume_scenes.hpp"
 #include "voronoimesh/check/history.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
@@ -69,11 +71,30 @@ void check_outputs(const RunOutputs& o) {
   }
 }
 
+void check_outputs_apart(const RunOutputs& outputs, const std::vector<std::string>& inputs) {
+  std::vector<std::pair<std::string, FileIdentity>> seen;
+  for (const std::string& path : {outputs.mesh, outputs.history}) {
+    if (path.empty()) continue;
+    const FileIdentity id = file_identity(path);
+    for (const std::string& input : inputs)
+      if (!input.empty() && file_identity(input) == id)
+        throw InvalidInput(located(path, cat("is also an input of this run (", input,
+                                             "); an output may not replace what the run reads")));
+    for (const auto& [other, other_id] : seen)
+      if (other_id == id) throw InvalidInput(located(path, cat("is written twice by this run (also as ", other, ")")));
+    seen.emplace_back(path, id);
+  }
+}
+
 } // namespace detail
 
 void check_job(const MeshJob& job) {
   detail::check_outputs(job.outputs);
+  detail::check_outputs_apart(job.outputs, {job.input, job.mesh});
   detail::check_options(job.options);
+  InputOptions input = job.input_options;
+  input.top_k = job.options.top_k;
+  detail::check_input_options(input);
   const Pipeline pipeline = detail::parse_pipeline(job.options);
   // A mesh improved without the input it was made from has no phase functions.
   if (!job.mesh.empty() && job.input.empty() && job.options.iterations > 0 && pipeline.needs_field())

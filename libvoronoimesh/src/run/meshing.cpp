@@ -4,6 +4,7 @@
 #include "voronoimesh/run/meshing.hpp"
 
 #include "core/memory.hpp"
+#include "core/staged_outputs.hpp"
 #include "core/text.hpp"
 #include "run/run_job.hpp"
 #include "voronoimesh/check/history.hpp"
@@ -12,6 +13,7 @@
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
 #include "voronoimesh/io/ply.hpp"
+#include "io/writers.hpp"
 #include "voronoimesh/io/write_mesh.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
@@ -86,15 +88,29 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
 }
 
 /// Refuses an input that cannot be the one `mesh` was made from: phase ids its
-/// phase functions do not have, or nodes outside its domain.
+/// phase functions do not have, phases named or labelled otherwise, or nodes
+/// outside its domain.
 void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
                          const std::string& input) {
-  const int phases = phases_of_mesh(mesh, scene.field)->num_phases();
+  const auto field = phases_of_mesh(mesh, scene.field);
+  const int phases = field->num_phases();
   int top = -1;
   for (const auto& p : mesh.pairs) top = std::max(top, p[1]);
   if (top >= phases)
     throw InvalidInput(located(input, cat("has ", scene.field->num_phases(), " phases, but ", mesh_path,
                                           " uses phase ", top)));
+  for (int p = 0; p < std::min(phases, int(mesh.phase_names.size())); ++p)
+    if (!mesh.phase_names[size_t(p)].empty() && mesh.phase_names[size_t(p)] != field->phase_name(p))
+      throw InvalidInput(located(input, cat("its phase ", p, " is ", detail::quote(field->phase_name(p)), ", but ",
+                                            mesh_path, " calls phase ", p, " ",
+                                            detail::quote(mesh.phase_names[size_t(p)]),
+                                            ": give the input the mesh was made from")));
+  for (int p = 0; p <= top; ++p) {
+    const int32_t label = mesh.phase_labels.empty() ? p : mesh.phase_labels[size_t(p)];
+    if (label != field->phase_label(p))
+      throw InvalidInput(located(input, cat("its phase ", p, " has the label ", field->phase_label(p), ", but ",
+                                            mesh_path, " gives it ", label, ": give the input the mesh was made from")));
+  }
   const Box& box = scene.grid.domain;
   const double tol = 1e-6 * (box.max - box.min).norm();
   for (const Vec3& p : mesh.points)
@@ -102,11 +118,36 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
       throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
 }
 
-/// The mesh at `path` (a PLY written by voronoimesh), which must be valid.
+/// Writes the outputs among `staged`, the history too if given, and renames them
+/// all into place unless the observer asks to stop meanwhile (then none is).
+void write_staged(detail::StagedOutputs& staged, const NodeMesh& mesh, const RunOutputs& outputs,
+                  const QualityHistory* history, RunObserver* observer) {
+  stop_if_asked(observer); // a run stopped before the end writes nothing
+  begin(observer, Stage::write, "writing...");
+  io::WriteOptions options;
+  options.ascii = outputs.ascii;
+  std::vector<std::string> mesh_files, phase_files;
+  if (!outputs.mesh.empty()) mesh_files = io::detail::write_mesh(staged, mesh, outputs.mesh, options);
+  if (!outputs.per_phase.empty())
+    phase_files = io::detail::write_per_phase_stl(staged, mesh, outputs.per_phase, options);
+  if (history) {
+    const std::string text = history->text_for(outputs.history);
+    staged.write(outputs.history, [&](std::ostream& f) { f << text; });
+  }
+  stop_if_asked(observer); // stopped while writing: the temporaries go, nothing appears
+  staged.commit();
+  if (observer) observer->written(mesh_files, phase_files);
+}
+
+/// The mesh at `path` (a PLY written by voronoimesh), which must be valid: an
+/// input's fault, not the library's, when it is not.
 NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
   begin(observer, Stage::read, "reading " + path + "...");
   NodeMesh mesh = io::read_ply(path);
-  require_valid(mesh, path);
+  const ValidationReport report = validate(mesh);
+  if (!report.ok())
+    throw InvalidInput(located(path, cat("not a valid interface mesh (", report.problem_count,
+                                         " problems), first: ", report.problems.front())));
   return mesh;
 }
 
@@ -181,14 +222,8 @@ NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options) {
 }
 
 void write_outputs(const NodeMesh& mesh, const RunOutputs& outputs, RunObserver* observer) {
-  stop_if_asked(observer); // a run stopped before the end writes nothing
-  begin(observer, Stage::write, "writing...");
-  io::WriteOptions options;
-  options.ascii = outputs.ascii;
-  std::vector<std::string> mesh_files, phase_files;
-  if (!outputs.mesh.empty()) mesh_files = io::write_mesh(mesh, outputs.mesh, options);
-  if (!outputs.per_phase.empty()) phase_files = io::write_per_phase_stl(mesh, outputs.per_phase, options);
-  if (observer) observer->written(mesh_files, phase_files);
+  detail::StagedOutputs staged;
+  write_staged(staged, mesh, outputs, nullptr, observer);
 }
 
 NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
@@ -201,6 +236,10 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
   if (job.mesh.empty()) {
     const Scene scene = read_input(job.input, input, observer);
     mesh = create_mesh(scene, job.options, observer);
+    if (mesh.num_triangles() == 0)
+      throw InvalidInput(located(job.input.empty() ? "the built-in demo" : job.input,
+                                 "meshes to nothing: no two phases meet between the grid's nodes (a finer grid, or "
+                                 "less smoothing of labels, may resolve them)"));
     field = scene.field;
   } else {
     mesh = read_mesh(job.mesh, observer);
@@ -222,9 +261,9 @@ void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const M
   const bool recording = !job.outputs.history.empty();
   if (job.options.iterations > 0 || recording)
     improve(mesh, std::move(field), job.options, observer, recording ? &history : nullptr);
-  stop_if_asked(observer);
-  if (recording) history.write(job.outputs.history);
-  write_outputs(mesh, job.outputs, observer);
+  // No output may replace an input of the run.
+  StagedOutputs staged({job.input, job.mesh});
+  write_staged(staged, mesh, job.outputs, recording ? &history : nullptr, observer);
 }
 
 } // namespace detail

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <tbb/global_control.h>
 
@@ -30,6 +31,12 @@ void check_writable(const std::string& path);
 
 /// Checks the outputs' formats (InvalidInput) and that they can be written (IoError).
 void check_outputs(const RunOutputs& outputs);
+
+/// Throws InvalidInput when the mesh or history output is one of `inputs`, or
+/// the two are one file, by file identity (a link and its target are one file).
+/// The files a .stl mesh or per_phase write, known only once the mesh is made,
+/// are refused as they are written (StagedOutputs).
+void check_outputs_apart(const RunOutputs& outputs, const std::vector<std::string>& inputs);
 
 /// The end of run_job() once the mesh is there: improve it (when there are
 /// iterations or a history to record; `field` as improve_mesh() takes it),

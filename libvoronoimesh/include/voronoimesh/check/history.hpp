@@ -83,8 +83,8 @@ public:
   void write_svg(const std::string& path) const;
   /// The format is chosen from the extension: .csv, .json, .svg (case-insensitive).
   ///
-  /// Every writer writes to `path.tmp-<pid>` and renames it into place, so a
-  /// failure leaves no file.
+  /// Every writer writes to a temporary file beside `path` and renames it into
+  /// place, so a failure leaves no file.
   /// @param path the file to write
   /// @throws InvalidInput for an extension other than .csv, .json and .svg
   /// @throws IoError      "<path>: cannot write (<reason>)" if the file cannot be written
@@ -94,6 +94,11 @@ public:
   /// @param path the file to be written
   /// @throws InvalidInput for an extension other than .csv, .json and .svg
   static void check_format(const std::string& path);
+
+  /// The text write() writes to `path`: csv(), json() or svg() by its extension.
+  /// @param path the file to be written
+  /// @throws InvalidInput for an extension other than .csv, .json and .svg
+  std::string text_for(const std::string& path) const;
 
   /// The text write_csv / write_json / write_svg would write.
   std::string csv() const;

@@ -45,6 +45,13 @@ public:
   Cancelled() : Error("stopped on request; nothing was written") {}
 };
 
+/// A plugin's pass failed at run time, or broke the rules of the plugin ABI (a
+/// move that is not finite). The message names the plugin's file and the pass.
+class PluginError : public Error {
+public:
+  using Error::Error;
+};
+
 /// A file could not be read or written.
 class IoError : public Error {
 public:

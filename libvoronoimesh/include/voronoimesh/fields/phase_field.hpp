@@ -22,6 +22,10 @@ public:
   /// Display name of phase `i` (the scene's "name", or "phase<i>").
   /// @param i a phase id, in [0, num_phases())
   virtual std::string phase_name(int i) const = 0;
+  /// Phase `i` as messages name it: "phase <name>" unless the field knows where
+  /// the phase comes from ("scene.json: phase sphere1").
+  /// @param i a phase id, in [0, num_phases())
+  virtual std::string describe_phase(int i) const;
   /// The id phase `i` shows in output files (a label volume's label value).
   /// Strictly increasing in i. Default: i itself.
   /// @param i a phase id, in [0, num_phases())

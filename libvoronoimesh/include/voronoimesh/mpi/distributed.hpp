@@ -156,13 +156,21 @@ void run_collectively(MPI_Comm comm, const std::function<void()>& local);
 
 /// Writes `path` (.pvtu), an index of one piece per rank, and the pieces
 /// beside it, `<stem>_<rank>.vtu` (each the rank's part as io::write_mesh()
-/// writes a .vtu; a piece's junction_order counts its own triangles).
+/// writes a .vtu; a piece's junction_order counts its own triangles). They
+/// appear together once every rank has written its own: a failure on any rank
+/// leaves none of them.
 /// @param comm the ranks that hold the parts
 /// @param part this rank's part
 /// @param path the index to write, ending in .pvtu; rank 0 writes it
 /// @throws IoError      if a file cannot be written
 /// @throws InvalidInput if `path` does not end in .pvtu
 void write_pvtu(MPI_Comm comm, const MeshPart& part, const std::string& path);
+
+/// The pieces write_pvtu() writes beside the index `path` for `ranks` ranks,
+/// in rank order: `<folder>/<stem>_<rank>.vtu`.
+/// @param path  the index, a .pvtu file
+/// @param ranks the number of ranks
+std::vector<std::string> pvtu_pieces(const std::string& path, int ranks);
 
 /// Watches a distributed run_job() (mpi::run_job()): what the ranks did
 /// together, on top of vm::RunObserver. Every rank has its own; rank 0's usually

@@ -25,6 +25,11 @@ struct PluginRecord {
   /// True when it was skipped because a plugin of the same name was loaded before
   /// (the same plugin found twice, e.g. in the build tree and installed).
   bool shadowed = false;
+  /// With `shadowed`: the file of the plugin of that name that was loaded.
+  std::string shadowed_by;
+  /// Empty, or a reason to doubt a plugin that was loaded all the same: its file or
+  /// folder can be written by anyone, so anyone could have put it there.
+  std::string warning;
 };
 
 /// Loads the plugin at `path` and adds its passes to `registry`, all or none.
