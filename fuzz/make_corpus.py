@@ -46,6 +46,18 @@ put("scene", "expr.json", """{"description": "d", "domain": {"min": [-1, -1, -1]
             {"name": "b", "kind": "expr", "expr": "-(cos(x)*sin(y))^3"}]}""")
 put("scene", "grid_phase.json", """{"phases": [{"kind": "grid", "file": "input.nrrd", "component": 0},
  {"kind": "grid", "file": "input.nrrd", "component": 1}]}""")
+# Deep nesting (issue 16: a 50,000-deep value crashed a message's dump): arrays and
+# objects deeper than the 64 levels a scene may nest, where a description, a value
+# and a name go, and a key given twice; each well within the 4 KiB inputs.
+deep_array = "[" * 1000 + "]" * 1000
+deep_object = '{"a": ' * 300 + "0" + "}" * 300
+put("scene", "deep_description.json", '{"description": ' + deep_array + ', "phases": []}')
+put("scene", "deep_value.json", '{"phases": [{"kind": "constant", "value": ' + deep_object +
+    '}, {"kind": "constant", "value": 1}]}')
+put("scene", "deep_name.json", '{"phases": [{"kind": "constant", "value": 0, "name": ' + "[" * 64 + "]" * 64 +
+    '}, {"kind": "constant", "value": 1}]}')
+put("scene", "duplicate_key.json", '{"phases": [{"kind": "constant", "value": 0, "value": 1}, '
+    '{"kind": "constant", "value": 1}]}')
 
 # ---- NRRD (attached header; Teem also reads gzip and ascii encodings)
 head = "NRRD0004\ntype: {t}\ndimension: {d}\nsizes: {s}\nencoding: {e}\n{x}\n"

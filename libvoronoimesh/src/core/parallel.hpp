@@ -61,7 +61,7 @@ template <class... Fs> void parallel_invoke(const Fs&... fs) {
 /// cost off per-element work; each index is handled on its own, so results do
 /// not depend on how the range is split.
 template <class F> void parallel_for_each_index(size_t n, F&& f, size_t grain = 512) {
-  parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& r) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) f(i);
   });
 }
