@@ -167,9 +167,15 @@ int orient2d(const P2& a, const P2& b, const P2& c) {
   return orient2d_exact(a, b, c);
 }
 
+} // namespace
+
 int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int k) {
   return orient2d(drop(a, k), drop(b, k), drop(c, k));
 }
+
+namespace {
+
+using detail::orient2d; // the overload above, next to the one on P2
 
 /// Sign of ad . (bd x cd), exactly, for vectors of doubles (the common case of
 /// the exact stage: differences of nearby coordinates are exact by Sterbenz' lemma).

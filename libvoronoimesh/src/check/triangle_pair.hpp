@@ -14,6 +14,11 @@ namespace vm::detail {
 
 using Triangle = std::array<int32_t, 3>;
 
+/// Sign of the turn a, b, c seen with coordinate k dropped (the cyclic order
+/// of the others kept, so it is the sign of component k of the normal of abc),
+/// decided exactly: +1 counterclockwise, -1 clockwise, 0 collinear.
+int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int k);
+
 /// The coordinate to drop so that the plane of triangle abc projects one to
 /// one (its largest normal component, decided exactly); -1 when a, b, c are collinear.
 int8_t projection_axis(const Vec3& a, const Vec3& b, const Vec3& c);

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 namespace vm {
 namespace {
@@ -411,7 +412,11 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
     if (round == kMaxRepairRounds) break;
 
     const auto check_start = std::chrono::steady_clock::now();
-    auto [nodes, problems] = offending_nodes(part, grid.domain, whole);
+    // Not a structured binding: lambdas below capture `nodes`, which clang 14
+    // refuses for bindings (the fuzz build).
+    std::vector<int64_t> nodes;
+    size_t problems = 0;
+    std::tie(nodes, problems) = offending_nodes(part, grid.domain, whole);
     check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
     nodes = peers.merge_nodes(std::move(nodes));
     if (peers.sum(problems) == 0) {

@@ -218,6 +218,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     kept.triangles = kept_triangles;
     drop_unused_nodes(m, kept.nodes);
     mesh = InterfaceMesh::from_node_mesh(m);
+    if (params.guard) params.guard->renumbered(mesh, kept.triangles, kept.nodes);
   }
   return done;
 }

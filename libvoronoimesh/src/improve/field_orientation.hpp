@@ -7,27 +7,29 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
-#include <cstddef>
+#include <array>
+#include <cstdint>
+#include <span>
 
 namespace vm::detail {
 
-/// False when triangle t's normal points against the direction from its first
+/// False when triangle `tri`'s normal points against the direction from its first
 /// phase into its second (grad phi_second - grad phi_first at its centroid),
 /// where that direction is clear (a gradient difference above 0.1).
-inline bool agrees_with_field(const NodeMesh& m, size_t t, const PhaseField& field) {
-  const auto& tri = m.triangles[t];
-  const Vec3 &a = m.points[size_t(tri[0])], &b = m.points[size_t(tri[1])], &c = m.points[size_t(tri[2])];
+inline bool agrees_with_field(std::span<const Vec3> points, const std::array<int32_t, 3>& tri, const PhasePair& pair,
+                              const PhaseField& field) {
+  const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
   const Vec3 centroid = (a + b + c) / 3;
-  const Vec3 dir = field.gradient(m.pairs[t][1], centroid) - field.gradient(m.pairs[t][0], centroid);
+  const Vec3 dir = field.gradient(pair[1], centroid) - field.gradient(pair[0], centroid);
   if (dir.norm() <= 0.1) return true;
   return (b - a).cross(c - a).dot(dir) > 0;
 }
 
-/// True when triangle t has a corner on a junction (3 or more phases): the
+/// True when triangle `tri` has a corner on a junction (3 or more phases): the
 /// triangles seen to stand across their surface without inverting (slivers at
 /// close quadruple points); elsewhere projection holds triangles on their surface.
-inline bool touches_junction(const InterfaceMesh& mesh, const NodeMesh& m, size_t t) {
-  for (int32_t v : m.triangles[t])
+inline bool touches_junction(const InterfaceMesh& mesh, const std::array<int32_t, 3>& tri) {
+  for (int32_t v : tri)
     if (phase_count(mesh.phases()[size_t(v)]) >= 3) return true;
   return false;
 }

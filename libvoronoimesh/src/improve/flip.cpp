@@ -1,6 +1,5 @@
 #include "voronoimesh/improve/flip.hpp"
 
-#include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -166,8 +165,8 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
 /// The flipped edges whose faces now cross another triangle, or (with a field)
 /// face against their phase pair's direction at a junction; each is charged to
 /// the last flip that made the face.
-std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const PhaseField* field,
-                                    FlipPeers* peers) {
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const FlipParams& params,
+                                    CrossingGuard& guard, FlipPeers* peers) {
   const OMesh& om = mesh.omesh();
   std::vector<int32_t> last_flip(om.n_faces(), -1);
   std::vector<uint8_t> involved(om.n_faces(), 0);
@@ -177,18 +176,19 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
       last_flip[f] = int32_t(i);
       involved[f] = 1;
     }
-  const NodeMesh m = mesh.to_node_mesh();
+  const auto& triangles = mesh.triangles();
   if (peers) // another rank answers for the rest
     for (size_t f = 0; f < last_flip.size(); ++f)
-      if (last_flip[f] >= 0 && !peers->answers_for(m.triangles[f])) last_flip[f] = -1;
-  const IntersectionReport found = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
+      if (last_flip[f] >= 0 && !peers->answers_for(triangles[f])) last_flip[f] = -1;
   std::vector<int32_t> culprits;
-  for (const auto& pair : found.pairs)
+  for (const auto& pair : guard.crossings(mesh, involved))
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
-  if (field)
+  if (params.field)
     for (size_t f = 0; f < last_flip.size(); ++f)
-      if (last_flip[f] >= 0 && detail::touches_junction(mesh, m, f) && !detail::agrees_with_field(m, f, *field))
+      if (last_flip[f] >= 0 && detail::touches_junction(mesh, triangles[f]) &&
+          !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
+                                     *params.field))
         culprits.push_back(log[size_t(last_flip[f])]);
   return culprits;
 }
@@ -208,13 +208,15 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   // found after the rounds, all flips are undone, the culprits banned, and the
   // rounds run again; if that keeps failing, this call flips nothing.
   std::vector<char> banned(mesh.omesh().n_edges(), 0);
+  CrossingGuard own_guard;
+  CrossingGuard& guard = params.guard ? *params.guard : own_guard;
   FlipStats stats;
   for (int attempt = 0;; ++attempt) {
     std::vector<int32_t> log;
     std::vector<std::array<int32_t, 2>> flipped;
     stats = flip_rounds(mesh, params, banned, log, flipped, peers);
     if (!params.guard_crossings) break;
-    std::vector<int32_t> culprits = log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params.field, peers);
+    std::vector<int32_t> culprits = log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params, guard, peers);
     if (peers) {
       // The ranks' culprits, as nodes; mapped back to the edges this rank flipped.
       std::vector<std::array<int32_t, 2>> nodes;
@@ -241,7 +243,7 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
 FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
   FlipStats stats = flip_all_rounds(mesh, params, nullptr);
   stats.collapses = collapse_junction_slivers(
-      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings});
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard});
   return stats;
 }
 
@@ -252,7 +254,7 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params, PartAgreemen
   FlipStats stats = flip_all_rounds(mesh, params, &parts.flip_peers());
   CollapseKept kept;
   stats.collapses = collapse_junction_slivers(
-      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings},
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard},
       parts.collapse_peers(), parts.node_ids(), parts.triangle_ids(), kept);
   if (stats.collapses) parts.renumbered(kept);
   return stats;

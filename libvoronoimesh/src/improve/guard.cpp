@@ -1,35 +1,50 @@
 #include "voronoimesh/improve/guard.hpp"
 
-#include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/validate.hpp"
 
+#include "check/crossing_index.hpp"
 #include "core/parallel.hpp"
 #include "improve/field_orientation.hpp"
 
-#include <limits>
-
 namespace vm {
 
-GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
-                                     const AgreeOnUndone& agree) {
+CrossingGuard::CrossingGuard() = default;
+CrossingGuard::~CrossingGuard() = default;
+CrossingGuard::CrossingGuard(CrossingGuard&&) noexcept = default;
+CrossingGuard& CrossingGuard::operator=(CrossingGuard&&) noexcept = default;
+
+std::vector<std::array<int32_t, 2>> CrossingGuard::crossings(const InterfaceMesh& mesh,
+                                                             std::span<const uint8_t> involved) {
+  if (!index_) index_ = std::make_unique<detail::CrossingIndex>();
+  return index_->crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+}
+
+void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face,
+                               std::span<const int32_t> old_node) {
+  if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());
+}
+
+GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
+                                  const AgreeOnUndone& agree) {
   GuardReport report;
-  NodeMesh m = mesh.to_node_mesh(); // positions before the move, until they are swapped out below
+  const auto& triangles = mesh.triangles();
+  const auto& points = mesh.positions(); // as the mesh's nodes move and are put back
+  auto agrees = [&](size_t t) {
+    return detail::agrees_with_field(points, triangles[t], mesh.pair(OMesh::FaceHandle(int(t))), *field);
+  };
   std::vector<int32_t> watched;
   std::vector<uint8_t> agreed;
   if (field) {
-    for (size_t t = 0; t < m.num_triangles(); ++t)
-      if (detail::touches_junction(mesh, m, t)) watched.push_back(int32_t(t));
+    for (size_t t = 0; t < triangles.size(); ++t)
+      if (detail::touches_junction(mesh, triangles[t])) watched.push_back(int32_t(t));
     agreed.resize(watched.size());
-    detail::parallel_for_each_index(watched.size(), [&](size_t i) {
-      agreed[i] = detail::agrees_with_field(m, size_t(watched[i]), *field);
-    });
+    detail::parallel_for_each_index(watched.size(), [&](size_t i) { agreed[i] = agrees(size_t(watched[i])); });
   }
-  const std::vector<Vec3> before = std::move(m.points);
+  const std::vector<Vec3> before = points;
   mesh.move_nodes(delta);
-  m.points = mesh.positions();
   std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
   detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
-  std::vector<uint8_t> involved(m.triangles.size()), turned(watched.size()), inverted(m.triangles.size());
+  std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), inverted(triangles.size());
   auto normal = [&](const std::vector<Vec3>& p, const std::array<int32_t, 3>& t) {
     return (p[size_t(t[1])] - p[size_t(t[0])]).cross(p[size_t(t[2])] - p[size_t(t[0])]);
   };
@@ -40,20 +55,17 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     // turned by 90 degrees or more, or that became one validate() calls
     // zero-area, is undone as well.
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
-      const auto& tri = m.triangles[t];
+      const auto& tri = triangles[t];
       involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
-      inverted[t] = involved[t] && (normal(m.points, tri).dot(normal(before, tri)) <= 0 ||
-                                    has_zero_area(m.points[size_t(tri[0])], m.points[size_t(tri[1])],
-                                                  m.points[size_t(tri[2])]));
+      inverted[t] = involved[t] && (normal(points, tri).dot(normal(before, tri)) <= 0 ||
+                                    has_zero_area(points[size_t(tri[0])], points[size_t(tri[1])],
+                                                  points[size_t(tri[2])]));
     });
-    detail::parallel_for_each_index(watched.size(), [&](size_t i) {
-      turned[i] = agreed[i] && !detail::agrees_with_field(m, size_t(watched[i]), *field);
-    });
+    detail::parallel_for_each_index(watched.size(),
+                                    [&](size_t i) { turned[i] = agreed[i] && !agrees(size_t(watched[i])); });
     ++report.rounds;
-    const IntersectionReport crossings =
-        find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
     std::vector<int32_t> culprits;
-    for (const auto& pair : crossings.pairs) culprits.insert(culprits.end(), pair.begin(), pair.end());
+    for (const auto& pair : crossings(mesh, involved)) culprits.insert(culprits.end(), pair.begin(), pair.end());
     for (size_t i = 0; i < watched.size(); ++i)
       if (turned[i]) culprits.push_back(watched[i]);
     for (size_t t = 0; t < inverted.size(); ++t)
@@ -61,7 +73,7 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     std::fill(changed.begin(), changed.end(), 0);
     std::vector<int32_t> undo;
     for (int32_t t : culprits)
-      for (int32_t n : m.triangles[size_t(t)])
+      for (int32_t n : triangles[size_t(t)])
         if (moved[size_t(n)]) {
           moved[size_t(n)] = 0;
           changed[size_t(n)] = 1;
@@ -78,13 +90,17 @@ GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& del
     std::vector<Vec3> back(undo.size());
     for (size_t i = 0; i < undo.size(); ++i) {
       back[i] = before[size_t(undo[i])];
-      m.points[size_t(undo[i])] = back[i];
       delta[size_t(undo[i])].setZero();
     }
     mesh.place_nodes(undo, back);
     report.undone_nodes += undo.size();
   }
   return report;
+}
+
+GuardReport commit_without_crossings(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
+                                     const AgreeOnUndone& agree) {
+  return CrossingGuard().commit(mesh, delta, field, agree);
 }
 
 } // namespace vm

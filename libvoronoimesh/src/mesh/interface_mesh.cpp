@@ -185,6 +185,15 @@ void InterfaceMesh::build_adjacency() {
   adj_.resize(size_t(adj_off_[n]));
   detail::parallel_for_each_index(
       n, [&](size_t v) { std::copy_n(slots.begin() + slot_off[v], count[v], adj_.begin() + adj_off_[v]); });
+  triangles_.resize(mesh_.n_faces());
+  triangle_copies_.resize(mesh_.n_faces());
+  detail::parallel_for_each_index(triangles_.size(), [&](size_t f) {
+    auto h = mesh_.halfedge_handle(OMesh::FaceHandle(int(f))); // as in face_nodes()
+    for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
+      triangle_copies_[f][size_t(k)] = mesh_.to_vertex_handle(h).idx();
+      triangles_[f][size_t(k)] = node(mesh_.to_vertex_handle(h));
+    }
+  });
 }
 
 bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {

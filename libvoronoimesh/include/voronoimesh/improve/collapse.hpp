@@ -12,6 +12,7 @@
 /// (flip_edges(), FlipParams::collapse_below), which removes what its flips
 /// could not.
 
+#include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 namespace vm {
@@ -26,6 +27,9 @@ struct CollapseParams {
   int max_collapses = 64;
   /// Refuse collapses after which a moved triangle crosses another surface.
   bool guard_crossings = true;
+  /// A guard kept across the run (improve/guard.hpp), told how the rebuilt
+  /// mesh renumbers triangles and nodes so that it need not start over; null: none.
+  CrossingGuard* guard = nullptr;
 };
 
 /// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has

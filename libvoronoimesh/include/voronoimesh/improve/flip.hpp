@@ -3,6 +3,7 @@
 /// Edge flipping (paper sect. 4.3, Algorithm 5).
 
 #include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 namespace vm {
@@ -21,6 +22,9 @@ struct FlipParams {
   /// With guard_crossings: the phase functions, to also refuse flips that make a
   /// junction triangle face against its phase pair (null: not checked).
   const PhaseField* field = nullptr;
+  /// With guard_crossings: the guard whose index of the mesh to reuse (a
+  /// pipeline's, improve/guard.hpp); null: a fresh one for this call.
+  CrossingGuard* guard = nullptr;
 };
 
 /// Times flip_edges() bans the flips that made surfaces cross and tries again

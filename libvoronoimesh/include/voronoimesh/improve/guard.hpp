@@ -12,11 +12,19 @@
 #include "voronoimesh/fields/phase_field.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
 #include <vector>
 
 namespace vm {
+
+namespace detail {
+class CrossingIndex; // the kept grid of triangle boxes (check/crossing_index.hpp)
+}
 
 /// What commit_without_crossings() did.
 struct GuardReport {
@@ -30,26 +38,74 @@ struct GuardReport {
 /// this window) and returns whether any rank put a node back.
 using AgreeOnUndone = std::function<bool(std::vector<int32_t>& undone)>;
 
-/// Moves every node by delta[n], then finds the triangle pairs that intersect
-/// improperly (exactly, check/intersections.hpp) and have a moved node, puts the moved
-/// nodes of both triangles back exactly where they were, and repeats until no
-/// such pair is left. Pairs among unmoved triangles are not looked at, so
-/// crossings the mesh already had are neither counted nor cured; a mesh free of
-/// them stays free. Undoing moves never inverts a triangle that clamping made
-/// safe: any subset of clamped moves is safe (eq. 5's factor 1/2). Deterministic
-/// for any thread count.
-/// The moves that turn any triangle's normal by 90 degrees or more, or shrink it
-/// to what validate() calls zero area, are undone too: clamping rules that out,
-/// but not in round-off for triangles a millionth of the mesh's size. With
-/// `field`, so are the moves that turn a triangle with a corner on a junction
-/// against the direction from its first phase into its second
-/// (grad phi_second - grad phi_first at its centroid, where that is clear):
-/// clamping cannot see that, and near close quadruple points such triangles
-/// could stand across their surface for a few iterations.
-///
-/// In a distributed run each rank passes its window of the mesh (moves of every
-/// node in it, exact) and `agree` (AgreeOnUndone), so every rank undoes the same
-/// moves and stops at the same round.
+/// Commits moves, and checks flips, so that no two triangles come to cross.
+/// It keeps an index of the triangles' boxes between calls (check/crossing_index.hpp),
+/// filing again only triangles that changed or moved far: one guard per run of
+/// a pipeline makes each check cost about a scan of the mesh's boxes plus the
+/// exact tests of what moved, where a fresh one sorts the whole mesh first. It
+/// learns the mesh from each call anew (any moves, flips or renumbering in
+/// between are seen), so it needs no notice of changes.
+class CrossingGuard {
+public:
+  CrossingGuard();  ///< a guard that has seen no mesh yet
+  ~CrossingGuard(); ///< frees the index
+  /// Takes over another guard's index.
+  CrossingGuard(CrossingGuard&&) noexcept;
+  /// Takes over another guard's index.
+  /// @return this guard
+  CrossingGuard& operator=(CrossingGuard&&) noexcept;
+
+  /// Moves every node by delta[n], then finds the triangle pairs that intersect
+  /// improperly (exactly, check/intersections.hpp) and have a moved node, puts the moved
+  /// nodes of both triangles back exactly where they were, and repeats until no
+  /// such pair is left. Pairs among unmoved triangles are not looked at, so
+  /// crossings the mesh already had are neither counted nor cured; a mesh free of
+  /// them stays free. Undoing moves never inverts a triangle that clamping made
+  /// safe: any subset of clamped moves is safe (eq. 5's factor 1/2). Deterministic
+  /// for any thread count.
+  /// The moves that turn any triangle's normal by 90 degrees or more, or shrink it
+  /// to what validate() calls zero area, are undone too: clamping rules that out,
+  /// but not in round-off for triangles a millionth of the mesh's size. With
+  /// `field`, so are the moves that turn a triangle with a corner on a junction
+  /// against the direction from its first phase into its second
+  /// (grad phi_second - grad phi_first at its centroid, where that is clear):
+  /// clamping cannot see that, and near close quadruple points such triangles
+  /// could stand across their surface for a few iterations.
+  ///
+  /// In a distributed run each rank passes its window of the mesh (moves of every
+  /// node in it, exact) and `agree` (AgreeOnUndone), so every rank undoes the same
+  /// moves and stops at the same round.
+  /// @param mesh  the mesh whose nodes move (in a distributed run, this rank's window)
+  /// @param delta the move of every node, one entry per node; set to the moves actually made
+  /// @param field the phase functions, to also undo moves that turn a junction triangle against its phase
+  ///              pair; null: not checked
+  /// @param agree in a distributed run, how the ranks agree on the nodes put back; empty in one process
+  /// @return the nodes left where they were and the intersection checks made
+  GuardReport commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field = nullptr,
+                     const AgreeOnUndone& agree = {});
+
+  /// The pairs of faces {f, g}, f < g, that intersect improperly and of which at
+  /// least one is flagged in `involved` (one flag per face), sorted: what the
+  /// flip guard asks after a batch of flips. The mesh's triangles() must be current.
+  /// @param mesh     the mesh, as of its last InterfaceMesh::topology_changed()
+  /// @param involved one flag per face: the faces whose crossings are wanted
+  /// @return the crossing pairs of face ids
+  std::vector<std::array<int32_t, 2>> crossings(const InterfaceMesh& mesh, std::span<const uint8_t> involved);
+
+  /// Tells the guard that `mesh` was rebuilt from the mesh it last saw, keeping
+  /// some of its faces and nodes (a collapse), so that its index carries over.
+  /// Without this call it would notice the change by itself and build its
+  /// index anew.
+  /// @param mesh     the rebuilt mesh
+  /// @param old_face the old id of each face of `mesh`, increasing
+  /// @param old_node the old id of each node of `mesh`, increasing
+  void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
+
+private:
+  std::unique_ptr<detail::CrossingIndex> index_;
+};
+
+/// CrossingGuard::commit() with a guard of its own, for a single commit.
 /// @param mesh  the mesh whose nodes move (in a distributed run, this rank's window)
 /// @param delta the move of every node, one entry per node; set to the moves actually made
 /// @param field the phase functions, to also undo moves that turn a junction triangle against its phase

@@ -8,6 +8,7 @@
 
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <functional>
@@ -48,6 +49,9 @@ struct PassContext {
   /// Commit through the crossing guard (improve/guard.hpp), so that no move makes two
   /// triangles intersect.
   bool guard_crossings = true;
+  /// The guard, kept for the whole run so that its index of the mesh carries
+  /// over from one check to the next (commits and flips).
+  CrossingGuard guard;
   size_t undone_moves = 0;           ///< moves the guard undid in the current iteration
   std::optional<MeshStats> stats;    ///< set by the stats pass
   /// In a distributed run (voronoimesh_mpi), how the passes agree across the

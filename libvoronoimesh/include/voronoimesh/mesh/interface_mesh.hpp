@@ -81,7 +81,7 @@ public:
   /// The OpenMesh mesh, for topology changes (flips). Call topology_changed()
   /// afterwards.
   OMesh& omesh_for_topology() { return mesh_; }
-  /// Rebuilds the node adjacency after flips.
+  /// Rebuilds the node adjacency and triangles() after flips.
   void topology_changed() { build_adjacency(); }
 
   /// Neighbouring nodes of node n across all its copies, sorted (as of the last
@@ -100,6 +100,13 @@ public:
   /// The nodes of face f in its orientation order (node-level triangle f).
   /// @param f an OpenMesh face of omesh()
   std::array<int32_t, 3> face_nodes(OMesh::FaceHandle f) const;
+  /// face_nodes() of every face, in one array for loops over all triangles (as
+  /// of the last topology_changed(); between flips, ask face_nodes()).
+  const std::vector<std::array<int32_t, 3>>& triangles() const { return triangles_; }
+  /// The copy (OpenMesh vertex index, see copies()) at each corner of
+  /// triangles(): two triangles with the same copy at a corner lie in one fan
+  /// of one patch (as of the last topology_changed()).
+  const std::vector<std::array<int32_t, 3>>& triangle_copies() const { return triangle_copies_; }
   /// True when node a's phases and box faces are all among node b's: b lies on
   /// every surface, curve and box face a lies on.
   /// @param a the node whose constraints are looked for
@@ -131,6 +138,7 @@ private:
   std::vector<PhaseSet> phases_;
   std::vector<int32_t> copy_off_, copy_v_;
   std::vector<int32_t> adj_off_, adj_;
+  std::vector<std::array<int32_t, 3>> triangles_, triangle_copies_;
   std::vector<uint8_t> box_;
   Box domain_;
   std::vector<std::string> names_;

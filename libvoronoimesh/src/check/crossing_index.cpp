@@ -1,0 +1,507 @@
+/// @file check/crossing_index.cpp
+/// The kept lists of check/crossing_index.hpp, mended through a hash of cells
+/// on a multi-level uniform grid.
+
+#include "check/crossing_index.hpp"
+
+#include "core/parallel.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+namespace vm::detail {
+
+namespace {
+
+// Level 0 cells are kCellFactor median triangle extents wide, and triangles are
+// filed under their box grown by kSkin cells of their level on every side: a
+// median triangle's filing box then about fills a cell (the size that makes
+// the search for its neighbours cheapest), and it is filed again only after a
+// corner moved about a fifth of an edge.
+constexpr double kCellFactor = 1.5;
+constexpr double kSkin = 0.15;
+constexpr int kAxisBits = 19;               // bits of a cell coordinate, biased
+constexpr int64_t kBias = int64_t(1) << 17; // room below the grid's origin
+constexpr int64_t kLimit = int64_t(1) << kAxisBits;
+constexpr int kLevels = 24;
+constexpr uint64_t kEmpty = ~uint64_t(0);
+// A triangle searching a finer level visits at most this many cells; beyond,
+// it tests every triangle of that level instead.
+constexpr int64_t kMaxCellsVisited = 64;
+// Beyond this share of triangles to file again, everything is built anew.
+constexpr size_t kRebuildShare = 8;
+
+uint64_t mix(uint64_t x) { // splitmix64's finaliser
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+bool contains(const Bounds& outer, const Bounds& inner) {
+  return (outer.lo.array() <= inner.lo.array()).all() && (inner.hi.array() <= outer.hi.array()).all();
+}
+
+template <class T> int32_t id_of(const T& item) { return item.id; }
+
+} // namespace
+
+// ---------------------------------------------------------------------------
+// Lists in one pool.
+
+template <class T> void CrossingIndex::Lists<T>::assign(std::span<const uint32_t> sizes) {
+  range_.resize(sizes.size());
+  uint32_t end = 0;
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    range_[i] = {end, sizes[i], sizes[i] + sizes[i] / 3 + 2};
+    end += range_[i].capacity;
+  }
+  pool_.assign(end, T{});
+}
+
+template <class T> void CrossingIndex::Lists<T>::push(size_t list, const T& item) {
+  Range& r = range_[list];
+  if (r.size == r.capacity) { // move the list to the end of the pool, with room
+    const uint32_t capacity = 2 * r.capacity + 4;
+    pool_.resize(pool_.size() + capacity);
+    std::copy_n(pool_.begin() + r.begin, r.size, pool_.end() - capacity);
+    r.begin = uint32_t(pool_.size() - capacity);
+    r.capacity = capacity;
+  }
+  pool_[r.begin + r.size++] = item;
+}
+
+template <class T> void CrossingIndex::Lists<T>::insert_by_id(size_t list, const T& item) {
+  push(list, item);
+  const std::span<T> items = at(list);
+  const auto place = std::upper_bound(items.begin(), items.end() - 1, id_of(item),
+                                      [](int32_t id, const T& x) { return id < id_of(x); });
+  std::rotate(place, items.end() - 1, items.end());
+}
+
+template <class T> void CrossingIndex::Lists<T>::erase_id(size_t list, int32_t id) {
+  const std::span<T> items = at(list);
+  const auto at = std::find_if(items.begin(), items.end(), [&](const T& x) { return id_of(x) == id; });
+  if (at == items.end()) return;
+  std::copy(at + 1, items.end(), at);
+  --range_[list].size;
+}
+
+template <class T> template <class Map> void CrossingIndex::Lists<T>::map_items(Map&& map) {
+  for (Range& r : range_) {
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < r.size; ++i) {
+      const T item = map(pool_[r.begin + i]);
+      if (id_of(item) >= 0) pool_[r.begin + kept++] = item;
+    }
+    r.size = kept;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The grid.
+
+uint64_t CrossingIndex::key(int level, int64_t i, int64_t j, int64_t k) {
+  return uint64_t(level) << (3 * kAxisBits) | uint64_t(i + kBias) << (2 * kAxisBits) |
+         uint64_t(j + kBias) << kAxisBits | uint64_t(k + kBias);
+}
+
+std::array<int64_t, 3> CrossingIndex::cell_of(const Vec3& x, int level) const {
+  const double inverse = inverse_cell_size_[size_t(level)];
+  return {int64_t(std::floor((x.x() - origin_.x()) * inverse)), int64_t(std::floor((x.y() - origin_.y()) * inverse)),
+          int64_t(std::floor((x.z() - origin_.z()) * inverse))};
+}
+
+int CrossingIndex::level_of(const Bounds& b) const {
+  const double extent = (b.hi - b.lo).maxCoeff() * inverse_cell_size_[0];
+  int l = 0;
+  while (l + 1 < kLevels && extent > double(int64_t(1) << l)) ++l;
+  return l;
+}
+
+bool CrossingIndex::fits_grid(const Bounds& b) const {
+  // Level 0 coordinates bound those of every level.
+  const auto lo = cell_of(b.lo, 0), hi = cell_of(b.hi, 0);
+  for (int a = 0; a < 3; ++a)
+    if (lo[size_t(a)] < -kBias || hi[size_t(a)] >= kLimit - kBias) return false;
+  return true;
+}
+
+CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangle& nodes, const Triangle& fans) const {
+  const double skin = kSkin * std::ldexp(cell_size_, level_of(box));
+  Filing f;
+  f.box = {box.lo.array() - skin, box.hi.array() + skin};
+  f.nodes = nodes;
+  f.fans = fans;
+  f.level = int8_t(level_of(f.box));
+  f.first = cell_of(f.box.lo, f.level);
+  return f;
+}
+
+template <class F> void CrossingIndex::for_cells(const Filing& f, F&& f_of_key) const {
+  const auto last = cell_of(f.box.hi, f.level);
+  for (int64_t i = f.first[0]; i <= last[0]; ++i)
+    for (int64_t j = f.first[1]; j <= last[1]; ++j)
+      for (int64_t k = f.first[2]; k <= last[2]; ++k) f_of_key(key(f.level, i, j, k));
+}
+
+int64_t CrossingIndex::find(uint64_t k) const {
+  const size_t mask = keys_.size() - 1;
+  for (size_t s = mix(k) & mask;; s = (s + 1) & mask) {
+    if (keys_[s] == k) return cell_of_slot_[s];
+    if (keys_[s] == kEmpty) return -1;
+  }
+}
+
+size_t CrossingIndex::find_or_add(uint64_t k) {
+  if (2 * (cells_.count() + 1) > keys_.size()) grow_table();
+  const size_t mask = keys_.size() - 1;
+  size_t s = mix(k) & mask;
+  for (; keys_[s] != kEmpty; s = (s + 1) & mask)
+    if (keys_[s] == k) return cell_of_slot_[s];
+  keys_[s] = k;
+  cell_of_slot_[s] = uint32_t(cells_.count());
+  return cells_.add_list();
+}
+
+void CrossingIndex::grow_table() {
+  const std::vector<uint64_t> old_keys = std::move(keys_);
+  const std::vector<uint32_t> old_cells = std::move(cell_of_slot_);
+  size_t capacity = 64;
+  while (capacity < 4 * (cells_.count() + 1)) capacity *= 2;
+  keys_.assign(capacity, kEmpty);
+  cell_of_slot_.assign(capacity, 0);
+  const size_t mask = capacity - 1;
+  for (size_t s = 0; s < old_keys.size(); ++s) {
+    if (old_keys[s] == kEmpty) continue;
+    size_t slot = mix(old_keys[s]) & mask;
+    while (keys_[slot] != kEmpty) slot = (slot + 1) & mask;
+    keys_[slot] = old_keys[s];
+    cell_of_slot_[slot] = old_cells[s];
+  }
+}
+
+void CrossingIndex::file(int32_t t) {
+  const Filing& f = filed_[size_t(t)];
+  const CellEntry entry{t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}, f.box};
+  for_cells(f, [&](uint64_t k) { cells_.push(find_or_add(k), entry); });
+  ++level_count_[size_t(filed_[size_t(t)].level)];
+}
+
+void CrossingIndex::unfile(int32_t t) {
+  for_cells(filed_[size_t(t)], [&](uint64_t k) { cells_.erase_id(size_t(find(k)), t); });
+  --level_count_[size_t(filed_[size_t(t)].level)];
+}
+
+void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
+  const Filing& ft = filed_[size_t(t)];
+  const size_t before = out.size();
+  auto take = [&](int32_t s) {
+    int32_t fan = -1;
+    for (int32_t a : ft.fans)
+      if (a >= 0 && std::find(filed_[size_t(s)].fans.begin(), filed_[size_t(s)].fans.end(), a) !=
+                        filed_[size_t(s)].fans.end())
+        fan = a;
+    out.push_back({s, fan});
+  };
+  for (int l = 0; l < kLevels; ++l) {
+    if (level_count_[size_t(l)] == 0) continue;
+    const auto lo = cell_of(ft.box.lo, l), hi = cell_of(ft.box.hi, l);
+    const int64_t visits = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    if (visits > kMaxCellsVisited) { // a large triangle over a fine level: every triangle of it
+      for (size_t s = 0; s < filed_.size(); ++s)
+        if (filed_[s].level == l && int32_t(s) != t && ft.box.overlaps(filed_[s].box)) take(int32_t(s));
+      continue;
+    }
+    for (int64_t i = lo[0]; i <= hi[0]; ++i)
+      for (int64_t j = lo[1]; j <= hi[1]; ++j)
+        for (int64_t k = lo[2]; k <= hi[2]; ++k) {
+          const int64_t c = find(key(l, i, j, k));
+          if (c < 0) continue;
+          for (const CellEntry& s : cells_.at(size_t(c))) {
+            // s is filed in every cell of its filing box and t searches every
+            // cell of its own: s is taken in the cell of the overlap's lower corner.
+            if (s.id == t || std::max(lo[0], int64_t(s.first[0])) != i || std::max(lo[1], int64_t(s.first[1])) != j ||
+                std::max(lo[2], int64_t(s.first[2])) != k || !ft.box.overlaps(s.box))
+              continue;
+            take(s.id);
+          }
+        }
+  }
+  std::sort(out.begin() + ptrdiff_t(before), out.end(),
+            [](const Neighbour& a, const Neighbour& b) { return a.id < b.id; });
+}
+
+// ---------------------------------------------------------------------------
+// Keeping up with the mesh.
+
+void CrossingIndex::set_grid() {
+  // Origin and cell size from the boxes now, no more than 2^17 cells across.
+  const size_t n = boxes_.size();
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  std::vector<double> extent(n);
+  for (size_t t = 0; t < n; ++t) {
+    lo = lo.cwiseMin(boxes_[t].lo);
+    hi = hi.cwiseMax(boxes_[t].hi);
+    extent[t] = (boxes_[t].hi - boxes_[t].lo).maxCoeff();
+  }
+  const double span = n ? (hi - lo).maxCoeff() : 1.0;
+  double h = 0;
+  if (n) {
+    auto mid = extent.begin() + ptrdiff_t(n / 2);
+    std::nth_element(extent.begin(), mid, extent.end());
+    h = kCellFactor * *mid;
+  }
+  if (!(h > 0)) h = span > 0 ? span : 1.0;
+  cell_size_ = std::max(h, std::ldexp(span, -(kAxisBits - 2)));
+  inverse_cell_size_.resize(kLevels);
+  for (int l = 0; l < kLevels; ++l) inverse_cell_size_[size_t(l)] = 1 / std::ldexp(cell_size_, l);
+  origin_ = n ? lo : Vec3::Zero();
+}
+
+void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
+  const size_t n = triangles.size();
+  rebuilt_ = true;
+  fans_stale_ = false;
+  set_grid();
+  fans_ = CornerFans(triangles, corner_fans);
+
+  // The cells, from every triangle's (key, id) entries sorted.
+  filed_.resize(n);
+  std::vector<uint32_t> offset(n + 1, 0);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
+    uint32_t cells = 0;
+    for_cells(filed_[t], [&](uint64_t) { ++cells; });
+    offset[t + 1] = cells;
+  });
+  for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
+  struct Entry {
+    uint64_t key;
+    int32_t tri;
+  };
+  std::vector<Entry> entries(offset[n]);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    uint32_t e = offset[t];
+    for_cells(filed_[t], [&](uint64_t k) { entries[e++] = {k, int32_t(t)}; });
+  });
+  detail::parallel_sort(entries.begin(), entries.end(),
+                        [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
+  keys_.clear();
+  cell_of_slot_.clear();
+  cells_ = {};
+  level_count_.assign(kLevels, 0);
+  std::vector<size_t> first;
+  for (size_t e = 0; e < entries.size(); ++e)
+    if (e == 0 || entries[e].key != entries[e - 1].key) {
+      first.push_back(e);
+      find_or_add(entries[e].key); // cells numbered in key order
+    }
+  first.push_back(entries.size());
+  std::vector<uint32_t> sizes(first.size() - 1);
+  for (size_t c = 0; c < sizes.size(); ++c) sizes[c] = uint32_t(first[c + 1] - first[c]);
+  cells_.assign(sizes);
+  detail::parallel_for_each_index(sizes.size(), [&](size_t c) {
+    const auto filed = cells_.at(c);
+    for (size_t i = 0; i < filed.size(); ++i) {
+      const Filing& f = filed_[size_t(entries[first[c] + i].tri)];
+      filed[i] = {entries[first[c] + i].tri, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}, f.box};
+    }
+  });
+  for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
+
+  // The lists, found in blocks of triangles (a fixed partition), then packed.
+  constexpr size_t kBlock = 1024;
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<Neighbour>> found(blocks);
+  std::vector<uint32_t> count(n);
+  detail::parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) {
+          const size_t before = found[b].size();
+          near(int32_t(t), found[b]);
+          count[t] = uint32_t(found[b].size() - before);
+        }
+      },
+      1);
+  near_ = {};
+  near_.assign(count);
+  detail::parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        const Neighbour* from = found[b].data();
+        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) {
+          const auto list = near_.at(t);
+          std::copy_n(from, list.size(), list.begin());
+          from += list.size();
+        }
+      },
+      1);
+}
+
+void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
+                           std::span<const Triangle> corner_fans) {
+  std::vector<uint8_t> is_stale(filed_.size(), 0);
+  for (int32_t t : stale) is_stale[size_t(t)] = 1;
+  // In id order, so that cells and lists never depend on threads.
+  bool new_fans = false;
+  for (int32_t t : stale) {
+    unfile(t);
+    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)];
+    new_fans = new_fans || fans != filed_[size_t(t)].fans;
+    filed_[size_t(t)] = filing_for(boxes_[size_t(t)], triangles[size_t(t)], fans);
+    file(t);
+    for (const Neighbour& s : near_.at(size_t(t)))
+      if (!is_stale[size_t(s.id)]) near_.erase_id(size_t(s.id), t);
+  }
+  if (new_fans || fans_stale_) fans_ = CornerFans(triangles, corner_fans), fans_stale_ = false;
+  std::vector<std::vector<Neighbour>> found(stale.size());
+  detail::parallel_for_each_index(stale.size(), [&](size_t i) { near(stale[i], found[i]); }, 16);
+  for (size_t i = 0; i < stale.size(); ++i) {
+    const int32_t t = stale[i];
+    near_.clear(size_t(t));
+    for (const Neighbour& s : found[i]) {
+      near_.push(size_t(t), s);
+      if (!is_stale[size_t(s.id)]) near_.insert_by_id(size_t(s.id), {t, s.fan});
+    }
+  }
+}
+
+void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
+                             std::span<const Triangle> corner_fans) {
+  if (filed_.empty()) return;
+  std::vector<int32_t> new_triangle(filed_.size(), -1);
+  for (size_t t = 0; t < old_triangle.size(); ++t) new_triangle[size_t(old_triangle[t])] = int32_t(t);
+  int32_t old_nodes = old_node.empty() ? 0 : old_node.back() + 1;
+  for (const Filing& f : filed_) old_nodes = std::max({old_nodes, f.nodes[0] + 1, f.nodes[1] + 1, f.nodes[2] + 1});
+  std::vector<int32_t> new_node(size_t(old_nodes), -1);
+  for (size_t n = 0; n < old_node.size(); ++n) new_node[size_t(old_node[n])] = int32_t(n);
+  // Old fan ids to new ones, through the corners of kept triangles; a fan
+  // that went two ways maps to none (its triangles are filed again).
+  int32_t old_fans = 0;
+  for (const Filing& f : filed_) old_fans = std::max({old_fans, f.fans[0] + 1, f.fans[1] + 1, f.fans[2] + 1});
+  constexpr int32_t kUnseen = -2;
+  std::vector<int32_t> new_fan(size_t(old_fans), kUnseen);
+  for (size_t t = 0; t < old_triangle.size() && !corner_fans.empty(); ++t)
+    for (size_t k = 0; k < 3; ++k) {
+      const int32_t old = filed_[size_t(old_triangle[t])].fans[k];
+      if (old < 0) continue;
+      int32_t& to = new_fan[size_t(old)];
+      to = to == kUnseen || to == corner_fans[t][k] ? corner_fans[t][k] : -1;
+    }
+  auto fan_of = [&](int32_t old) { return old < 0 || new_fan[size_t(old)] < 0 ? -1 : new_fan[size_t(old)]; };
+
+  std::vector<Filing> filed(old_triangle.size());
+  for (size_t t = 0; t < filed.size(); ++t) {
+    filed[t] = filed_[size_t(old_triangle[t])];
+    for (int32_t& n : filed[t].nodes) n = new_node[size_t(n)];
+    for (int32_t& f : filed[t].fans) f = fan_of(f);
+  }
+  filed_ = std::move(filed);
+  level_count_.assign(kLevels, 0);
+  for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
+  cells_.map_items([&](CellEntry e) {
+    e.id = new_triangle[size_t(e.id)];
+    return e;
+  });
+  // Lists by new triangle: each old list, mapped (ids keep their order).
+  Lists<Neighbour> near;
+  std::vector<uint32_t> sizes(old_triangle.size());
+  for (size_t t = 0; t < sizes.size(); ++t) sizes[t] = uint32_t(near_.at(size_t(old_triangle[t])).size());
+  near.assign(sizes);
+  for (size_t t = 0; t < sizes.size(); ++t) {
+    const auto to = near.at(t);
+    std::copy_n(near_.at(size_t(old_triangle[t])).begin(), to.size(), to.begin());
+  }
+  near.map_items([&](Neighbour s) { return Neighbour{new_triangle[size_t(s.id)], fan_of(s.fan)}; });
+  near_ = std::move(near);
+  fans_stale_ = true;
+}
+
+std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                              std::span<const uint8_t> involved, std::span<const Triangle> corner_fans) {
+  const size_t n = triangles.size();
+  refiled_ = 0;
+  rebuilt_ = false;
+  boxes_.resize(n);
+  detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
+  // Up to date first: triangles with other nodes or fans, or out of their
+  // filing box, are filed again.
+  std::vector<int32_t> stale;
+  bool anew = filed_.size() != n || n == 0;
+  if (!anew) {
+    std::vector<uint8_t> is_stale(n);
+    detail::parallel_for_each_index(n, [&](size_t t) {
+      const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
+      is_stale[t] = filed_[t].nodes != triangles[t] || filed_[t].fans != fans || !contains(filed_[t].box, boxes_[t]);
+    });
+    for (size_t t = 0; t < n; ++t)
+      if (is_stale[t]) stale.push_back(int32_t(t));
+    anew = kRebuildShare * stale.size() > n;
+    for (size_t i = 0; i < stale.size() && !anew; ++i)
+      anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
+  }
+  if (anew) rebuild(triangles, corner_fans);
+  else refile(stale, triangles, corner_fans), refiled_ = stale.size();
+  if (fans_stale_) fans_ = CornerFans(triangles, corner_fans), fans_stale_ = false;
+
+  // Projection axes of the tested triangles, found once each when first needed.
+  std::vector<std::atomic<int8_t>> axis(n);
+  detail::parallel_for_each_index(n, [&](size_t t) { axis[t].store(-2, std::memory_order_relaxed); });
+  auto axis_of = [&](int32_t t) {
+    int8_t a = axis[size_t(t)].load(std::memory_order_relaxed);
+    if (a == -2) {
+      const Triangle& tri = triangles[size_t(t)];
+      a = projection_axis(points[size_t(tri[0])], points[size_t(tri[1])], points[size_t(tri[2])]);
+      axis[size_t(t)].store(a, std::memory_order_relaxed);
+    }
+    return a;
+  };
+  const FanCertificates fans(points, fans_);
+  auto test = [&](int32_t t, const Neighbour& s, std::vector<BoxPair>& out) {
+    if (s.fan >= 0 && fans.embedded(s.fan)) return; // they meet properly
+    if (!boxes_[size_t(t)].overlaps(boxes_[size_t(s.id)])) return;
+    if (intersect_improperly(points, triangles[size_t(t)], triangles[size_t(s.id)], axis_of(t), axis_of(s.id)))
+      out.push_back({std::min(t, s.id), std::max(t, s.id)});
+  };
+  // Each pair once: where most triangles are involved, a pair of two involved
+  // ones from the lower id (the upper part of its sorted list) and a pair with
+  // an idle one from the idle one; where few are, every pair from its involved
+  // ones (the lower id if both are).
+  auto is_involved = [&](int32_t t) { return involved.empty() || involved[size_t(t)]; };
+  size_t involved_count = 0;
+  for (size_t t = 0; t < n; ++t) involved_count += is_involved(int32_t(t));
+  const bool from_idle = 2 * involved_count > n;
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> found_of_thread;
+  detail::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+    auto& out = found_of_thread.local();
+    for (auto t = int32_t(r.begin()); t != int32_t(r.end()); ++t) {
+      const std::span<const Neighbour> list = near_.at(size_t(t));
+      if (!is_involved(t)) {
+        if (from_idle)
+          for (const Neighbour& s : list)
+            if (is_involved(s.id)) test(t, s, out);
+      } else if (from_idle) {
+        const auto upper = std::upper_bound(list.begin(), list.end(), t,
+                                            [](int32_t id, const Neighbour& s) { return id < s.id; });
+        for (auto s = upper; s != list.end(); ++s)
+          if (is_involved(s->id)) test(t, *s, out);
+      } else {
+        for (const Neighbour& s : list)
+          if (!is_involved(s.id) || s.id > t) test(t, s, out);
+      }
+    }
+  });
+  std::vector<BoxPair> found;
+  for (const auto& part : found_of_thread) found.insert(found.end(), part.begin(), part.end());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+} // namespace vm::detail

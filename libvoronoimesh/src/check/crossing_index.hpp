@@ -1,0 +1,145 @@
+#pragma once
+/// @file check/crossing_index.hpp
+/// Repeated exact crossing checks on a mesh that changes a little at a time.
+///
+/// find_self_intersections() builds its grid of triangle boxes anew on every
+/// call and sorts it: right for one check, but the improvement loop checks the
+/// same mesh several times an iteration (each commit of moves, each round of
+/// undoing them, each batch of flips) while its nodes move by a fraction of an
+/// edge. CrossingIndex keeps, as molecular dynamics keeps Verlet lists, every
+/// triangle's box grown by a skin (its "filing box") and, for each triangle,
+/// the triangles whose filing boxes meet its own. While every triangle's box
+/// stays inside its filing box, two triangles whose boxes overlap are on each
+/// other's lists: a check tests the lists of the triangles that changed and
+/// searches nothing. A triangle that leaves its filing box or changes nodes is
+/// filed again, and the lists it is on are mended through a hash of grid cells;
+/// a check after a few flips costs little more than those few triangles.
+///
+/// The answers are find_self_intersections()'s (the same exact pair test,
+/// check/triangle_pair.hpp, and certificates made of the same predicates,
+/// check/embedded_fans.hpp), so the guard keeps its guarantees; they do not
+/// depend on the thread count.
+
+#include "check/box_pairs.hpp"
+#include "check/embedded_fans.hpp"
+#include "check/triangle_pair.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+class CrossingIndex {
+public:
+  /// The pairs {t, s}, t < s, of triangles that intersect improperly and of
+  /// which at least one is flagged in `involved` (one flag per triangle; empty:
+  /// all), sorted. The mesh is given whole each time (node ids into `points`);
+  /// the index brings itself up to date with it first, so any change since the
+  /// last call (moves, flips, a renumbered mesh) is seen. Points must be finite.
+  ///
+  /// With `corner_fans` (a fan id per corner of each triangle, as
+  /// InterfaceMesh::triangle_copies(): triangles with the same id at a common
+  /// corner lie in one fan of one patch), pairs in a fan certified embedded are
+  /// not tested one by one. On a smooth surface that is almost every pair
+  /// whose boxes overlap.
+  std::vector<BoxPair> crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                 std::span<const uint8_t> involved = {}, std::span<const Triangle> corner_fans = {});
+
+  /// Carries the index over to a mesh rebuilt from this one (a collapse
+  /// renumbers triangles and nodes): `old_triangle[t]` and `old_node[n]` are the
+  /// old ids of new triangle t and node n, increasing; `corner_fans` are the new
+  /// mesh's. Triangles that lost a node are filed again at the next call;
+  /// the others keep their filing, so no rebuild is needed.
+  void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
+                std::span<const Triangle> corner_fans);
+
+  /// Triangles filed again at the last call, and whether it built everything
+  /// anew (for tests and benchmarks).
+  size_t refiled() const { return refiled_; }
+  bool rebuilt() const { return rebuilt_; }
+
+private:
+  /// Where a triangle is filed: its grown box, the grid level it is filed in
+  /// and the first cell of the box there, and the nodes and fans it had.
+  struct Filing {
+    Bounds box;
+    std::array<int64_t, 3> first{};
+    Triangle nodes{-1, -1, -1}, fans{-1, -1, -1};
+    int8_t level = -1;
+  };
+  /// A triangle filed in a cell, with what a search reads of it (one cache line).
+  struct CellEntry {
+    int32_t id;
+    std::array<int32_t, 3> first;
+    Bounds box;
+  };
+  /// An entry of a triangle's list: the other triangle, and a fan both have a
+  /// corner in (-1: none).
+  struct Neighbour {
+    int32_t id, fan;
+  };
+
+  /// Lists of T in one pool, each a range with room to grow.
+  template <class T> class Lists {
+  public:
+    /// Lists of the given sizes, each with room for a third more; fill them through at().
+    void assign(std::span<const uint32_t> sizes);
+    std::span<T> at(size_t list) { return {pool_.data() + range_[list].begin, range_[list].size}; }
+    std::span<const T> at(size_t list) const { return {pool_.data() + range_[list].begin, range_[list].size}; }
+    size_t add_list() {
+      range_.push_back({});
+      return range_.size() - 1;
+    }
+    void push(size_t list, const T& item);
+    void insert_by_id(size_t list, const T& item); ///< into a list sorted by id
+    void erase_id(size_t list, int32_t id);        ///< keeps the others' order
+    void clear(size_t list) { range_[list].size = 0; }
+    /// Replaces every item x by map(x), dropping those mapped to an id < 0.
+    template <class Map> void map_items(Map&& map);
+    size_t count() const { return range_.size(); }
+
+  private:
+    struct Range {
+      uint32_t begin = 0, size = 0, capacity = 0;
+    };
+    std::vector<Range> range_;
+    std::vector<T> pool_;
+  };
+
+  void rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
+  void refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
+              std::span<const Triangle> corner_fans);
+  void set_grid();
+  Filing filing_for(const Bounds& box, const Triangle& nodes, const Triangle& fans) const;
+  bool fits_grid(const Bounds& b) const;
+  int level_of(const Bounds& b) const;
+  std::array<int64_t, 3> cell_of(const Vec3& x, int level) const;
+  static uint64_t key(int level, int64_t i, int64_t j, int64_t k);
+  template <class F> void for_cells(const Filing& f, F&& f_of_key) const;
+  int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none
+  size_t find_or_add(uint64_t key);
+  void grow_table();
+  void file(int32_t t);
+  void unfile(int32_t t);
+  /// Appends t's list, sorted by id.
+  void near(int32_t t, std::vector<Neighbour>& out) const;
+
+  double cell_size_ = 0;                   ///< level 0; level l has cells 2^l times as large
+  std::vector<double> inverse_cell_size_;  ///< by level
+  Vec3 origin_ = Vec3::Zero();
+  std::vector<Filing> filed_;
+  std::vector<Bounds> boxes_;          ///< each triangle's box now
+  std::vector<int32_t> level_count_;   ///< triangles filed in each level
+  std::vector<uint64_t> keys_;         ///< open addressing, kEmpty where free
+  std::vector<uint32_t> cell_of_slot_; ///< the cells_ list of each used slot of keys_
+  Lists<CellEntry> cells_;             ///< the triangles filed in each cell
+  Lists<Neighbour> near_;              ///< by triangle, sorted by id: those whose filing boxes meet its own
+  CornerFans fans_;                    ///< as of the last call that changed them
+  bool fans_stale_ = false;            ///< fans_ must be built anew at the next call
+  size_t refiled_ = 0;
+  bool rebuilt_ = false;
+};
+
+} // namespace vm::detail

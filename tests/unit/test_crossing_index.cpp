@@ -1,0 +1,200 @@
+// The kept crossing index (check/crossing_index.hpp) against the whole-mesh
+// check it replaces in the guard (find_self_intersections), through moves large
+// enough to fold fans and push surfaces through each other, flips, dropped
+// triangles with renumbering, and thread counts; and the fan certificates
+// (check/embedded_fans.hpp) on fans made to fail each of their conditions.
+
+#include "check/crossing_index.hpp"
+#include "check/embedded_fans.hpp"
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/improve/flip.hpp"
+
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace {
+
+using namespace vm;
+using detail::BoxPair;
+using detail::CrossingIndex;
+using detail::Triangle;
+
+/// What the guard asked before: every crossing pair with an involved triangle.
+std::vector<BoxPair> reference(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                               std::span<const uint8_t> involved) {
+  NodeMesh m;
+  m.points.assign(points.begin(), points.end());
+  m.triangles.assign(triangles.begin(), triangles.end());
+  return find_self_intersections(m, std::numeric_limits<size_t>::max(), involved).pairs;
+}
+
+/// Moves `count` random nodes by up to `reach` each.
+void shake(std::vector<Vec3>& points, std::mt19937_64& rng, size_t count, double reach) {
+  std::uniform_int_distribution<size_t> node(0, points.size() - 1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (size_t i = 0; i < count; ++i) points[node(rng)] += reach * Vec3(u(rng), u(rng), u(rng));
+}
+
+std::vector<uint8_t> random_flags(std::mt19937_64& rng, size_t n, double share) {
+  std::bernoulli_distribution pick(share);
+  std::vector<uint8_t> flags(n);
+  for (auto& f : flags) f = pick(rng);
+  return flags;
+}
+
+TEST(CrossingIndex, finds_what_the_whole_mesh_check_finds_as_the_mesh_moves_and_flips) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  const double h = 1.0 / 16;
+  std::mt19937_64 rng(17);
+  CrossingIndex index;
+  size_t crossing_checks = 0, folded_fans_found = 0, kept = 0;
+  for (int step = 0; step < 24; ++step) {
+    // Mostly small moves (the index keeps its filing), now and then large ones
+    // that fold fans and cross surfaces; flips change triangles' nodes and fans.
+    std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+    std::vector<Vec3> moved = mesh.positions();
+    shake(moved, rng, step % 4 == 3 ? 40 : mesh.num_nodes() / 3, step % 4 == 3 ? 0.8 * h : 0.02 * h);
+    for (size_t n = 0; n < delta.size(); ++n) delta[n] = moved[n] - mesh.positions()[n];
+    mesh.move_nodes(delta);
+    if (step % 5 == 4) {
+      FlipParams no_guard;
+      no_guard.guard_crossings = false;
+      no_guard.collapse_below = 0;
+      flip_edges(mesh, no_guard);
+    }
+    const std::vector<uint8_t> involved =
+        step % 3 == 0 ? std::vector<uint8_t>{} : random_flags(rng, mesh.num_triangles(), step % 3 == 1 ? 0.9 : 0.02);
+    const auto found = index.crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+    const auto expected = reference(mesh.positions(), mesh.triangles(), involved);
+    ASSERT_EQ(found, expected) << "step " << step;
+    crossing_checks += !expected.empty();
+    kept += !index.rebuilt();
+    for (const auto& [t, s] : expected) {
+      const auto &a = mesh.triangle_copies()[size_t(t)], &b = mesh.triangle_copies()[size_t(s)];
+      folded_fans_found += std::any_of(a.begin(), a.end(), [&](int32_t c) { return std::count(b.begin(), b.end(), c); });
+    }
+  }
+  // The test has teeth: crossings were there to find, some inside one fan (the
+  // pairs the certificates skip when they hold), and the index was kept.
+  EXPECT_GE(crossing_checks, 4u);
+  EXPECT_GT(folded_fans_found, 0u);
+  EXPECT_GE(kept, 12u);
+}
+
+TEST(CrossingIndex, carries_over_a_renumbering_without_starting_again) {
+  const NodeMesh m = test::four_spheres(16);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(m);
+  CrossingIndex index;
+  std::mt19937_64 rng(3);
+  std::vector<Vec3> points = mesh.positions();
+  std::vector<Triangle> triangles = mesh.triangles(), fans = mesh.triangle_copies();
+  index.crossings(points, triangles, {}, fans);
+  // Drop every seventh triangle and the nodes no triangle uses any more, then
+  // merge two neighbouring nodes; ids shrink as a collapse renumbers them.
+  std::vector<int32_t> old_triangle, old_node;
+  std::vector<Triangle> kept_triangles, kept_fans;
+  for (size_t t = 0; t < triangles.size(); ++t)
+    if (t % 7 != 0) old_triangle.push_back(int32_t(t)), kept_triangles.push_back(triangles[t]), kept_fans.push_back(fans[t]);
+  std::vector<int32_t> new_node(points.size(), -1);
+  for (const Triangle& tri : kept_triangles)
+    for (int32_t v : tri) new_node[size_t(v)] = 0;
+  std::vector<Vec3> kept_points;
+  for (size_t n = 0; n < points.size(); ++n)
+    if (new_node[n] == 0) new_node[n] = int32_t(kept_points.size()), old_node.push_back(int32_t(n)), kept_points.push_back(points[n]);
+  for (Triangle& tri : kept_triangles)
+    for (int32_t& v : tri) v = new_node[size_t(v)];
+  index.renumber(old_triangle, old_node, kept_fans);
+  kept_triangles[5][0] = kept_triangles[5][1] == 0 ? 1 : 0; // a triangle that changed nodes: filed again
+  shake(kept_points, rng, 30, 0.8 / 16);
+  const auto found = index.crossings(kept_points, kept_triangles, {}, kept_fans);
+  EXPECT_FALSE(index.rebuilt());
+  EXPECT_GE(index.refiled(), 1u);
+  EXPECT_EQ(found, reference(kept_points, kept_triangles, {}));
+  EXPECT_FALSE(found.empty()); // the shake made crossings to find
+}
+
+TEST(CrossingIndex, answers_alike_for_any_thread_count) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  std::vector<Vec3> points = mesh.positions();
+  std::mt19937_64 rng(9);
+  shake(points, rng, 300, 0.5 / 16);
+  std::vector<std::vector<BoxPair>> found;
+  for (int threads : {1, 2, 4}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    CrossingIndex index;
+    found.push_back(index.crossings(points, mesh.triangles(), {}, mesh.triangle_copies()));
+  }
+  ASSERT_FALSE(found[0].empty());
+  EXPECT_EQ(found[1], found[0]);
+  EXPECT_EQ(found[2], found[0]);
+}
+
+// ---------------------------------------------------------------------------
+// Fan certificates on hand-made fans around node 0 at the origin.
+
+struct Fan {
+  std::vector<Vec3> points{Vec3::Zero()};
+  std::vector<Triangle> triangles, corner_fans;
+  /// Adds triangle (0, a, b) with its corner at node 0 in fan 0 and its other
+  /// corners in fans of their own.
+  void add(int32_t a, int32_t b) {
+    triangles.push_back({0, a, b});
+    const auto t = int32_t(triangles.size());
+    corner_fans.push_back({0, 2 * t, 2 * t + 1});
+  }
+  bool embedded() const {
+    const detail::CornerFans fans(triangles, corner_fans);
+    return detail::FanCertificates(points, fans).embedded(0);
+  }
+};
+
+/// A fan of `m` triangles around the origin, its ring at heights z(i),
+/// turning `turns` times around; `closed` joins the last corner to the first.
+Fan ring_fan(int m, double turns, bool closed, const std::function<double(int)>& z = [](int) { return 0.0; }) {
+  Fan fan;
+  const int corners = closed ? m : m + 1;
+  for (int i = 0; i < corners; ++i) {
+    const double angle = 2 * std::numbers::pi * turns * i / m;
+    fan.points.push_back({std::cos(angle), std::sin(angle), z(i)});
+  }
+  for (int i = 0; i < m; ++i) fan.add(1 + i, 1 + (closed ? (i + 1) % m : i + 1));
+  return fan;
+}
+
+TEST(FanCertificates, certify_flat_and_wavy_fans_that_go_once_around) {
+  EXPECT_TRUE(ring_fan(6, 1, true).embedded());
+  EXPECT_TRUE(ring_fan(7, 1, true, [](int i) { return 0.4 * std::sin(2.0 * i); }).embedded());
+  EXPECT_TRUE(ring_fan(5, 0.9, false).embedded()); // open, nine tenths of a turn
+}
+
+TEST(FanCertificates, refuse_fans_that_fold_wrap_or_break) {
+  // A closed chain around twice: every triangle turns the same way, but each
+  // sector overlaps another one.
+  EXPECT_FALSE(ring_fan(10, 2, true).embedded());
+  // An open chain of more than one turn overlaps itself.
+  EXPECT_FALSE(ring_fan(7, 1.2, false).embedded());
+  // One triangle folded back over its neighbour.
+  Fan folded = ring_fan(6, 1, true);
+  folded.points[3] = {0.9, 0.2, 0.05};
+  EXPECT_FALSE(folded.embedded());
+  // A triangle standing on edge (seen along every axis it is a line or turns
+  // against the others) is not certified.
+  Fan standing = ring_fan(6, 1, true);
+  standing.points[2] = {0, 0, 1};
+  standing.points[3] = {0, 0, 2};
+  EXPECT_FALSE(standing.embedded());
+  // Two separate wedges around one node: no single chain.
+  Fan broken;
+  broken.points = {Vec3::Zero(), {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {-1, -1, 0}};
+  broken.add(1, 2);
+  broken.add(3, 5);
+  EXPECT_FALSE(broken.embedded());
+}
+
+} // namespace
