@@ -135,6 +135,44 @@ TEST(CrossingIndex, answers_alike_for_any_thread_count) {
   EXPECT_EQ(found[2], found[0]);
 }
 
+TEST(CornerFans, kept_up_to_date_through_flips_as_if_built_anew) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  detail::CornerFans kept;
+  kept.build(mesh.triangles(), mesh.triangle_copies());
+  const std::vector<Triangle> triangles_before = mesh.triangles(), fans_before = mesh.triangle_copies();
+  std::vector<Vec3> points = mesh.positions();
+  std::mt19937_64 rng(4);
+  shake(points, rng, mesh.num_nodes(), 0.3 / 16); // rough, so that many edges flip
+  std::vector<Vec3> delta(points.size());
+  for (size_t n = 0; n < points.size(); ++n) delta[n] = points[n] - mesh.positions()[n];
+  mesh.move_nodes(delta);
+  FlipParams params;
+  params.guard_crossings = false;
+  params.collapse_below = 0;
+  ASSERT_GT(flip_edges(mesh, params).flips, 50u);
+  std::vector<int32_t> changed;
+  std::vector<Triangle> old_fans;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t)
+    if (mesh.triangles()[t] != triangles_before[t] || mesh.triangle_copies()[t] != fans_before[t])
+      changed.push_back(int32_t(t)), old_fans.push_back(fans_before[t]);
+  kept.update(changed, old_fans, mesh.triangles(), mesh.triangle_copies());
+  detail::CornerFans anew;
+  anew.build(mesh.triangles(), mesh.triangle_copies());
+  ASSERT_EQ(kept.count(), anew.count());
+  size_t chained = 0;
+  for (size_t f = 0; f < anew.count(); ++f) {
+    // The same corners in the same chain, up to where a closed chain starts.
+    std::vector<int32_t> a(kept.corners(f).begin(), kept.corners(f).end()), b(anew.corners(f).begin(), anew.corners(f).end());
+    ASSERT_EQ(kept.chained(f), anew.chained(f)) << "fan " << f;
+    ASSERT_EQ(kept.closed(f), anew.closed(f)) << "fan " << f;
+    ASSERT_EQ(kept.node(f), anew.node(f));
+    if (anew.closed(f) && !a.empty()) std::rotate(a.begin(), std::find(a.begin(), a.end(), b[0]), a.end());
+    EXPECT_EQ(a, b) << "fan " << f;
+    chained += anew.chained(f);
+  }
+  EXPECT_EQ(chained, anew.count()); // every fan of a valid mesh is one chain
+}
+
 // ---------------------------------------------------------------------------
 // Fan certificates on hand-made fans around node 0 at the origin.
 
@@ -149,8 +187,9 @@ struct Fan {
     corner_fans.push_back({0, 2 * t, 2 * t + 1});
   }
   bool embedded() const {
-    const detail::CornerFans fans(triangles, corner_fans);
-    return detail::FanCertificates(points, fans).embedded(0);
+    detail::CornerFans fans;
+    fans.build(triangles, corner_fans);
+    return detail::FanCertificates(points, triangles, fans).embedded(0);
   }
 };
 

@@ -47,61 +47,7 @@ bool contains(const Bounds& outer, const Bounds& inner) {
   return (outer.lo.array() <= inner.lo.array()).all() && (inner.hi.array() <= outer.hi.array()).all();
 }
 
-template <class T> int32_t id_of(const T& item) { return item.id; }
-
 } // namespace
-
-// ---------------------------------------------------------------------------
-// Lists in one pool.
-
-template <class T> void CrossingIndex::Lists<T>::assign(std::span<const uint32_t> sizes) {
-  range_.resize(sizes.size());
-  uint32_t end = 0;
-  for (size_t i = 0; i < sizes.size(); ++i) {
-    range_[i] = {end, sizes[i], sizes[i] + sizes[i] / 3 + 2};
-    end += range_[i].capacity;
-  }
-  pool_.assign(end, T{});
-}
-
-template <class T> void CrossingIndex::Lists<T>::push(size_t list, const T& item) {
-  Range& r = range_[list];
-  if (r.size == r.capacity) { // move the list to the end of the pool, with room
-    const uint32_t capacity = 2 * r.capacity + 4;
-    pool_.resize(pool_.size() + capacity);
-    std::copy_n(pool_.begin() + r.begin, r.size, pool_.end() - capacity);
-    r.begin = uint32_t(pool_.size() - capacity);
-    r.capacity = capacity;
-  }
-  pool_[r.begin + r.size++] = item;
-}
-
-template <class T> void CrossingIndex::Lists<T>::insert_by_id(size_t list, const T& item) {
-  push(list, item);
-  const std::span<T> items = at(list);
-  const auto place = std::upper_bound(items.begin(), items.end() - 1, id_of(item),
-                                      [](int32_t id, const T& x) { return id < id_of(x); });
-  std::rotate(place, items.end() - 1, items.end());
-}
-
-template <class T> void CrossingIndex::Lists<T>::erase_id(size_t list, int32_t id) {
-  const std::span<T> items = at(list);
-  const auto at = std::find_if(items.begin(), items.end(), [&](const T& x) { return id_of(x) == id; });
-  if (at == items.end()) return;
-  std::copy(at + 1, items.end(), at);
-  --range_[list].size;
-}
-
-template <class T> template <class Map> void CrossingIndex::Lists<T>::map_items(Map&& map) {
-  for (Range& r : range_) {
-    uint32_t kept = 0;
-    for (uint32_t i = 0; i < r.size; ++i) {
-      const T item = map(pool_[r.begin + i]);
-      if (id_of(item) >= 0) pool_[r.begin + kept++] = item;
-    }
-    r.size = kept;
-  }
-}
 
 // ---------------------------------------------------------------------------
 // The grid.
@@ -269,7 +215,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   rebuilt_ = true;
   fans_stale_ = false;
   set_grid();
-  fans_ = CornerFans(triangles, corner_fans);
+  fans_.build(triangles, corner_fans);
 
   // The cells, from every triangle's (key, id) entries sorted.
   filed_.resize(n);
@@ -350,17 +296,19 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   std::vector<uint8_t> is_stale(filed_.size(), 0);
   for (int32_t t : stale) is_stale[size_t(t)] = 1;
   // In id order, so that cells and lists never depend on threads.
-  bool new_fans = false;
+  std::vector<int32_t> changed; // other nodes or fans: the fans around them change
+  std::vector<Triangle> old_fans;
   for (int32_t t : stale) {
     unfile(t);
     const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)];
-    new_fans = new_fans || fans != filed_[size_t(t)].fans;
+    if (fans != filed_[size_t(t)].fans || triangles[size_t(t)] != filed_[size_t(t)].nodes)
+      changed.push_back(t), old_fans.push_back(filed_[size_t(t)].fans);
     filed_[size_t(t)] = filing_for(boxes_[size_t(t)], triangles[size_t(t)], fans);
     file(t);
     for (const Neighbour& s : near_.at(size_t(t)))
       if (!is_stale[size_t(s.id)]) near_.erase_id(size_t(s.id), t);
   }
-  if (new_fans || fans_stale_) fans_ = CornerFans(triangles, corner_fans), fans_stale_ = false;
+  if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
   std::vector<std::vector<Neighbour>> found(stale.size());
   detail::parallel_for_each_index(stale.size(), [&](size_t i) { near(stale[i], found[i]); }, 16);
   for (size_t i = 0; i < stale.size(); ++i) {
@@ -411,7 +359,7 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
     return e;
   });
   // Lists by new triangle: each old list, mapped (ids keep their order).
-  Lists<Neighbour> near;
+  PooledLists<Neighbour> near;
   std::vector<uint32_t> sizes(old_triangle.size());
   for (size_t t = 0; t < sizes.size(); ++t) sizes[t] = uint32_t(near_.at(size_t(old_triangle[t])).size());
   near.assign(sizes);
@@ -449,7 +397,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
   }
   if (anew) rebuild(triangles, corner_fans);
   else refile(stale, triangles, corner_fans), refiled_ = stale.size();
-  if (fans_stale_) fans_ = CornerFans(triangles, corner_fans), fans_stale_ = false;
+  if (fans_stale_) fans_.build(triangles, corner_fans), fans_stale_ = false;
 
   // Projection axes of the tested triangles, found once each when first needed.
   std::vector<std::atomic<int8_t>> axis(n);
@@ -463,7 +411,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     }
     return a;
   };
-  const FanCertificates fans(points, fans_);
+  const FanCertificates fans(points, triangles, fans_);
   auto test = [&](int32_t t, const Neighbour& s, std::vector<BoxPair>& out) {
     if (s.fan >= 0 && fans.embedded(s.fan)) return; // they meet properly
     if (!boxes_[size_t(t)].overlaps(boxes_[size_t(s.id)])) return;

@@ -22,6 +22,7 @@
 
 #include "check/box_pairs.hpp"
 #include "check/embedded_fans.hpp"
+#include "check/pooled_lists.hpp"
 #include "check/triangle_pair.hpp"
 
 #include <array>
@@ -81,33 +82,6 @@ private:
     int32_t id, fan;
   };
 
-  /// Lists of T in one pool, each a range with room to grow.
-  template <class T> class Lists {
-  public:
-    /// Lists of the given sizes, each with room for a third more; fill them through at().
-    void assign(std::span<const uint32_t> sizes);
-    std::span<T> at(size_t list) { return {pool_.data() + range_[list].begin, range_[list].size}; }
-    std::span<const T> at(size_t list) const { return {pool_.data() + range_[list].begin, range_[list].size}; }
-    size_t add_list() {
-      range_.push_back({});
-      return range_.size() - 1;
-    }
-    void push(size_t list, const T& item);
-    void insert_by_id(size_t list, const T& item); ///< into a list sorted by id
-    void erase_id(size_t list, int32_t id);        ///< keeps the others' order
-    void clear(size_t list) { range_[list].size = 0; }
-    /// Replaces every item x by map(x), dropping those mapped to an id < 0.
-    template <class Map> void map_items(Map&& map);
-    size_t count() const { return range_.size(); }
-
-  private:
-    struct Range {
-      uint32_t begin = 0, size = 0, capacity = 0;
-    };
-    std::vector<Range> range_;
-    std::vector<T> pool_;
-  };
-
   void rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
   void refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
               std::span<const Triangle> corner_fans);
@@ -134,8 +108,8 @@ private:
   std::vector<int32_t> level_count_;   ///< triangles filed in each level
   std::vector<uint64_t> keys_;         ///< open addressing, kEmpty where free
   std::vector<uint32_t> cell_of_slot_; ///< the cells_ list of each used slot of keys_
-  Lists<CellEntry> cells_;             ///< the triangles filed in each cell
-  Lists<Neighbour> near_;              ///< by triangle, sorted by id: those whose filing boxes meet its own
+  PooledLists<CellEntry> cells_;             ///< the triangles filed in each cell
+  PooledLists<Neighbour> near_;              ///< by triangle, sorted by id: those whose filing boxes meet its own
   CornerFans fans_;                    ///< as of the last call that changed them
   bool fans_stale_ = false;            ///< fans_ must be built anew at the next call
   size_t refiled_ = 0;

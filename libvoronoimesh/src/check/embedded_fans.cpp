@@ -6,66 +6,104 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace vm::detail {
 
 namespace {
 
-/// Orders `fan` into one chain, each sector's b the next one's a, starting
-/// where an open chain starts; false if it forms no single chain. Sets
-/// `closed` when the last b is the first a.
-bool order_chain(std::span<Sector> fan, bool& closed) {
-  const size_t m = fan.size();
-  // The start: an a that is no b (an open chain), else any (a closed one).
-  size_t start = 0, starts = 0;
-  for (size_t i = 0; i < m; ++i)
-    if (std::none_of(fan.begin(), fan.end(), [&](const Sector& s) { return s.b == fan[i].a; })) start = i, ++starts;
-  if (starts > 1) return false;
-  std::swap(fan[0], fan[start]);
-  for (size_t i = 1; i < m; ++i) {
-    const auto next = std::find_if(fan.begin() + ptrdiff_t(i), fan.end(),
-                                   [&](const Sector& s) { return s.a == fan[i - 1].b; });
-    if (next == fan.end()) return false;
-    std::swap(fan[i], *next);
-  }
-  closed = fan[m - 1].b == fan[0].a;
-  if (closed != (starts == 0)) return false;
-  // Every node once as an a: a chain that winds through one node twice is no fan.
-  for (size_t i = 0; i < m; ++i)
-    for (size_t j = i + 1; j < m; ++j)
-      if (fan[i].a == fan[j].a) return false;
-  return true;
+/// Fans this large are left uncertified (their pairs are tested one by one).
+constexpr size_t kMaxSectors = 32;
+
+/// The nodes after the fan's node in corner 3 t + k: the sector of the fan
+/// that triangle t spans.
+struct Sector {
+  int32_t a, b;
+};
+
+Sector sector(std::span<const Triangle> triangles, int32_t corner) {
+  const Triangle& tri = triangles[size_t(corner / 3)];
+  const int k = corner % 3;
+  return {tri[size_t((k + 1) % 3)], tri[size_t((k + 2) % 3)]};
 }
 
 } // namespace
 
-CornerFans::CornerFans(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
+void CornerFans::order(size_t fan, std::span<const Triangle> triangles) {
+  const std::span<int32_t> corners = corners_.at(fan);
+  const size_t m = corners.size();
+  auto a = [&](size_t i) { return sector(triangles, corners[i]).a; };
+  auto b = [&](size_t i) { return sector(triangles, corners[i]).b; };
+  shape_[fan] = kNoChain;
+  if (m == 0) return;
+  // The start: an a that is no b (an open chain), else any (a closed one).
+  size_t start = 0, starts = 0;
+  for (size_t i = 0; i < m; ++i) {
+    bool is_b = false;
+    for (size_t j = 0; j < m && !is_b; ++j) is_b = b(j) == a(i);
+    if (!is_b) start = i, ++starts;
+  }
+  if (starts > 1) return;
+  std::swap(corners[0], corners[start]);
+  for (size_t i = 1; i < m; ++i) {
+    size_t next = i;
+    while (next < m && a(next) != b(i - 1)) ++next;
+    if (next == m) return;
+    std::swap(corners[i], corners[next]);
+  }
+  // Every node once as an a: a chain that winds through a node twice is no fan.
+  for (size_t i = 0; i < m; ++i)
+    for (size_t j = i + 1; j < m; ++j)
+      if (a(i) == a(j)) return;
+  const bool closed = b(m - 1) == a(0);
+  if (closed != (starts == 0)) return;
+  shape_[fan] = closed ? kClosed : kOpen;
+}
+
+void CornerFans::build(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
   int32_t count = 0;
   for (const Triangle& c : corner_fans) count = std::max({count, c[0] + 1, c[1] + 1, c[2] + 1});
-  offset_.assign(size_t(count) + 1, 0);
+  std::vector<uint32_t> sizes(size_t(count), 0);
   for (const Triangle& c : corner_fans)
-    for (int32_t f : c) ++offset_[size_t(f) + 1];
-  for (size_t f = 0; f < size_t(count); ++f) offset_[f + 1] += offset_[f];
-  sectors_.resize(3 * corner_fans.size());
+    for (int32_t f : c) ++sizes[size_t(f)];
+  corners_.assign(sizes);
   node_.assign(size_t(count), -1);
-  closed_.assign(size_t(count), 0);
-  std::vector<uint32_t> next(offset_.begin(), offset_.end() - 1);
+  shape_.assign(size_t(count), kNoChain);
+  std::fill(sizes.begin(), sizes.end(), 0);
   for (size_t t = 0; t < corner_fans.size(); ++t)
     for (size_t k = 0; k < 3; ++k) {
       const auto fan = size_t(corner_fans[t][k]);
       node_[fan] = triangles[t][k];
-      sectors_[next[fan]++] = {triangles[t][(k + 1) % 3], triangles[t][(k + 2) % 3]};
+      corners_.at(fan)[sizes[fan]++] = int32_t(3 * t + k);
     }
-  detail::parallel_for_each_index(size_t(count), [&](size_t f) {
-    const std::span<Sector> fan(sectors_.data() + offset_[f], size_t(offset_[f + 1] - offset_[f]));
-    bool closed = false;
-    if (fan.empty() || !order_chain(fan, closed)) fan[0].a = -1; // marks it: no chain
-    closed_[f] = closed;
-  });
+  detail::parallel_for_each_index(size_t(count), [&](size_t f) { order(f, triangles); });
 }
 
-FanCertificates::FanCertificates(std::span<const Vec3> points, const CornerFans& fans)
-    : points_(points), fans_(fans), state_(fans.count()) {
+void CornerFans::update(std::span<const int32_t> changed, std::span<const Triangle> old_fans,
+                        std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
+  std::vector<int32_t> touched;
+  for (size_t i = 0; i < changed.size(); ++i)
+    for (size_t k = 0; k < 3; ++k)
+      if (const int32_t fan = old_fans[i][k]; fan >= 0 && size_t(fan) < count()) {
+        corners_.erase_id(size_t(fan), 3 * changed[i] + int32_t(k));
+        touched.push_back(fan);
+      }
+  for (int32_t t : changed)
+    for (size_t k = 0; k < 3; ++k) {
+      const int32_t fan = corner_fans[size_t(t)][k];
+      while (count() <= size_t(fan)) corners_.add_list(), node_.push_back(-1), shape_.push_back(kNoChain);
+      corners_.push(size_t(fan), 3 * t + int32_t(k));
+      node_[size_t(fan)] = triangles[size_t(t)][k];
+      touched.push_back(fan);
+    }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (int32_t fan : touched) order(size_t(fan), triangles);
+}
+
+FanCertificates::FanCertificates(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                 const CornerFans& fans)
+    : points_(points), triangles_(triangles), fans_(fans), state_(fans.count()) {
   detail::parallel_for_each_index(state_.size(), [&](size_t c) { state_[c].store(-1, std::memory_order_relaxed); });
 }
 
@@ -78,9 +116,12 @@ bool FanCertificates::embedded(int32_t fan) const {
   int8_t state = state_[size_t(fan)].load(std::memory_order_relaxed);
   if (state >= 0) return state == 1;
   // Two threads may both decide it; they decide alike.
-  const std::span<const Sector> sectors = fans_.sectors(size_t(fan));
+  const std::span<const int32_t> corners = fans_.corners(size_t(fan));
   state = 0;
-  if (!sectors.empty() && sectors[0].a >= 0) {
+  if (fans_.chained(size_t(fan)) && corners.size() <= kMaxSectors) {
+    std::array<Sector, kMaxSectors> sectors_of_fan;
+    for (size_t i = 0; i < corners.size(); ++i) sectors_of_fan[i] = sector(triangles_, corners[i]);
+    const std::span<const Sector> sectors(sectors_of_fan.data(), corners.size());
     const Vec3& v = points_[size_t(fans_.node(size_t(fan)))];
     Vec3 normal = Vec3::Zero();
     for (const Sector& s : sectors) normal += (points_[size_t(s.a)] - v).cross(points_[size_t(s.b)] - v);

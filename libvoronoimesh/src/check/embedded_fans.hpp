@@ -12,6 +12,7 @@
 /// corners. The test uses the same exact orientation predicate as the pair
 /// test, so a certified pair is one the pair test would pass.
 
+#include "check/pooled_lists.hpp"
 #include "check/triangle_pair.hpp"
 
 #include <atomic>
@@ -21,47 +22,50 @@
 
 namespace vm::detail {
 
-/// One triangle of a fan around a node: its corners after the node, in the
-/// triangle's order.
-struct Sector {
-  int32_t a = -1, b = -1;
-};
-
-/// The fans of a mesh as chains of sectors: built from a fan id per corner of
-/// each triangle (as InterfaceMesh::triangle_copies()); depends on topology only.
+/// The fans of a mesh, each as its corners (3 t + k: corner k of triangle t)
+/// ordered into a chain around its node (each triangle's last corner the next
+/// one's first after the node), from a fan id per corner of each triangle (as
+/// InterfaceMesh::triangle_copies()). Depends on topology only, and is kept up
+/// to date one changed triangle at a time.
 class CornerFans {
 public:
-  CornerFans() = default;
-  CornerFans(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
-  size_t count() const { return node_.size(); }
+  /// Every fan anew.
+  void build(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
+  /// After the triangles `changed` got other nodes or fans (`old_fans`: theirs
+  /// before, one per changed triangle): only the fans they left or joined are
+  /// ordered again.
+  void update(std::span<const int32_t> changed, std::span<const Triangle> old_fans,
+              std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
+  size_t count() const { return corners_.count(); }
   /// The node a fan is around.
   int32_t node(size_t fan) const { return node_[fan]; }
-  /// Its sectors, each one's b the next one's a; empty where they form no
-  /// single chain (such a fan is never certified).
-  std::span<const Sector> sectors(size_t fan) const {
-    return {sectors_.data() + offset_[fan], size_t(offset_[fan + 1] - offset_[fan])};
-  }
-  /// The chain closes (its last b is its first a).
-  bool closed(size_t fan) const { return closed_[fan] != 0; }
+  /// Its corners in chain order.
+  std::span<const int32_t> corners(size_t fan) const { return corners_.at(fan); }
+  /// Its corners form one chain (else it is never certified), and it closes.
+  bool chained(size_t fan) const { return shape_[fan] != kNoChain; }
+  bool closed(size_t fan) const { return shape_[fan] == kClosed; }
 
 private:
-  std::vector<uint32_t> offset_{0};
-  std::vector<Sector> sectors_;
+  static constexpr uint8_t kNoChain = 0, kOpen = 1, kClosed = 2;
+  void order(size_t fan, std::span<const Triangle> triangles);
+
+  PooledLists<int32_t> corners_;
   std::vector<int32_t> node_;
-  std::vector<uint8_t> closed_;
+  std::vector<uint8_t> shape_;
 };
 
 /// Which fans are embedded now, each decided once, when first asked, from any
 /// thread. Lives for one check: the positions must not change meanwhile.
 class FanCertificates {
 public:
-  FanCertificates(std::span<const Vec3> points, const CornerFans& fans);
+  FanCertificates(std::span<const Vec3> points, std::span<const Triangle> triangles, const CornerFans& fans);
   /// True when the triangles of `fan` meet only where they share corners
   /// (false says nothing).
   bool embedded(int32_t fan) const;
 
 private:
   std::span<const Vec3> points_;
+  std::span<const Triangle> triangles_;
   const CornerFans& fans_;
   mutable std::vector<std::atomic<int8_t>> state_; ///< -1 not yet decided, else 0 or 1
 };

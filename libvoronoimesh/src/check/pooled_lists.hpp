@@ -1,0 +1,88 @@
+#pragma once
+/// @file check/pooled_lists.hpp
+/// Many short lists that change one item at a time, in one pool: each list a
+/// range with room to grow, moved to the end of the pool when it outgrows its
+/// room (the space it leaves is reused only when the lists are assigned anew).
+/// For the crossing index's cells and neighbour lists and the fans' corners,
+/// where one vector per list would cost an allocation each.
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+/// The id a list item is found and sorted by.
+inline int32_t id_of(int32_t item) { return item; }
+template <class T> int32_t id_of(const T& item) { return item.id; }
+
+template <class T> class PooledLists {
+public:
+  /// Lists of the given sizes, each with room for a third more; fill them through at().
+  void assign(std::span<const uint32_t> sizes) {
+    range_.resize(sizes.size());
+    uint32_t end = 0;
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      range_[i] = {end, sizes[i], sizes[i] + sizes[i] / 3 + 2};
+      end += range_[i].capacity;
+    }
+    pool_.assign(end, T{});
+  }
+  std::span<T> at(size_t list) { return {pool_.data() + range_[list].begin, range_[list].size}; }
+  std::span<const T> at(size_t list) const { return {pool_.data() + range_[list].begin, range_[list].size}; }
+  /// A new empty list; returns its index.
+  size_t add_list() {
+    range_.push_back({});
+    return range_.size() - 1;
+  }
+  void push(size_t list, const T& item) {
+    Range& r = range_[list];
+    if (r.size == r.capacity) { // move the list to the end of the pool, with room
+      const uint32_t capacity = 2 * r.capacity + 4;
+      pool_.resize(pool_.size() + capacity);
+      std::copy_n(pool_.begin() + r.begin, r.size, pool_.end() - capacity);
+      r.begin = uint32_t(pool_.size() - capacity);
+      r.capacity = capacity;
+    }
+    pool_[r.begin + r.size++] = item;
+  }
+  /// Into a list sorted by id.
+  void insert_by_id(size_t list, const T& item) {
+    push(list, item);
+    const std::span<T> items = at(list);
+    const auto place = std::upper_bound(items.begin(), items.end() - 1, id_of(item),
+                                        [](int32_t id, const T& x) { return id < id_of(x); });
+    std::rotate(place, items.end() - 1, items.end());
+  }
+  /// Removes the item with this id, keeping the others' order.
+  void erase_id(size_t list, int32_t id) {
+    const std::span<T> items = at(list);
+    const auto at = std::find_if(items.begin(), items.end(), [&](const T& x) { return id_of(x) == id; });
+    if (at == items.end()) return;
+    std::copy(at + 1, items.end(), at);
+    --range_[list].size;
+  }
+  void clear(size_t list) { range_[list].size = 0; }
+  /// Replaces every item x by map(x), dropping those mapped to an id < 0.
+  template <class Map> void map_items(Map&& map) {
+    for (Range& r : range_) {
+      uint32_t kept = 0;
+      for (uint32_t i = 0; i < r.size; ++i) {
+        const T item = map(pool_[r.begin + i]);
+        if (id_of(item) >= 0) pool_[r.begin + kept++] = item;
+      }
+      r.size = kept;
+    }
+  }
+  size_t count() const { return range_.size(); }
+
+private:
+  struct Range {
+    uint32_t begin = 0, size = 0, capacity = 0;
+  };
+  std::vector<Range> range_;
+  std::vector<T> pool_;
+};
+
+} // namespace vm::detail
