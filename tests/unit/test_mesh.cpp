@@ -122,6 +122,39 @@ TEST(InterfaceMesh, points_mirror_node_positions) {
   for (auto f : im.omesh().faces()) EXPECT_EQ(im.pair(f), m.pairs[size_t(f.idx())]);
 }
 
+TEST(InterfaceMesh, faces_changed_after_flips_leaves_the_tables_a_rebuild_would) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  const InterfaceMesh before = mesh;
+  OMesh& om = mesh.omesh_for_topology();
+  // Flip every tenth flippable patch edge whose new diagonal is not an edge yet.
+  std::vector<int32_t> faces;
+  size_t flips = 0;
+  for (auto e : om.edges()) {
+    if (e.idx() % 10 != 0 || om.is_boundary(e) || !om.is_flip_ok(e)) continue;
+    const auto h = om.halfedge_handle(e, 0);
+    const int32_t k = mesh.node(om.to_vertex_handle(om.next_halfedge_handle(h)));
+    const int32_t l = mesh.node(om.to_vertex_handle(om.next_halfedge_handle(om.opposite_halfedge_handle(h))));
+    if (mesh.adjacent(k, l)) continue;
+    om.flip(e);
+    ++flips;
+    for (int side = 0; side < 2; ++side) faces.push_back(om.face_handle(om.halfedge_handle(e, side)).idx());
+  }
+  ASSERT_GT(flips, 100u);
+  mesh.faces_changed(faces);
+  InterfaceMesh rebuilt = mesh;
+  rebuilt.topology_changed();
+  EXPECT_EQ(mesh.triangles(), rebuilt.triangles());
+  EXPECT_EQ(mesh.triangle_copies(), rebuilt.triangle_copies());
+  size_t changed_rings = 0;
+  for (size_t v = 0; v < mesh.num_nodes(); ++v) {
+    const auto kept = mesh.neighbours(int32_t(v)), anew = rebuilt.neighbours(int32_t(v)),
+               old = before.neighbours(int32_t(v));
+    ASSERT_TRUE(std::equal(kept.begin(), kept.end(), anew.begin(), anew.end())) << "node " << v;
+    changed_rings += !std::equal(kept.begin(), kept.end(), old.begin(), old.end());
+  }
+  EXPECT_GE(changed_rings, flips); // each flip changes four rings, some flips the same nodes' rings
+}
+
 TEST(InterfaceMesh, eight_phases_at_a_node_are_accepted) {
   const auto im = InterfaceMesh::from_node_mesh(test::block_grains(2, 1));
   int most = 0;

@@ -22,8 +22,8 @@
 
 #include "check/box_pairs.hpp"
 #include "check/embedded_fans.hpp"
-#include "check/pooled_lists.hpp"
 #include "check/triangle_pair.hpp"
+#include "voronoimesh/core/pooled_lists.hpp"
 
 #include <array>
 #include <cstdint>

@@ -12,8 +12,8 @@
 /// corners. The test uses the same exact orientation predicate as the pair
 /// test, so a certified pair is one the pair test would pass.
 
-#include "check/pooled_lists.hpp"
 #include "check/triangle_pair.hpp"
+#include "voronoimesh/core/pooled_lists.hpp"
 
 #include <atomic>
 #include <cstdint>

@@ -24,9 +24,14 @@ using detail::FlipPeers;
 class FaceQuality {
 public:
   explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.omesh().n_faces()) {
-    detail::parallel_for_each_index(q_.size(), [&](size_t f) { update(OMesh::FaceHandle(int(f))); });
+    const auto& pos = mesh.positions();
+    detail::parallel_for_each_index(q_.size(), [&](size_t f) {
+      const auto& c = mesh.triangles()[f]; // current: flips update it when they end
+      q_[f] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
+    });
   }
   double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
+  /// After a flip changed face f (triangles() is updated only after the rounds).
   void update(OMesh::FaceHandle f) {
     const auto c = mesh_.face_nodes(f);
     const auto& pos = mesh_.positions();
@@ -104,6 +109,15 @@ void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>
   }
 }
 
+/// The two faces of each edge in `edges` (a flip changes just those).
+std::vector<int32_t> faces_of(const OMesh& om, const std::vector<int32_t>& edges) {
+  std::vector<int32_t> faces;
+  for (int32_t e : edges)
+    for (int side = 0; side < 2; ++side)
+      faces.push_back(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(e), side)).idx());
+  return faces;
+}
+
 /// The rounds of Algorithm 5, never flipping a `banned` edge. Appends every
 /// flipped edge to `log`, in order, with its nodes before the flip to `flipped`.
 FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
@@ -158,7 +172,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
   }
-  if (stats.flips) mesh.topology_changed();
+  if (stats.flips) mesh.faces_changed(faces_of(mesh.omesh(), log));
   return stats;
 }
 
@@ -198,7 +212,7 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector
 void undo_flips(InterfaceMesh& mesh, const std::vector<int32_t>& log) {
   OMesh& om = mesh.omesh_for_topology();
   for (auto e = log.rbegin(); e != log.rend(); ++e) om.flip(OMesh::EdgeHandle(*e));
-  mesh.topology_changed();
+  mesh.faces_changed(faces_of(om, log));
 }
 
 /// flip_edges() without the collapses, with or without peers.

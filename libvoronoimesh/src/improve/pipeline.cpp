@@ -99,7 +99,7 @@ std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   const auto& pos = mesh.positions();
   detail::parallel_for(size_t(0), chunks, [&](size_t c) {
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
-      const auto t = mesh.face_nodes(OMesh::FaceHandle(int(f)));
+      const auto& t = mesh.triangles()[f];
       const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);
       lo[c] = std::min(lo[c], q);
       sum[c].add(q);

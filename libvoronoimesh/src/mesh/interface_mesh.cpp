@@ -160,40 +160,56 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   return im;
 }
 
-void InterfaceMesh::build_adjacency() {
-  // Two passes without per-node allocations: gather every copy's ring into a
-  // slot range sized by the copies' valences, then sort, deduplicate and pack.
-  const size_t n = pos_.size();
-  std::vector<int32_t> slot_off(n + 1, 0);
-  for (size_t v = 0; v < n; ++v) {
-    int32_t valence = 0;
-    for (int32_t c : copies(int32_t(v))) valence += int32_t(mesh_.valence(OMesh::VertexHandle(c)));
-    slot_off[v + 1] = slot_off[v] + valence;
+size_t InterfaceMesh::ring_of(size_t v, int32_t* out) const {
+  int32_t* end = out;
+  for (int32_t c : copies(int32_t(v)))
+    for (auto w : mesh_.vv_range(OMesh::VertexHandle(c))) *end++ = node(w);
+  std::sort(out, end);
+  return size_t(std::unique(out, end) - out);
+}
+
+size_t InterfaceMesh::valence_of(size_t v) const {
+  size_t valence = 0;
+  for (int32_t c : copies(int32_t(v))) valence += mesh_.valence(OMesh::VertexHandle(c));
+  return valence;
+}
+
+void InterfaceMesh::read_face(size_t f) {
+  auto h = mesh_.halfedge_handle(OMesh::FaceHandle(int(f))); // as in face_nodes()
+  for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
+    triangle_copies_[f][size_t(k)] = mesh_.to_vertex_handle(h).idx();
+    triangles_[f][size_t(k)] = node(mesh_.to_vertex_handle(h));
   }
-  std::vector<int32_t> slots(static_cast<size_t>(slot_off[n]));
-  std::vector<int32_t> count(n);
-  detail::parallel_for_each_index(n, [&](size_t v) {
-    int32_t* out = slots.data() + slot_off[v];
-    int32_t* end = out;
-    for (int32_t c : copies(int32_t(v)))
-      for (auto w : mesh_.vv_range(OMesh::VertexHandle(c))) *end++ = node(w);
-    std::sort(out, end);
-    count[v] = int32_t(std::unique(out, end) - out);
-  });
-  adj_off_.assign(n + 1, 0);
-  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + count[v];
-  adj_.resize(size_t(adj_off_[n]));
-  detail::parallel_for_each_index(
-      n, [&](size_t v) { std::copy_n(slots.begin() + slot_off[v], count[v], adj_.begin() + adj_off_[v]); });
+}
+
+void InterfaceMesh::build_adjacency() {
+  // Each node's ring goes to a range of the pool sized by its copies' valences
+  // (an upper bound), then shrinks to the distinct nodes.
+  const size_t n = pos_.size();
+  std::vector<uint32_t> valence(n);
+  detail::parallel_for_each_index(n, [&](size_t v) { valence[v] = uint32_t(valence_of(v)); });
+  adj_.assign(valence);
+  detail::parallel_for_each_index(n, [&](size_t v) { adj_.truncate(v, ring_of(v, adj_.at(v).data())); });
   triangles_.resize(mesh_.n_faces());
   triangle_copies_.resize(mesh_.n_faces());
-  detail::parallel_for_each_index(triangles_.size(), [&](size_t f) {
-    auto h = mesh_.halfedge_handle(OMesh::FaceHandle(int(f))); // as in face_nodes()
-    for (int k = 0; k < 3; ++k, h = mesh_.next_halfedge_handle(h)) {
-      triangle_copies_[f][size_t(k)] = mesh_.to_vertex_handle(h).idx();
-      triangles_[f][size_t(k)] = node(mesh_.to_vertex_handle(h));
-    }
-  });
+  detail::parallel_for_each_index(triangles_.size(), [&](size_t f) { read_face(f); });
+}
+
+void InterfaceMesh::faces_changed(std::span<const int32_t> faces) {
+  std::vector<int32_t> nodes, ring;
+  for (int32_t f : faces) {
+    nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
+    read_face(size_t(f));
+    nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  for (int32_t v : nodes) {
+    ring.resize(valence_of(size_t(v)));
+    ring.resize(ring_of(size_t(v), ring.data()));
+    adj_.clear(size_t(v));
+    for (int32_t w : ring) adj_.push(size_t(v), w);
+  }
 }
 
 bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {

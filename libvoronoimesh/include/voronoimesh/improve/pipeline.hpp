@@ -102,7 +102,7 @@ private:
 };
 
 /// Minimum and mean triangle quality, summed in a fixed order.
-/// @param mesh the mesh
+/// @param mesh the mesh, its InterfaceMesh::triangles() current
 /// @return {minimum, mean} of the triangle quality q (triangle_quality()); {0, 0} without triangles
 std::pair<double, double> quality_summary(const InterfaceMesh& mesh);
 

@@ -7,6 +7,7 @@
 /// junction node has one OpenMesh vertex ("copy") per incident patch and fan. Node
 /// arrays hold the authoritative positions and the phase sets.
 
+#include "voronoimesh/core/pooled_lists.hpp"
 #include "voronoimesh/core/types.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
@@ -78,17 +79,22 @@ public:
   /// @param nodes     the nodes to place
   /// @param positions their new positions, one per entry of `nodes`
   void place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions);
-  /// The OpenMesh mesh, for topology changes (flips). Call topology_changed()
-  /// afterwards.
+  /// The OpenMesh mesh, for topology changes (flips). Call faces_changed() or
+  /// topology_changed() afterwards.
   OMesh& omesh_for_topology() { return mesh_; }
-  /// Rebuilds the node adjacency and triangles() after flips.
+  /// Rebuilds the node adjacency and triangles() after topology changes.
   void topology_changed() { build_adjacency(); }
+  /// After local topology changes (flips) that changed only `faces`: updates
+  /// triangles(), triangle_copies() and the adjacency of the nodes those faces
+  /// had or have, where topology_changed() rebuilds them all.
+  /// @param faces the OpenMesh faces changed since the last update, in any order
+  void faces_changed(std::span<const int32_t> faces);
 
   /// Neighbouring nodes of node n across all its copies, sorted (as of the last
   /// topology_changed()).
   /// @param n a node id, in [0, num_nodes())
   std::span<const int32_t> neighbours(int32_t n) const {
-    return {adj_.data() + adj_off_[n], size_t(adj_off_[n + 1] - adj_off_[n])};
+    return adj_.at(size_t(n));
   }
   /// True when nodes a and b share an edge in any patch (always current).
   /// @param a a node id
@@ -129,6 +135,11 @@ public:
 
 private:
   void build_adjacency();
+  size_t valence_of(size_t v) const; ///< summed over its copies
+  /// The nodes next to node v over all its copies, sorted, written to `out`
+  /// (room for valence_of(v)); returns how many.
+  size_t ring_of(size_t v, int32_t* out) const;
+  void read_face(size_t f); ///< triangles_[f] and triangle_copies_[f] from OpenMesh
   void find_box_faces();
 
   OMesh mesh_;
@@ -137,7 +148,7 @@ private:
   std::vector<Vec3> pos_;
   std::vector<PhaseSet> phases_;
   std::vector<int32_t> copy_off_, copy_v_;
-  std::vector<int32_t> adj_off_, adj_;
+  detail::PooledLists<int32_t> adj_; ///< each node's neighbours, sorted
   std::vector<std::array<int32_t, 3>> triangles_, triangle_copies_;
   std::vector<uint8_t> box_;
   Box domain_;

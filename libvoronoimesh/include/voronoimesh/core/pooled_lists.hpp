@@ -1,10 +1,11 @@
 #pragma once
-/// @file check/pooled_lists.hpp
+/// @file core/pooled_lists.hpp
 /// Many short lists that change one item at a time, in one pool: each list a
 /// range with room to grow, moved to the end of the pool when it outgrows its
 /// room (the space it leaves is reused only when the lists are assigned anew).
-/// For the crossing index's cells and neighbour lists and the fans' corners,
-/// where one vector per list would cost an allocation each.
+/// For the meshes' node adjacency, the crossing index's cells and neighbour
+/// lists and the fans' corners, where one vector per list would cost an
+/// allocation each.
 
 #include <algorithm>
 #include <cstdint>
@@ -13,13 +14,20 @@
 
 namespace vm::detail {
 
-/// The id a list item is found and sorted by.
+/// The id a list item is found and sorted by: an int32_t is its own id.
+/// @param item a list item
+/// @return its id
 inline int32_t id_of(int32_t item) { return item; }
+/// The id a list item is found and sorted by: its member `id`.
+/// @param item a list item
+/// @return its id
 template <class T> int32_t id_of(const T& item) { return item.id; }
 
+/// Lists of T (an int32_t, or a struct with an int32_t `id`) in one pool.
 template <class T> class PooledLists {
 public:
   /// Lists of the given sizes, each with room for a third more; fill them through at().
+  /// @param sizes the size of each list
   void assign(std::span<const uint32_t> sizes) {
     range_.resize(sizes.size());
     uint32_t end = 0;
@@ -29,13 +37,23 @@ public:
     }
     pool_.assign(end, T{});
   }
+  /// The items of a list.
+  /// @param list the list's index
+  /// @return its items, to read or change in place
   std::span<T> at(size_t list) { return {pool_.data() + range_[list].begin, range_[list].size}; }
+  /// The items of a list.
+  /// @param list the list's index
+  /// @return its items
   std::span<const T> at(size_t list) const { return {pool_.data() + range_[list].begin, range_[list].size}; }
-  /// A new empty list; returns its index.
+  /// A new empty list at the end.
+  /// @return its index
   size_t add_list() {
     range_.push_back({});
     return range_.size() - 1;
   }
+  /// Appends an item to a list.
+  /// @param list the list's index
+  /// @param item the item
   void push(size_t list, const T& item) {
     Range& r = range_[list];
     if (r.size == r.capacity) { // move the list to the end of the pool, with room
@@ -47,7 +65,9 @@ public:
     }
     pool_[r.begin + r.size++] = item;
   }
-  /// Into a list sorted by id.
+  /// Inserts an item into a list sorted by id, after the items of the same id.
+  /// @param list the list's index
+  /// @param item the item
   void insert_by_id(size_t list, const T& item) {
     push(list, item);
     const std::span<T> items = at(list);
@@ -55,7 +75,9 @@ public:
                                         [](int32_t id, const T& x) { return id < id_of(x); });
     std::rotate(place, items.end() - 1, items.end());
   }
-  /// Removes the item with this id, keeping the others' order.
+  /// Removes the first item with this id, keeping the others' order.
+  /// @param list the list's index
+  /// @param id   the id of the item to remove; nothing happens if there is none
   void erase_id(size_t list, int32_t id) {
     const std::span<T> items = at(list);
     const auto at = std::find_if(items.begin(), items.end(), [&](const T& x) { return id_of(x) == id; });
@@ -63,8 +85,15 @@ public:
     std::copy(at + 1, items.end(), at);
     --range_[list].size;
   }
+  /// Keeps the first items of a list (and its room).
+  /// @param list the list's index
+  /// @param size how many to keep
+  void truncate(size_t list, size_t size) { range_[list].size = std::min(range_[list].size, uint32_t(size)); }
+  /// Empties a list (keeping its room).
+  /// @param list the list's index
   void clear(size_t list) { range_[list].size = 0; }
   /// Replaces every item x by map(x), dropping those mapped to an id < 0.
+  /// @param map a function from T to T
   template <class Map> void map_items(Map&& map) {
     for (Range& r : range_) {
       uint32_t kept = 0;
@@ -75,6 +104,8 @@ public:
       r.size = kept;
     }
   }
+  /// The number of lists.
+  /// @return it
   size_t count() const { return range_.size(); }
 
 private:
