@@ -78,6 +78,7 @@ const std::map<std::string, std::string> expected = {
      "data file LIST: its last line '0.5 -0.5 0.5 -0.5' does not end with a line end"},
     {"nrrddetached_skiplist_line_without_skip.nhdr", "line 7 of its header holds a NUL byte"},
     {"nrrddetached_skiplist_long_line_cut_off.nhdr", "line 9 of its header holds a NUL byte"},
+    {"nrrdcompressed_field_line_beyond_teems_message_buffer.nrrd", "line 2 of its header is 1077 bytes long"},
     {"points_extent_beyond_double.csv", "the points span more than"},
     {"plypoints_empty_element_of_1e10_items.ply", "bad number"},
 };

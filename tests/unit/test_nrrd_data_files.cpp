@@ -210,3 +210,22 @@ TEST_F(NrrdDataFiles, standard_input_devices_and_missing_files_are_not_data_file
   EXPECT_HAS(error_of(write("gone.nhdr", head + "LIST\ngone.raw\nother.raw\n"), true),
              "gone.nhdr: cannot open its data file " + path("gone.raw"));
 }
+
+// Teem quotes a field line it cannot parse in a message formatted into a stack
+// buffer of 1025 bytes: a longer line smashed its stack (found by the fuzzer).
+// Field lines are bounded; comments and key/value pairs, which Teem never
+// quotes and 3D Slicer writes two kilobytes long, are not.
+TEST_F(NrrdDataFiles, field_lines_are_bounded_where_teem_would_quote_them) {
+  const std::string long_text(1100, 'x');
+  EXPECT_HAS(error_of(write("field.nrrd", "NRRD0004\n" + long_text + ": 3\n" + header + "encoding: raw\n\n" + samples)),
+             "field.nrrd: line 2 of its header is 1103 bytes long; a field line may have at most 800");
+  EXPECT_HAS(error_of(write("value.nrrd", "NRRD0004\n" + header + "encoding: " + long_text + "\n\n" + samples)),
+             "value.nrrd: line 5 of its header is 1110 bytes long");
+  EXPECT_HAS(error_of(write("no_colon.nrrd", "NRRD0004\n" + header + long_text + "\n\n" + samples)),
+             "no_colon.nrrd: line 5 of its header is 1100 bytes long");
+  EXPECT_HAS(error_of(write("magic.nrrd", "NRRD0004" + long_text + "\n" + header + "encoding: raw\n\n" + samples)),
+             "magic.nrrd: line 1 of its header is 1108 bytes long");
+  expect_the_volume(io::read_nrrd(write("long_key_value.nrrd", "NRRD0004\n" + header + "Segmentation_Parameters:=" +
+                                                                   long_text + ": and more\n# " + long_text +
+                                                                   "\nencoding: raw\n\n" + samples)));
+}

@@ -45,6 +45,26 @@ void require_no_nul(const std::string& path, const Line& line, int number) {
     throw InvalidInput(located(path, cat("line ", number, " of its header holds a NUL byte")));
 }
 
+/// Teem formats each of its error messages with vsprintf into a stack buffer of
+/// 1025 bytes (biff's _HACK_STRLEN), and a message may quote a header line whole
+/// (a field it cannot parse, a value it refuses). A longer line smashed the
+/// stack (the fuzzer found it). Each message quotes one line at most, in at most
+/// 150 bytes of its own text, so lines up to this length are safe.
+constexpr size_t kLongestQuotedLine = 800;
+
+/// Throws when `line` (number `number`) is longer than Teem can quote. Comments
+/// and key/value pairs ("key:=value", where ":=" comes before any ": ") are
+/// never quoted, so they may be as long as they are: 3D Slicer writes
+/// key/value pairs of two kilobytes.
+void require_quotable(const std::string& path, const Line& line, int number) {
+  const std::string& text = line.text;
+  if (text.size() <= kLongestQuotedLine || text.starts_with('#')) return;
+  if (text.substr(0, text.find(": ")).find(":=") != std::string::npos) return;
+  throw InvalidInput(located(path, cat("line ", number, " of its header is ", text.size(),
+                                       " bytes long; a field line may have at most ", kLongestQuotedLine,
+                                       " (Teem would overflow its message buffer quoting it)")));
+}
+
 /// The header fields the screen needs, found as Teem finds them (the name
 /// before the first ": ", matched by Teem's own nrrdField enum), and for a
 /// LIST or SKIPLIST every line after the "data file:" one.
@@ -79,9 +99,11 @@ Header read_header(const std::string& path) {
   const auto magic = next_line(in);
   if (!magic) return h;
   require_no_nul(path, *magic, number);
+  require_quotable(path, *magic, number);
   if (!magic->text.starts_with("NRRD")) return h;
   while (const auto line = next_line(in)) {
     require_no_nul(path, *line, ++number);
+    require_quotable(path, *line, number);
     const std::string& text = line->text;
     if (text.empty()) break;
     if (text.front() == '#') continue;

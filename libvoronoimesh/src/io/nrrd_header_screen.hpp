@@ -7,7 +7,8 @@
 /// when a LIST or SKIPLIST of data files does not suit the sizes, its error
 /// message reads past the end of its line buffer. The fuzzer found the last;
 /// a %40d overflowed the buffer, a %n wrote through a stray pointer, and a
-/// count past INT_MAX never ended.
+/// count past INT_MAX never ended. It also found a long field line that
+/// overflowed the buffer Teem formats its error messages in.
 
 #include <filesystem>
 #include <string>
@@ -25,7 +26,9 @@ namespace vm::io::nrrd {
 /// when a LIST or SKIPLIST names more or fewer files than the sizes need (every
 /// line to the end of the file names one, blank ones too, as Teem reads it), or
 /// a SKIPLIST line is not "<skip> <name>"; for the data file "-" (Teem would
-/// read standard input). Throws IoError naming the first data file that is not
+/// read standard input); for a header line other than a comment or a key/value
+/// pair longer than 800 bytes (Teem's error messages quote such lines into a
+/// stack buffer of 1025 bytes). Throws IoError naming the first data file that is not
 /// there or not a regular file (a device or a pipe has no size), which also
 /// bounds the work of a pattern of four billion numbers.
 std::vector<std::filesystem::path> screen_data_files(const std::string& path);
