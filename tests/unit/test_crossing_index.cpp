@@ -74,7 +74,7 @@ TEST(CrossingIndex, finds_what_the_whole_mesh_check_finds_as_the_mesh_moves_and_
     const auto expected = reference(mesh.positions(), mesh.triangles(), involved);
     ASSERT_EQ(found, expected) << "step " << step;
     crossing_checks += !expected.empty();
-    kept += !index.rebuilt();
+    kept += index.indexed() && !index.rebuilt();
     for (const auto& [t, s] : expected) {
       const auto &a = mesh.triangle_copies()[size_t(t)], &b = mesh.triangle_copies()[size_t(s)];
       folded_fans_found += std::any_of(a.begin(), a.end(), [&](int32_t c) { return std::count(b.begin(), b.end(), c); });
@@ -94,7 +94,11 @@ TEST(CrossingIndex, carries_over_a_renumbering_without_starting_again) {
   std::mt19937_64 rng(3);
   std::vector<Vec3> points = mesh.positions();
   std::vector<Triangle> triangles = mesh.triangles(), fans = mesh.triangle_copies();
-  index.crossings(points, triangles, {}, fans);
+  // One-off checks until the mesh has held still for two calls; then an index.
+  for (int call = 0; call < 3; ++call) {
+    index.crossings(points, triangles, {}, fans);
+    EXPECT_EQ(index.indexed(), call == 2) << call;
+  }
   // Drop every seventh triangle and the nodes no triangle uses any more, then
   // merge two neighbouring nodes; ids shrink as a collapse renumbers them.
   std::vector<int32_t> old_triangle, old_node;
@@ -113,6 +117,7 @@ TEST(CrossingIndex, carries_over_a_renumbering_without_starting_again) {
   kept_triangles[5][0] = kept_triangles[5][1] == 0 ? 1 : 0; // a triangle that changed nodes: filed again
   shake(kept_points, rng, 30, 0.8 / 16);
   const auto found = index.crossings(kept_points, kept_triangles, {}, kept_fans);
+  EXPECT_TRUE(index.indexed());
   EXPECT_FALSE(index.rebuilt());
   EXPECT_GE(index.refiled(), 1u);
   EXPECT_EQ(found, reference(kept_points, kept_triangles, {}));
@@ -237,3 +242,28 @@ TEST(FanCertificates, refuse_fans_that_fold_wrap_or_break) {
 }
 
 } // namespace
+
+// Where most triangles change between calls, mending an index costs more than
+// checking anew: the calls are one-off checks, with the same answers, until
+// the mesh settles; a large change drops the index again.
+TEST(CrossingIndex, keeps_no_index_while_the_mesh_changes_much) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  CrossingIndex index;
+  std::mt19937_64 rng(5);
+  std::vector<Vec3> points = mesh.positions();
+  const std::vector<Triangle> triangles = mesh.triangles(), fans = mesh.triangle_copies();
+  auto check = [&] {
+    EXPECT_EQ(index.crossings(points, triangles, {}, fans), reference(points, triangles, {}));
+    return index.indexed();
+  };
+  for (int call = 0; call < 3; ++call) {
+    shake(points, rng, points.size(), 0.3 / 16); // every node, by a good part of an edge
+    EXPECT_FALSE(check()) << call;
+  }
+  EXPECT_FALSE(check()); // one call without change: not settled yet
+  EXPECT_TRUE(check());  // two: the index is built
+  shake(points, rng, 10, 0.01 / 16);
+  EXPECT_TRUE(check()); // small changes are mended
+  shake(points, rng, points.size(), 0.3 / 16);
+  EXPECT_FALSE(check()); // a large one drops it
+}

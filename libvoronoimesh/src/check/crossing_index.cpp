@@ -5,6 +5,7 @@
 #include "check/crossing_index.hpp"
 
 #include "core/parallel.hpp"
+#include "voronoimesh/check/intersections.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -32,8 +33,19 @@ constexpr uint64_t kEmpty = ~uint64_t(0);
 // A triangle searching a finer level visits at most this many cells; beyond,
 // it tests every triangle of that level instead.
 constexpr int64_t kMaxCellsVisited = 64;
-// Beyond this share of triangles to file again, everything is built anew.
-constexpr size_t kRebuildShare = 8;
+// The index pays where few triangles change between calls. Filing one
+// triangle again (out of its cells and its neighbours' lists, then back) costs
+// about three times its share of a rebuild, and a rebuild about three one-off
+// checks of the whole mesh (find_self_intersections; with few triangles
+// involved, a one-off check tests only those near them). So: triangles are
+// filed again while at most this share of them changed; beyond it, calls are
+// one-off checks and no index is kept until two calls in a row find at most
+// that share changed since the call before. (On the liver's 303k triangles a
+// flip pass changes 10-18% of them, twice an iteration, and undoing flips
+// renumbers faces: the index would be built or mended at every pass for
+// nothing.)
+constexpr size_t kChangedShare = 6;
+constexpr int kSettledCalls = 2;
 
 uint64_t mix(uint64_t x) { // splitmix64's finaliser
   x ^= x >> 30;
@@ -323,6 +335,8 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
 
 void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
                              std::span<const Triangle> corner_fans) {
+  last_triangles_.clear(); // without an index, the mesh must settle again
+  settled_calls_ = 0;
   if (filed_.empty()) return;
   std::vector<int32_t> new_triangle(filed_.size(), -1);
   for (size_t t = 0; t < old_triangle.size(); ++t) new_triangle[size_t(old_triangle[t])] = int32_t(t);
@@ -372,6 +386,22 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   fans_stale_ = true;
 }
 
+std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                            std::span<const uint8_t> involved) {
+  if (!filed_.empty()) settled_calls_ = 0;
+  filed_.clear();
+  cells_ = {};
+  near_ = {};
+  keys_.clear();
+  cell_of_slot_.clear();
+  last_triangles_.assign(triangles.begin(), triangles.end());
+  last_boxes_ = boxes_;
+  NodeMesh mesh;
+  mesh.points.assign(points.begin(), points.end());
+  mesh.triangles = last_triangles_;
+  return find_self_intersections(mesh, std::numeric_limits<size_t>::max(), involved).pairs;
+}
+
 std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                               std::span<const uint8_t> involved, std::span<const Triangle> corner_fans) {
   const size_t n = triangles.size();
@@ -391,12 +421,31 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     });
     for (size_t t = 0; t < n; ++t)
       if (is_stale[t]) stale.push_back(int32_t(t));
-    anew = kRebuildShare * stale.size() > n;
     for (size_t i = 0; i < stale.size() && !anew; ++i)
       anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
   }
-  if (anew) rebuild(triangles, corner_fans);
-  else refile(stale, triangles, corner_fans), refiled_ = stale.size();
+  if (!anew && kChangedShare * stale.size() > n) return one_off(points, triangles, involved);
+  if (anew) {
+    size_t changed = n;
+    if (last_triangles_.size() == n) {
+      changed = 0;
+      // As the index would see it: other nodes, or a box beyond a skin around
+      // the last one (the skin of a triangle of about the median size).
+      for (size_t t = 0; t < n; ++t) {
+        const Bounds& last = last_boxes_[t];
+        const double skin = kSkin * kCellFactor * (last.hi - last.lo).maxCoeff();
+        changed += last_triangles_[t] != triangles[t] ||
+                   !contains(Bounds{(last.lo.array() - skin).matrix(), (last.hi.array() + skin).matrix()}, boxes_[t]);
+      }
+    }
+    settled_calls_ = kChangedShare * changed > n ? 0 : settled_calls_ + 1;
+    if (settled_calls_ < kSettledCalls) return one_off(points, triangles, involved);
+    last_triangles_.clear();
+    last_boxes_.clear();
+    rebuild(triangles, corner_fans);
+  } else {
+    refile(stale, triangles, corner_fans), refiled_ = stale.size();
+  }
   if (fans_stale_) fans_.build(triangles, corner_fans), fans_stale_ = false;
 
   // Projection axes of the tested triangles, found once each when first needed.

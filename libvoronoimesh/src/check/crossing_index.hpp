@@ -14,6 +14,10 @@
 /// searches nothing. A triangle that leaves its filing box or changes nodes is
 /// filed again, and the lists it is on are mended through a hash of grid cells;
 /// a check after a few flips costs little more than those few triangles.
+/// Where many triangles change between calls (more than a sixth: the first
+/// iterations, or a flip pass over a large label volume), mending the index
+/// would cost more than checking anew, so those calls are one-off checks and
+/// the index is built again only once the mesh has settled.
 ///
 /// The answers are find_self_intersections()'s (the same exact pair test,
 /// check/triangle_pair.hpp, and certificates made of the same predicates,
@@ -56,8 +60,11 @@ public:
   void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
                 std::span<const Triangle> corner_fans);
 
-  /// Triangles filed again at the last call, and whether it built everything
-  /// anew (for tests and benchmarks).
+  /// Whether the last call answered through the index (or, while the mesh
+  /// changed too much between calls to keep one, with a one-off check);
+  /// triangles it filed again, and whether it built the index anew (for tests
+  /// and benchmarks).
+  bool indexed() const { return !filed_.empty(); }
   size_t refiled() const { return refiled_; }
   bool rebuilt() const { return rebuilt_; }
 
@@ -97,6 +104,9 @@ private:
   void grow_table();
   void file(int32_t t);
   void unfile(int32_t t);
+  /// find_self_intersections() on the mesh as it is; drops the index.
+  std::vector<BoxPair> one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                               std::span<const uint8_t> involved);
   /// Appends t's list, sorted by id.
   void near(int32_t t, std::vector<Neighbour>& out) const;
 
@@ -112,6 +122,11 @@ private:
   PooledLists<Neighbour> near_;              ///< by triangle, sorted by id: those whose filing boxes meet its own
   CornerFans fans_;                    ///< as of the last call that changed them
   bool fans_stale_ = false;            ///< fans_ must be built anew at the next call
+  /// Without an index: the triangles and boxes of the last call, to see
+  /// whether the mesh has settled enough to build one.
+  std::vector<Triangle> last_triangles_;
+  std::vector<Bounds> last_boxes_;
+  int settled_calls_ = 0; ///< calls in a row without an index that found few changes
   size_t refiled_ = 0;
   bool rebuilt_ = false;
 };

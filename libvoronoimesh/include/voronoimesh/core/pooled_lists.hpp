@@ -35,6 +35,11 @@ public:
       range_[i] = {end, sizes[i], sizes[i] + sizes[i] / 3 + 2};
       end += range_[i].capacity;
     }
+    // Room at the end for lists that outgrow their place: without it, the first
+    // list moved after an assign copies the whole pool (100 ms of a 300k-triangle
+    // crossing index, paid again after every rebuild).
+    pool_.clear();
+    pool_.reserve(end + end / 4 + 64);
     pool_.assign(end, T{});
   }
   /// The items of a list.
