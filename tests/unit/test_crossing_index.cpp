@@ -241,8 +241,6 @@ TEST(FanCertificates, refuse_fans_that_fold_wrap_or_break) {
   EXPECT_FALSE(broken.embedded());
 }
 
-} // namespace
-
 // Where most triangles change between calls, mending an index costs more than
 // checking anew: the calls are one-off checks, with the same answers, until
 // the mesh settles; a large change drops the index again.
@@ -267,3 +265,5 @@ TEST(CrossingIndex, keeps_no_index_while_the_mesh_changes_much) {
   shake(points, rng, points.size(), 0.3 / 16);
   EXPECT_FALSE(check()); // a large one drops it
 }
+
+} // namespace

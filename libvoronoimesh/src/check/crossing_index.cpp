@@ -388,7 +388,6 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
 
 std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                             std::span<const uint8_t> involved) {
-  if (!filed_.empty()) settled_calls_ = 0;
   filed_.clear();
   cells_ = {};
   near_ = {};
@@ -424,7 +423,10 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     for (size_t i = 0; i < stale.size() && !anew; ++i)
       anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
   }
-  if (!anew && kChangedShare * stale.size() > n) return one_off(points, triangles, involved);
+  if (!anew && kChangedShare * stale.size() > n) {
+    settled_calls_ = 0;
+    return one_off(points, triangles, involved);
+  }
   if (anew) {
     size_t changed = n;
     if (last_triangles_.size() == n) {
