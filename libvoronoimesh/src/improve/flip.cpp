@@ -7,6 +7,8 @@
 
 #include "core/parallel.hpp"
 #include "improve/field_orientation.hpp"
+#include "improve/flip_log.hpp"
+#include "improve/flip_recheck.hpp"
 #include "improve/part_agreement.hpp"
 
 #include <algorithm>
@@ -109,19 +111,10 @@ void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>
   }
 }
 
-/// The two faces of each edge in `edges` (a flip changes just those).
-std::vector<int32_t> faces_of(const OMesh& om, const std::vector<int32_t>& edges) {
-  std::vector<int32_t> faces;
-  for (int32_t e : edges)
-    for (int side = 0; side < 2; ++side)
-      faces.push_back(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(e), side)).idx());
-  return faces;
-}
-
-/// The rounds of Algorithm 5, never flipping a `banned` edge. Appends every
-/// flipped edge to `log`, in order, with its nodes before the flip to `flipped`.
+/// The rounds of Algorithm 5, never flipping a `banned` edge; every flip goes
+/// into `log`.
 FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
-                      std::vector<int32_t>& log, std::vector<std::array<int32_t, 2>>& flipped, FlipPeers* peers) {
+                      detail::FlipLog& log, FlipPeers* peers) {
   FlipStats stats;
   FaceQuality quality(mesh);
   // Round 1 judges every edge; later rounds only the edges of faces a flip changed
@@ -150,7 +143,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
     take.assign(found.size(), 0);
     if (peers) peers->choose(found, take);
     else choose_greedily(mesh, found, take);
-    OMesh& om = mesh.omesh_for_topology();
+    const OMesh& om = mesh.omesh();
     edges.clear();
     for (size_t c = 0; c < found.size(); ++c) {
       if (!take[c]) {
@@ -158,9 +151,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
         continue;
       }
       const OMesh::EdgeHandle eh(found[c].edge);
-      om.flip(eh);
-      log.push_back(found[c].edge);
-      flipped.push_back({found[c].nodes[0], found[c].nodes[1]});
+      log.flip(mesh, eh, {found[c].nodes[0], found[c].nodes[1]});
       ++stats.flips;
       for (int side = 0; side < 2; ++side) {
         const auto f = om.face_handle(om.halfedge_handle(eh, side));
@@ -172,79 +163,79 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
   }
-  if (stats.flips) mesh.faces_changed(faces_of(mesh.omesh(), log));
+  if (stats.flips) mesh.faces_changed(log.faces());
   return stats;
 }
 
 /// The flipped edges whose faces now cross another triangle, or (with a field)
 /// face against their phase pair's direction at a junction; each is charged to
 /// the last flip that made the face.
-std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const std::vector<int32_t>& log, const FlipParams& params,
-                                    CrossingGuard& guard, FlipPeers* peers) {
+std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const detail::FlipLog& log, const FlipParams& params,
+                                    CrossingGuard& guard, detail::FlipRecheck& recheck, FlipPeers* peers) {
   const OMesh& om = mesh.omesh();
   std::vector<int32_t> last_flip(om.n_faces(), -1);
-  std::vector<uint8_t> involved(om.n_faces(), 0);
-  for (size_t i = 0; i < log.size(); ++i)
+  std::vector<uint8_t> flipped(om.n_faces(), 0);
+  const auto& edges = log.edges();
+  for (size_t i = 0; i < edges.size(); ++i)
     for (int side = 0; side < 2; ++side) {
-      const auto f = size_t(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(log[i]), side)).idx());
+      const auto f = size_t(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(edges[i]), side)).idx());
       last_flip[f] = int32_t(i);
-      involved[f] = 1;
+      flipped[f] = 1;
     }
   const auto& triangles = mesh.triangles();
+  const auto pairs = guard.crossings(mesh, recheck.faces_to_test(mesh, flipped));
+  recheck.checked(mesh, std::move(flipped), pairs);
   if (peers) // another rank answers for the rest
     for (size_t f = 0; f < last_flip.size(); ++f)
       if (last_flip[f] >= 0 && !peers->answers_for(triangles[f])) last_flip[f] = -1;
   std::vector<int32_t> culprits;
-  for (const auto& pair : guard.crossings(mesh, involved))
+  for (const auto& pair : pairs)
     for (int32_t f : pair)
-      if (last_flip[size_t(f)] >= 0) culprits.push_back(log[size_t(last_flip[size_t(f)])]);
+      if (last_flip[size_t(f)] >= 0) culprits.push_back(edges[size_t(last_flip[size_t(f)])]);
   if (params.field)
     for (size_t f = 0; f < last_flip.size(); ++f)
       if (last_flip[f] >= 0 && detail::touches_junction(mesh, triangles[f]) &&
           !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
                                      *params.field))
-        culprits.push_back(log[size_t(last_flip[f])]);
+        culprits.push_back(edges[size_t(last_flip[f])]);
   return culprits;
-}
-
-/// Flips the logged edges back, last first: flipping an edge twice restores the
-/// quad's first diagonal.
-void undo_flips(InterfaceMesh& mesh, const std::vector<int32_t>& log) {
-  OMesh& om = mesh.omesh_for_topology();
-  for (auto e = log.rbegin(); e != log.rend(); ++e) om.flip(OMesh::EdgeHandle(*e));
-  mesh.faces_changed(faces_of(om, log));
 }
 
 /// flip_edges() without the collapses, with or without peers.
 FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
   // A flip moves no node but can still push the new diagonal through a
   // neighbouring surface where a phase is thinner than the quad. Such flips are
-  // found after the rounds, all flips are undone, the culprits banned, and the
-  // rounds run again; if that keeps failing, this call flips nothing.
+  // found after the rounds (later attempts test only what may differ from the
+  // last check, improve/flip_recheck.hpp), all flips are undone exactly
+  // (improve/flip_log.hpp), the culprits banned, and the rounds run again; if
+  // that keeps failing, this call flips nothing.
   std::vector<char> banned(mesh.omesh().n_edges(), 0);
   CrossingGuard own_guard;
   CrossingGuard& guard = params.guard ? *params.guard : own_guard;
+  detail::FlipRecheck recheck;
   FlipStats stats;
   for (int attempt = 0;; ++attempt) {
-    std::vector<int32_t> log;
-    std::vector<std::array<int32_t, 2>> flipped;
-    stats = flip_rounds(mesh, params, banned, log, flipped, peers);
+    detail::FlipLog log;
+    stats = flip_rounds(mesh, params, banned, log, peers);
     if (!params.guard_crossings) break;
-    std::vector<int32_t> culprits = log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params, guard, peers);
+    std::vector<int32_t> culprits =
+        log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params, guard, recheck, peers);
     if (peers) {
       // The ranks' culprits, as nodes; mapped back to the edges this rank flipped.
+      const auto& edges = log.edges();
+      const auto& flipped = log.nodes();
       std::vector<std::array<int32_t, 2>> nodes;
       for (int32_t e : culprits)
-        nodes.push_back(flipped[size_t(std::find(log.begin(), log.end(), e) - log.begin())]);
+        nodes.push_back(flipped[size_t(std::find(edges.begin(), edges.end(), e) - edges.begin())]);
       const bool any = peers->agree_on_culprits(nodes);
       culprits.clear();
-      for (size_t i = 0; i < log.size(); ++i)
-        if (std::find(nodes.begin(), nodes.end(), flipped[i]) != nodes.end()) culprits.push_back(log[i]);
+      for (size_t i = 0; i < edges.size(); ++i)
+        if (std::find(nodes.begin(), nodes.end(), flipped[i]) != nodes.end()) culprits.push_back(edges[i]);
       if (!any) break;
     } else if (culprits.empty()) {
       break;
     }
-    undo_flips(mesh, log);
+    log.undo(mesh);
     stats = {};
     if (attempt == kMaxFlipAttempts) break;
     for (int32_t e : culprits) banned[size_t(e)] = 1;
