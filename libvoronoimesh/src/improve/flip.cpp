@@ -32,6 +32,9 @@ public:
       q_[f] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
     });
   }
+  /// Quality as it was, for the same mesh.
+  FaceQuality(const InterfaceMesh& mesh, std::vector<double> q) : mesh_(mesh), q_(std::move(q)) {}
+  const std::vector<double>& values() const { return q_; }
   double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
   /// After a flip changed face f (triangles() is updated only after the rounds).
   void update(OMesh::FaceHandle f) {
@@ -111,35 +114,53 @@ void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>
   }
 }
 
+/// The start of the first attempt: every face's quality and the candidates of
+/// round 1, best first. An undo gives back the mesh bit for bit
+/// (improve/flip_log.hpp), so a later attempt's round 1 finds the same
+/// candidates but the banned ones, without judging every edge again.
+struct FirstRound {
+  std::vector<double> quality;
+  std::vector<FlipCandidate> found;
+};
+
+/// Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
+/// order depends on the mesh alone).
+bool better(const FlipCandidate& a, const FlipCandidate& b) {
+  if (a.gain != b.gain) return a.gain > b.gain;
+  return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
+}
+
 /// The rounds of Algorithm 5, never flipping a `banned` edge; every flip goes
-/// into `log`.
+/// into `log`. `first` is filled by the first attempt and read by the others.
 FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
-                      detail::FlipLog& log, FlipPeers* peers) {
+                      FirstRound& first, detail::FlipLog& log, FlipPeers* peers) {
   FlipStats stats;
-  FaceQuality quality(mesh);
+  const bool again = !first.quality.empty();
+  FaceQuality quality = again ? FaceQuality(mesh, first.quality) : FaceQuality(mesh);
   // Round 1 judges every edge; later rounds only the edges of faces a flip changed
   // and the candidates that lost to a neighbouring flip.
-  std::vector<int32_t> edges(mesh.omesh().n_edges());
+  std::vector<int32_t> edges(again ? 0 : mesh.omesh().n_edges());
   std::iota(edges.begin(), edges.end(), 0);
   std::vector<FlipCandidate> judged, found;
   std::vector<uint8_t> take;
   for (int round = 0; round < params.max_rounds; ++round) {
-    judged.assign(edges.size(), FlipCandidate{-1, -1, {}});
-    detail::parallel_for_each_index(edges.size(), [&](size_t i) {
-      judged[i].edge = edges[i];
-      if (banned[size_t(edges[i])]) return;
-      judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
-    });
     found.clear();
-    for (const FlipCandidate& c : judged)
-      if (c.gain > 0) found.push_back(c);
+    if (round == 0 && again) {
+      for (const FlipCandidate& c : first.found)
+        if (!banned[size_t(c.edge)]) found.push_back(c);
+    } else {
+      judged.assign(edges.size(), FlipCandidate{-1, -1, {}});
+      detail::parallel_for_each_index(edges.size(), [&](size_t i) {
+        judged[i].edge = edges[i];
+        if (banned[size_t(edges[i])]) return;
+        judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
+      });
+      for (const FlipCandidate& c : judged)
+        if (c.gain > 0) found.push_back(c);
+      std::sort(found.begin(), found.end(), better);
+      if (round == 0) first = {quality.values(), found};
+    }
     if (peers ? !peers->any(!found.empty()) : found.empty()) break;
-    // Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
-    // order depends on the mesh alone).
-    std::sort(found.begin(), found.end(), [](const FlipCandidate& a, const FlipCandidate& b) {
-      if (a.gain != b.gain) return a.gain > b.gain;
-      return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
-    });
     take.assign(found.size(), 0);
     if (peers) peers->choose(found, take);
     else choose_greedily(mesh, found, take);
@@ -213,10 +234,11 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   CrossingGuard own_guard;
   CrossingGuard& guard = params.guard ? *params.guard : own_guard;
   detail::FlipRecheck recheck;
+  FirstRound first;
   FlipStats stats;
   for (int attempt = 0;; ++attempt) {
     detail::FlipLog log;
-    stats = flip_rounds(mesh, params, banned, log, peers);
+    stats = flip_rounds(mesh, params, banned, first, log, peers);
     if (!params.guard_crossings) break;
     std::vector<int32_t> culprits =
         log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params, guard, recheck, peers);

@@ -195,20 +195,30 @@ void InterfaceMesh::build_adjacency() {
   detail::parallel_for_each_index(triangles_.size(), [&](size_t f) { read_face(f); });
 }
 
-void InterfaceMesh::faces_changed(std::span<const int32_t> faces) {
-  std::vector<int32_t> nodes, ring;
-  for (int32_t f : faces) {
-    nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
-    read_face(size_t(f));
-    nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
-  }
+void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
+  std::vector<int32_t> faces(changed.begin(), changed.end());
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  // The nodes the faces had and have: their rings changed.
+  std::vector<int32_t> nodes;
+  nodes.reserve(6 * faces.size());
+  for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
+  detail::parallel_for_each_index(faces.size(), [&](size_t i) { read_face(size_t(faces[i])); });
+  for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  for (int32_t v : nodes) {
-    ring.resize(valence_of(size_t(v)));
-    ring.resize(ring_of(size_t(v), ring.data()));
-    adj_.clear(size_t(v));
-    for (int32_t w : ring) adj_.push(size_t(v), w);
+  // Found in parallel (walking the OpenMesh rings is most of the work), then
+  // stored in node order.
+  std::vector<uint32_t> offset(nodes.size() + 1, 0), size(nodes.size());
+  detail::parallel_for_each_index(nodes.size(), [&](size_t i) { offset[i + 1] = uint32_t(valence_of(size_t(nodes[i]))); });
+  for (size_t i = 0; i < nodes.size(); ++i) offset[i + 1] += offset[i];
+  std::vector<int32_t> rings(offset.back());
+  detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
+    size[i] = uint32_t(ring_of(size_t(nodes[i]), rings.data() + offset[i]));
+  });
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    adj_.clear(size_t(nodes[i]));
+    for (uint32_t k = 0; k < size[i]; ++k) adj_.push(size_t(nodes[i]), rings[offset[i] + k]);
   }
 }
 

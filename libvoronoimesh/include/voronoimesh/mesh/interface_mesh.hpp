@@ -87,7 +87,7 @@ public:
   /// After local topology changes (flips) that changed only `faces`: updates
   /// triangles(), triangle_copies() and the adjacency of the nodes those faces
   /// had or have, where topology_changed() rebuilds them all.
-  /// @param faces the OpenMesh faces changed since the last update, in any order
+  /// @param faces the OpenMesh faces changed since the last update, in any order (repeats allowed)
   void faces_changed(std::span<const int32_t> faces);
 
   /// Neighbouring nodes of node n across all its copies, sorted (as of the last
