@@ -98,12 +98,11 @@ private:
   int level_of(const Bounds& b) const;
   std::array<int64_t, 3> cell_of(const Vec3& x, int level) const;
   static uint64_t key(int level, int64_t i, int64_t j, int64_t k);
+  static std::array<int64_t, 3> key_cell(uint64_t key); ///< the cell of a key, without its level
   template <class F> void for_cells(const Filing& f, F&& f_of_key) const;
   int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none
   size_t find_or_add(uint64_t key);
   void grow_table();
-  void file(int32_t t);
-  void unfile(int32_t t);
   /// find_self_intersections() on the mesh as it is; drops the index.
   std::vector<BoxPair> one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                std::span<const uint8_t> involved);

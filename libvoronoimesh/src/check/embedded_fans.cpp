@@ -98,7 +98,8 @@ void CornerFans::update(std::span<const int32_t> changed, std::span<const Triang
     }
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  for (int32_t fan : touched) order(size_t(fan), triangles);
+  // Each fan's corners and shape are its own: ordered in parallel.
+  detail::parallel_for_each_index(touched.size(), [&](size_t i) { order(size_t(touched[i]), triangles); });
 }
 
 FanCertificates::FanCertificates(std::span<const Vec3> points, std::span<const Triangle> triangles,

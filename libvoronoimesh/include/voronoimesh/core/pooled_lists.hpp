@@ -8,6 +8,7 @@
 /// allocation each.
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -60,15 +61,30 @@ public:
   /// @param list the list's index
   /// @param item the item
   void push(size_t list, const T& item) {
+    if (range_[list].size == range_[list].capacity) reserve(list, 2 * range_[list].capacity + 4);
     Range& r = range_[list];
-    if (r.size == r.capacity) { // move the list to the end of the pool, with room
-      const uint32_t capacity = 2 * r.capacity + 4;
-      pool_.resize(pool_.size() + capacity);
-      std::copy_n(pool_.begin() + r.begin, r.size, pool_.end() - capacity);
-      r.begin = uint32_t(pool_.size() - capacity);
-      r.capacity = capacity;
-    }
     pool_[r.begin + r.size++] = item;
+  }
+  /// Makes room in a list for at least `capacity` items: a list with less is
+  /// moved to the end of the pool. Not while other threads use the lists.
+  /// @param list     the list's index
+  /// @param capacity the room wanted
+  void reserve(size_t list, size_t capacity) {
+    Range& r = range_[list];
+    if (r.capacity >= capacity) return;
+    pool_.resize(pool_.size() + capacity);
+    std::copy_n(pool_.begin() + r.begin, r.size, pool_.end() - ptrdiff_t(capacity));
+    r.begin = uint32_t(pool_.size() - capacity);
+    r.capacity = uint32_t(capacity);
+  }
+  /// Sets a list's size within its room (reserve()); items beyond the old size
+  /// are whatever the pool held there. Distinct lists may be resized, and
+  /// written through at(), by several threads at once.
+  /// @param list the list's index
+  /// @param size the new size, at most the list's room
+  void resize(size_t list, size_t size) {
+    assert(size <= range_[list].capacity);
+    range_[list].size = uint32_t(size);
   }
   /// Inserts an item into a list sorted by id, after the items of the same id.
   /// @param list the list's index
