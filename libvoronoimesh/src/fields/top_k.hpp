@@ -21,7 +21,11 @@ inline bool ranks_before(double value_a, int32_t a, double value_b, int32_t b) {
 /// compete near where it was not kept; nextafter keeps it strictly below when
 /// h vanishes next to huge values.
 inline double floor_below(double first, double last, double h) {
-  return std::min(last - std::max(first - last, h), std::nextafter(last, -HUGE_VAL));
+  const double below = last - std::max(first - last, h);
+  // Anything below `last` is at most nextafter(last): the min is `below`. The
+  // libm call is skipped (it was 4% of a label volume's run, once per node).
+  if (below < last) return below;
+  return std::min(below, std::nextafter(last, -HUGE_VAL));
 }
 
 } // namespace vm::detail
