@@ -128,40 +128,55 @@ const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
     Vec3 x;
     Cell cell;
   } last;
-  if (last.serial != serial_ || last.x != x) fill_cell(x, last.cell), last.serial = serial_, last.x = x;
+  if (last.serial != serial_ || last.x != x) {
+    Place p;
+    locate(x, p);
+    fill_cell(p, last.cell, true);
+    last.serial = serial_, last.x = x;
+  }
   return last.cell;
 }
 
-void TopKGridField::fill_cell(const Vec3& x, Cell& c) const {
+void TopKGridField::locate(const Vec3& x, Place& p) const {
   const Vec3 h = grid_.spacing();
-  Vec3 f, dfd; // fraction in the cell, and its derivative along the axis (0 outside the domain)
-  // Per axis, for the cell's lower and upper node: the brick and the place in it.
-  uint64_t brick[3][2], local[3][2];
+  uint64_t brick[3][2]; // per axis, the brick of the cell's lower and upper node
   for (int a = 0; a < 3; ++a) {
     const double t = (x[a] - grid_.domain.min[a]) / h[a];
     const double clamped = std::clamp(t, 0.0, double(grid_.cells[a]));
     const uint64_t i0 = uint64_t(std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1));
-    f[a] = clamped - double(i0);
-    dfd[a] = t == clamped ? 1.0 / h[a] : 0.0;
-    for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick, local[a][side] = (i0 + side) % kBrick;
+    p.lower[a] = i0;
+    p.f[a] = clamped - double(i0);
+    p.dfd[a] = t == clamped ? 1.0 / h[a] : 0.0;
+    for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick;
   }
   const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
+  for (int corner = 0; corner < 8; ++corner)
+    p.brick[corner] = brick_[brick[0][corner & 1] + nb0 * (brick[1][(corner >> 1) & 1] + nb1 * brick[2][corner >> 2])];
+  // Corners all in uniform bricks of one phase hold the same values.
+  const int32_t b0 = p.brick[0];
+  p.uniform = b0 < 0 && std::all_of(p.brick + 1, p.brick + 8, [&](int32_t b) { return b == b0; }) ? -1 - b0 : -1;
+}
+
+void TopKGridField::fill_cell(const Place& p, Cell& c, bool gradients) const {
+  const Vec3& f = p.f;
+  const Vec3& dfd = p.dfd;
   for (int corner = 0; corner < 8; ++corner) {
     const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
     const double wx = bx ? f.x() : 1 - f.x(), wy = by ? f.y() : 1 - f.y(), wz = bz ? f.z() : 1 - f.z();
-    const double sx = bx ? dfd.x() : -dfd.x(), sy = by ? dfd.y() : -dfd.y(), sz = bz ? dfd.z() : -dfd.z();
-    const int32_t b = brick_[brick[0][bx] + nb0 * (brick[1][by] + nb1 * brick[2][bz])];
+    const int32_t b = p.brick[corner];
     if (b < 0) {
       c.node[corner] = {&uniform_ids_[size_t(-1 - b) * size_t(k_)], uniform_values_.data(), uniform_floor_};
     } else {
-      const size_t s = size_t(uint64_t(b) * kBrickNodes + local[0][bx] + kBrick * (local[1][by] + kBrick * local[2][bz]));
+      const uint64_t li = (p.lower[0] + uint64_t(bx)) % kBrick, lj = (p.lower[1] + uint64_t(by)) % kBrick,
+                     lk = (p.lower[2] + uint64_t(bz)) % kBrick;
+      const size_t s = size_t(uint64_t(b) * kBrickNodes + li + kBrick * (lj + kBrick * lk));
       c.node[corner] = {&ids_[s * size_t(k_)], &values_[s * size_t(k_)], floor_[s]};
     }
     c.w[corner] = wx * wy * wz;
-    c.dw[corner] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
-    // Corners all in uniform bricks of one phase hold the same values.
-    if (corner == 0) c.uniform = b < 0 ? -1 - b : -1;
-    else if (b != -1 - c.uniform) c.uniform = -1;
+    if (gradients) {
+      const double sx = bx ? dfd.x() : -dfd.x(), sy = by ? dfd.y() : -dfd.y(), sz = bz ? dfd.z() : -dfd.z();
+      c.dw[corner] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
+    }
   }
 }
 
@@ -204,19 +219,23 @@ void TopKGridField::values(const Vec3& x, std::span<double> out) const {
 }
 
 void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
-  Cell c; // not cell(): sampling asks once per point
-  fill_cell(x, c);
+  Place p; // not cell(): sampling asks once per point
+  locate(x, p);
   // The phases stored at some corner (plain arrays: this runs once per grid
   // node when sampling); every other phase is at the interpolated floor, below them all.
   int32_t seen_id[8 * 16];
   double seen_value[8 * 16];
   size_t count = 0;
   double floor = 0;
-  if (c.uniform >= 0) {
-    // Every corner holds the same values, already in rank order: interpolation gives them back.
-    for (size_t slot = 0; slot < size_t(k_); ++slot) seen_id[count] = c.node[0].ids[slot], seen_value[count++] = c.node[0].vals[slot];
-    floor = c.node[0].floor;
+  if (p.uniform >= 0) {
+    // Every corner holds the same values, already in rank order: interpolation
+    // gives them back, so the cell (most of a label volume's) is not filled.
+    for (size_t slot = 0; slot < size_t(k_); ++slot)
+      seen_id[count] = uniform_ids_[size_t(p.uniform) * size_t(k_) + slot], seen_value[count++] = uniform_values_[slot];
+    floor = uniform_floor_;
   } else {
+    Cell c;
+    fill_cell(p, c, false);
     for (int corner = 0; corner < 8; ++corner)
       for (size_t slot = 0; slot < size_t(k_); ++slot) {
         const int32_t id = c.node[corner].ids[slot];
@@ -230,7 +249,7 @@ void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<
   int order[8 * 16];
   for (size_t i = 0; i < count; ++i) order[i] = int(i);
   const size_t keep = std::min(count, ids.size());
-  if (c.uniform < 0)
+  if (p.uniform < 0)
     std::partial_sort(order, order + keep, order + count, [&](int a, int b) {
       return ranks_before(seen_value[a], seen_id[a], seen_value[b], seen_id[b]);
     });

@@ -72,20 +72,31 @@ private:
     const float* vals;
     float floor;
   };
-  /// The 8 corner nodes of the cell holding x (clamped into the domain), their
-  /// trilinear weights and the weights' derivatives along each axis. `uniform`
-  /// is the phase when all 8 corners are in uniform bricks of that phase, else -1.
+  /// Where x falls in the grid: per axis the cell's lower node (clamped into the
+  /// domain), the fraction of the way to the upper node and the fraction's
+  /// derivative (0 outside the domain); per corner (x fastest) its brick's word.
+  /// `uniform` is the phase when all 8 corners are in uniform bricks of that
+  /// phase, else -1.
+  struct Place {
+    uint64_t lower[3];
+    Vec3 f, dfd;
+    int32_t brick[8];
+    int32_t uniform;
+  };
+  /// The 8 corner nodes of the cell holding x, their trilinear weights and the
+  /// weights' derivatives along each axis.
   struct Cell {
     Node node[8];
     double w[8];
     Vec3 dw[8];
-    int32_t uniform;
   };
   /// The cell at x. The passes ask for the value and gradient of each phase of
   /// a vertex one by one at the same point, so the last cell each thread
   /// computed is kept and returned again for the same field and point.
   const Cell& cell(const Vec3& x) const;
-  void fill_cell(const Vec3& x, Cell& c) const;
+  void locate(const Vec3& x, Place& p) const;
+  /// The cell at `p`; the weights' derivatives only with `gradients` (sampling needs none).
+  void fill_cell(const Place& p, Cell& c, bool gradients) const;
   /// Slot of node (i, j, k) in the dense arrays; precondition: its brick is not uniform.
   size_t slot(int64_t i, int64_t j, int64_t k) const;
   float node_value(const Node& n, int32_t phase) const;
