@@ -37,7 +37,7 @@ float node_floor(float first, float last, double h) {
 
 TopKGridField::TopKGridField(const GridSpec& grid, int k, std::vector<std::string> names, std::vector<int32_t> labels,
                              std::vector<int32_t> uniform, float top)
-    : serial_(next_serial++), grid_(grid), k_(std::min<int>(k, int(names.size()))), names_(std::move(names)), labels_(std::move(labels)),
+    : serial_(next_serial++), grid_(grid), spacing_(grid.spacing()), k_(std::min<int>(k, int(names.size()))), names_(std::move(names)), labels_(std::move(labels)),
       top_(top) {
   const auto nodes = grid_.nodes();
   for (size_t a = 0; a < 3; ++a) bricks_[a] = (nodes[a] + kBrick - 1) / kBrick;
@@ -138,15 +138,14 @@ const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
 }
 
 void TopKGridField::locate(const Vec3& x, Place& p) const {
-  const Vec3 h = grid_.spacing();
   uint64_t brick[3][2]; // per axis, the brick of the cell's lower and upper node
   for (int a = 0; a < 3; ++a) {
-    const double t = (x[a] - grid_.domain.min[a]) / h[a];
+    const double t = (x[a] - grid_.domain.min[a]) / spacing_[a];
     const double clamped = std::clamp(t, 0.0, double(grid_.cells[a]));
     const uint64_t i0 = uint64_t(std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1));
     p.lower[a] = i0;
     p.f[a] = clamped - double(i0);
-    p.dfd[a] = t == clamped ? 1.0 / h[a] : 0.0;
+    p.inside[a] = t == clamped;
     for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick;
   }
   const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
@@ -159,7 +158,8 @@ void TopKGridField::locate(const Vec3& x, Place& p) const {
 
 void TopKGridField::fill_cell(const Place& p, Cell& c, bool gradients) const {
   const Vec3& f = p.f;
-  const Vec3& dfd = p.dfd;
+  Vec3 dfd; // the fractions' derivatives
+  for (int a = 0; a < 3; ++a) dfd[a] = p.inside[a] ? 1.0 / spacing_[a] : 0.0;
   for (int corner = 0; corner < 8; ++corner) {
     const int bx = corner & 1, by = (corner >> 1) & 1, bz = corner >> 2;
     const double wx = bx ? f.x() : 1 - f.x(), wy = by ? f.y() : 1 - f.y(), wz = bz ? f.z() : 1 - f.z();
@@ -236,14 +236,25 @@ void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<
   } else {
     Cell c;
     fill_cell(p, c, false);
+    // Each phase's value at every corner (the corner's floor where not
+    // stored), gathered in one pass over the corners' slots instead of
+    // node_value()'s search per phase and corner; summed in corner order, as value() does.
+    float at[8 * 16][8];
     for (int corner = 0; corner < 8; ++corner)
       for (size_t slot = 0; slot < size_t(k_); ++slot) {
         const int32_t id = c.node[corner].ids[slot];
-        if (std::find(seen_id, seen_id + count, id) != seen_id + count) continue;
-        double v = 0;
-        for (int other = 0; other < 8; ++other) v += c.w[other] * node_value(c.node[other], id);
-        seen_id[count] = id, seen_value[count++] = v;
+        const size_t d = size_t(std::find(seen_id, seen_id + count, id) - seen_id);
+        if (d == count) {
+          seen_id[count++] = id;
+          for (int other = 0; other < 8; ++other) at[d][other] = c.node[other].floor;
+        }
+        at[d][corner] = c.node[corner].vals[slot];
       }
+    for (size_t d = 0; d < count; ++d) {
+      double v = 0;
+      for (int corner = 0; corner < 8; ++corner) v += c.w[corner] * at[d][corner];
+      seen_value[d] = v;
+    }
     floor = floor_at(c);
   }
   int order[8 * 16];

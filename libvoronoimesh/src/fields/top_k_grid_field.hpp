@@ -73,13 +73,14 @@ private:
     float floor;
   };
   /// Where x falls in the grid: per axis the cell's lower node (clamped into the
-  /// domain), the fraction of the way to the upper node and the fraction's
-  /// derivative (0 outside the domain); per corner (x fastest) its brick's word.
-  /// `uniform` is the phase when all 8 corners are in uniform bricks of that
-  /// phase, else -1.
+  /// domain), the fraction of the way to the upper node and whether x is inside
+  /// the domain along it (else the fraction's derivative is 0); per corner (x
+  /// fastest) its brick's word. `uniform` is the phase when all 8 corners are in
+  /// uniform bricks of that phase, else -1.
   struct Place {
     uint64_t lower[3];
-    Vec3 f, dfd;
+    Vec3 f;
+    bool inside[3];
     int32_t brick[8];
     int32_t uniform;
   };
@@ -104,6 +105,7 @@ private:
 
   uint64_t serial_; ///< tells this field's cached cells from another's (cell())
   GridSpec grid_;
+  Vec3 spacing_; ///< grid_.spacing(), its three divisions done once rather than per point
   int k_;
   std::vector<std::string> names_;
   std::vector<int32_t> labels_;
