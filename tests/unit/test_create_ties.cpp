@@ -113,6 +113,40 @@ TEST(NodeValues, untying_breaks_every_tie_and_redraws_at_each_level) {
   EXPECT_GT(redrawn, 100);
 }
 
+// Create's repair rounds redo only the nodes whose level changed: that must
+// leave every node, label, snap flag and the snapped count as a fresh build at
+// the new levels would.
+TEST(NodeValues, redoing_repaired_nodes_equals_a_fresh_build) {
+  GridSpec grid;
+  grid.cells = {6, 6, 6};
+  std::mt19937_64 rng(11);
+  const Scene scene = scene_of(grid, integer_values(rng, grid, 4), 4);
+  const GridSpec g = grid_for_lattice(scene.grid, Lattice::bcc);
+  const SampledField field = SampledField::sample(*scene.field, g);
+  detail::TetLattice lattice(g, Lattice::bcc);
+  const double snap = 1.5, untie = 0.01 * g.h(); // snap in value units: integers one apart snap
+  std::vector<detail::NodeValues::RepairLevel> repair(size_t(lattice.num_nodes()), detail::NodeValues::kSnap);
+  detail::NodeValues redone(field, lattice, snap, untie, &repair);
+  const uint64_t snapped_at_first = redone.snapped_nodes();
+  EXPECT_GT(snapped_at_first, 0u);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<int64_t> changed;
+    for (int64_t n = round; n < lattice.num_nodes(); n += 3 + round) {
+      repair[size_t(n)] = detail::NodeValues::RepairLevel(repair[size_t(n)] + 1 + round);
+      changed.push_back(n);
+    }
+    redone.redo(field, lattice, repair, changed);
+    const detail::NodeValues fresh(field, lattice, snap, untie, &repair);
+    ASSERT_EQ(redone.snapped_nodes(), fresh.snapped_nodes()) << "round " << round;
+    for (int64_t n = 0; n < lattice.num_nodes(); ++n) {
+      ASSERT_EQ(redone.label(n), fresh.label(n)) << "node " << n;
+      ASSERT_EQ(redone.snapped(n), fresh.snapped(n)) << "node " << n;
+      for (int32_t p = 0; p < 4; ++p) ASSERT_EQ(redone.value(n, p), fresh.value(n, p)) << "node " << n;
+    }
+  }
+  EXPECT_LT(redone.snapped_nodes(), snapped_at_first); // snapping undone where levels rose
+}
+
 // Integer-valued data tie at most nodes and cross three at a time inside lattice
 // edges; seeds 1's long tier found such cases failing by the dozen (non-manifold
 // edges, duplicate triangles, zero-area triangles). Every one must now validate

@@ -397,9 +397,9 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
   std::fill(recut.begin() + cut[0], recut.begin() + cut[1] + 1, 1);
   CreateStats stats;
   double check_seconds = 0;
+  // Made once: each round redoes only the nodes it repairs.
+  NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), nullptr, &scope);
   for (int round = 0;; ++round) {
-    NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(),
-                      repair.empty() ? nullptr : &repair, &scope);
     CreateStats round_stats;
     part = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, owned, cut,
                    round_stats);
@@ -445,10 +445,12 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    for (int64_t node : nodes) {
+    size_t repaired = 0; // nodes[0..repaired): those whose level changes, for values.redo()
+    for (const int64_t node : nodes) {
       if (!scope.window.contains(node)) continue; // no slab cut here uses it
       Level& level = repair[size_t(scope.window.local(node))];
       if (level == std::numeric_limits<Level>::max()) continue;
+      nodes[repaired++] = node; // in place: never ahead of the node read
       if (!everywhere && level == NodeValues::kSnap && values.snapped(node)) {
         level = NodeValues::kUnsnap;
         unsnapped += is_counted(node);
@@ -462,6 +464,7 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
     unsnapped = peers.sum(unsnapped);
     untied = peers.sum(untied);
     if (unsnapped + untied == 0) break; // nothing left to repair: the caller's validation reports it
+    values.redo(field, lattice, repair, std::span<const int64_t>(nodes.data(), repaired));
     stats.unsnapped_nodes += unsnapped;
     stats.untied_nodes += untied;
   }

@@ -34,79 +34,101 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
 
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
-  const double lo = scope ? scope->min_value : field.min_value();
-  const double range = (scope ? scope->max_value : field.max_value()) - lo;
-  const double scale = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
-  const int64_t eps = std::llround(snap_eps * scale);
-  auto quantize = [&](double v) { return int32_t((v - lo) * scale + 0.5); }; // v >= lo: rounds to nearest
+  lo_ = scope ? scope->min_value : field.min_value();
+  const double range = (scope ? scope->max_value : field.max_value()) - lo_;
+  scale_ = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
+  eps_ = std::llround(snap_eps * scale_);
   // Small against the grid yet far above round-off, so that the caps it opens
   // around a node are triangles validate() takes for non-degenerate.
-  const int64_t untie = std::clamp<int64_t>(std::llround(untie_eps * scale), 1024, int64_t(1) << 19);
+  untie_ = std::clamp<int64_t>(std::llround(untie_eps * scale_), 1024, int64_t(1) << 19);
 
   snapped_nodes_ = detail::parallel_reduce(
       tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
       [&](const tbb::blocked_range<int64_t>& rows, uint64_t snapped) {
-        int32_t by_id[16];
         for (int64_t r = rows.begin(); r < rows.end(); ++r) {
           const TetLattice::NodeRow row = lattice.node_row(r);
           if (row.z < window_.z0 || row.z > window_.z1) continue;
           for (int32_t x = 0; x < row.count; ++x) {
             const int64_t id = row.first_id + x, n = window_.local(id);
             const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
-            auto ids = field.ids(g);
-            auto vals = field.values(g);
-            std::copy(ids.begin(), ids.end(), ids_.get() + n * k_);
-            int32_t* q = values_.get() + n * k_;
-            for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
-            floor_[n] = quantize(field.floor_value(g));
-            // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
-            // phase takes the earlier phase's value, so earlier snaps are not undone.
-            const RepairLevel level = repair ? (*repair)[size_t(n)] : kSnap;
-            for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
-              int e = s;
-              for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
-              by_id[e] = s;
-            }
-            if (level >= kFirstUntie) {
-              // A phase with r lower ids tied with it drops by r untie, so the
-              // symbolic order of tied phases survives, plus the pseudo-random
-              // part below untie that every phase drops by. Stored phases stay
-              // above the floor (unstored phases stay below it): one that would
-              // reach it rises by its random part instead.
-              int32_t tied_below[16] = {};
-              for (int a = 0; a < k_; ++a)
-                for (int b = a + 1; b < k_; ++b) tied_below[b] += q[by_id[a]] == q[by_id[b]];
-              for (int b = 0; b < k_; ++b) {
-                const uint64_t draw = mix_bits(uint64_t(id) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]]) ^
-                                               uint64_t(level) << 56);
-                const int64_t jitter = 1 + int64_t(draw % uint64_t(untie));
-                const int64_t lowered = int64_t(q[by_id[b]]) - untie * tied_below[b] - jitter;
-                const int64_t raised = std::min(int64_t(q[by_id[b]]) + jitter, int64_t(1) << kValueBits);
-                q[by_id[b]] = int32_t(lowered > floor_[n] ? lowered : raised);
-              }
-            }
-            bool changed = false;
-            if (eps > 0 && level == kSnap)
-              for (int a = 0; a < k_; ++a)
-                for (int b = a + 1; b < k_; ++b) {
-                  const int32_t vi = q[by_id[a]];
-                  int32_t& vj = q[by_id[b]];
-                  if (vi != vj && std::llabs(int64_t(vi) - vj) < eps) {
-                    vj = vi;
-                    changed = true;
-                  }
-                }
-            snapped_[n] = changed;
-            snapped += changed;
-            int best = 0;
-            for (int s = 1; s < k_; ++s)
-              if (beats(q[s], ids[s], q[best], ids[best])) best = s;
-            label_[n] = ids[best];
+            snapped += fill(field, id, n, g, repair ? (*repair)[size_t(n)] : kSnap);
           }
         }
         return snapped;
       },
       std::plus<>());
+}
+
+void NodeValues::redo(const SampledField& field, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+                      std::span<const int64_t> nodes) {
+  const GridSpec& grid = field.grid();
+  // Snapped nodes gained minus those lost: each node is counted once before and once after.
+  const int64_t gained = detail::parallel_reduce(
+      tbb::blocked_range<size_t>(0, nodes.size(), 256), int64_t(0),
+      [&](const tbb::blocked_range<size_t>& r, int64_t sum) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+          const int64_t id = nodes[i], n = window_.local(id);
+          const GridPoint p = lattice.grid_point(id);
+          sum -= snapped_[n];
+          sum += fill(field, id, n, grid.node_index(p[0], p[1], p[2]), repair[size_t(n)]);
+        }
+        return sum;
+      },
+      std::plus<>());
+  snapped_nodes_ = uint64_t(int64_t(snapped_nodes_) + gained);
+}
+
+bool NodeValues::fill(const SampledField& field, int64_t id, int64_t n, int64_t g, RepairLevel level) {
+  auto quantize = [&](double v) { return int32_t((v - lo_) * scale_ + 0.5); }; // v >= lo_: rounds to nearest
+  auto ids = field.ids(g);
+  auto vals = field.values(g);
+  std::copy(ids.begin(), ids.end(), ids_.get() + n * k_);
+  int32_t* q = values_.get() + n * k_;
+  for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
+  floor_[n] = quantize(field.floor_value(g));
+  // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
+  // phase takes the earlier phase's value, so earlier snaps are not undone.
+  int32_t by_id[16];
+  for (int s = 0; s < k_; ++s) { // slots by increasing phase id (k_ <= 16)
+    int e = s;
+    for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
+    by_id[e] = s;
+  }
+  if (level >= kFirstUntie) {
+    // A phase with r lower ids tied with it drops by r untie, so the
+    // symbolic order of tied phases survives, plus the pseudo-random
+    // part below untie that every phase drops by. Stored phases stay
+    // above the floor (unstored phases stay below it): one that would
+    // reach it rises by its random part instead.
+    int32_t tied_below[16] = {};
+    for (int a = 0; a < k_; ++a)
+      for (int b = a + 1; b < k_; ++b) tied_below[b] += q[by_id[a]] == q[by_id[b]];
+    for (int b = 0; b < k_; ++b) {
+      const uint64_t draw = mix_bits(uint64_t(id) * 0x9E3779B97F4A7C15ull ^ uint64_t(ids[by_id[b]]) ^
+                                     uint64_t(level) << 56);
+      const int64_t jitter = 1 + int64_t(draw % uint64_t(untie_));
+      const int64_t lowered = int64_t(q[by_id[b]]) - untie_ * tied_below[b] - jitter;
+      const int64_t raised = std::min(int64_t(q[by_id[b]]) + jitter, int64_t(1) << kValueBits);
+      q[by_id[b]] = int32_t(lowered > floor_[n] ? lowered : raised);
+    }
+  }
+  bool changed = false;
+  if (eps_ > 0 && level == kSnap)
+    for (int a = 0; a < k_; ++a)
+      for (int b = a + 1; b < k_; ++b) {
+        const int32_t vi = q[by_id[a]];
+        int32_t& vj = q[by_id[b]];
+        if (vi != vj && std::llabs(int64_t(vi) - vj) < eps_) {
+          vj = vi;
+          changed = true;
+        }
+      }
+  snapped_[n] = changed;
+  int best = 0;
+  for (int s = 1; s < k_; ++s)
+    if (beats(q[s], ids[s], q[best], ids[best])) best = s;
+  label_[n] = ids[best];
+  return changed;
 }
 
 } // namespace vm::detail

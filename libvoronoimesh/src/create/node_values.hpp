@@ -60,9 +60,15 @@ public:
   NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps = 0,
              const std::vector<RepairLevel>* repair = nullptr, const NodeScope* scope = nullptr);
 
+  /// Computes again the `nodes` (lattice ids in the window, no repeats) whose
+  /// level in `repair` changed since: the values a new NodeValues with `repair`
+  /// would hold, without redoing the unchanged rest (create's repair rounds
+  /// change a few hundred nodes of millions).
+  void redo(const SampledField& field, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+            std::span<const int64_t> nodes);
+
   /// The nodes held.
   const NodeWindow& window() const { return window_; }
-
 
   /// Stored phase ids of lattice node n (the sampled field's order).
   std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + window_.local(n) * k_, size_t(k_)}; }
@@ -84,8 +90,15 @@ public:
   bool snapped(int64_t n) const { return snapped_[window_.local(n)] != 0; }
 
 private:
+  /// Fills node `id` (local index n, grid node g) at repair level `level`;
+  /// returns whether snapping changed its values.
+  bool fill(const SampledField& field, int64_t id, int64_t n, int64_t g, RepairLevel level);
+
   NodeWindow window_;
   int k_;
+  // The affine map to integers (v - lo_) * scale_ and the snap and untie distances in its units.
+  double lo_ = 0, scale_ = 1;
+  int64_t eps_ = 0, untie_ = 0;
   // Every entry is written once by the parallel fill, so none is zeroed first.
   std::unique_ptr<int32_t[]> ids_;
   std::unique_ptr<int32_t[]> values_;
