@@ -72,19 +72,29 @@ Scene scene_of(const GridSpec& grid, const std::vector<std::vector<double>>& val
   return scene_from_phase_values(grid, spans, o);
 }
 
+/// Four integer-valued phases sampled on a 6^3 grid (ties at most nodes), and its BCC lattice.
+struct TiedSamples {
+  explicit TiedSamples(uint64_t seed) : field(sample(seed)), lattice(field.grid(), Lattice::bcc) {}
+  static SampledField sample(uint64_t seed) {
+    GridSpec grid;
+    grid.cells = {6, 6, 6};
+    std::mt19937_64 rng(seed);
+    const Scene scene = scene_of(grid, integer_values(rng, grid, 4), 4);
+    return SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
+  }
+  SampledField field;
+  detail::TetLattice lattice;
+};
+
 // The repair at level 2 and above leaves no exact tie among a node's stored
 // phases, moves no value by more than a few untie amounts, keeps the lower id
 // ahead of a phase it was tied with (where both went down, as all but those
 // next to the floor do), and draws anew at each level.
 TEST(NodeValues, untying_breaks_every_tie_and_redraws_at_each_level) {
-  GridSpec grid;
-  grid.cells = {6, 6, 6};
-  std::mt19937_64 rng(7);
-  const Scene scene = scene_of(grid, integer_values(rng, grid, 4), 4);
-  const GridSpec g = grid_for_lattice(scene.grid, Lattice::bcc);
-  const SampledField field = SampledField::sample(*scene.field, g);
-  detail::TetLattice lattice(g, Lattice::bcc);
-  const double untie = 0.01 * g.h();
+  const TiedSamples tied(7);
+  const SampledField& field = tied.field;
+  const detail::TetLattice& lattice = tied.lattice;
+  const double untie = 0.01 * field.grid().h();
   auto values_at = [&](detail::NodeValues::RepairLevel level) {
     std::vector<detail::NodeValues::RepairLevel> repair(size_t(lattice.num_nodes()), level);
     return detail::NodeValues(field, lattice, 0, untie, &repair);
@@ -117,14 +127,10 @@ TEST(NodeValues, untying_breaks_every_tie_and_redraws_at_each_level) {
 // leave every node, label, snap flag and the snapped count as a fresh build at
 // the new levels would.
 TEST(NodeValues, redoing_repaired_nodes_equals_a_fresh_build) {
-  GridSpec grid;
-  grid.cells = {6, 6, 6};
-  std::mt19937_64 rng(11);
-  const Scene scene = scene_of(grid, integer_values(rng, grid, 4), 4);
-  const GridSpec g = grid_for_lattice(scene.grid, Lattice::bcc);
-  const SampledField field = SampledField::sample(*scene.field, g);
-  detail::TetLattice lattice(g, Lattice::bcc);
-  const double snap = 1.5, untie = 0.01 * g.h(); // snap in value units: integers one apart snap
+  const TiedSamples tied(11);
+  const SampledField& field = tied.field;
+  const detail::TetLattice& lattice = tied.lattice;
+  const double snap = 1.5, untie = 0.01 * field.grid().h(); // snap in value units: integers one apart snap
   std::vector<detail::NodeValues::RepairLevel> repair(size_t(lattice.num_nodes()), detail::NodeValues::kSnap);
   detail::NodeValues redone(field, lattice, snap, untie, &repair);
   const uint64_t snapped_at_first = redone.snapped_nodes();
