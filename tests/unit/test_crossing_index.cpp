@@ -262,8 +262,11 @@ TEST(CrossingIndex, keeps_no_index_while_the_mesh_changes_much) {
   EXPECT_TRUE(check());  // two: the index is built
   shake(points, rng, 10, 0.01 / 16);
   EXPECT_TRUE(check()); // small changes are mended
-  shake(points, rng, points.size(), 0.3 / 16);
-  EXPECT_FALSE(check()); // a large one drops it
+  shake(points, rng, points.size() / 8, 1.0 / 16);
+  EXPECT_TRUE(check()); // so are changes of more than a sixth (a flip pass on a large mesh), up to half
+  EXPECT_GT(6 * index.refiled(), triangles.size());
+  shake(points, rng, points.size(), 1.0 / 16);
+  EXPECT_FALSE(check()); // a change of most triangles drops it
 }
 
 } // namespace

@@ -34,19 +34,20 @@ constexpr uint64_t kEmpty = ~uint64_t(0);
 // A triangle searching a finer level visits at most this many cells; beyond,
 // it tests every triangle of that level instead.
 constexpr int64_t kMaxCellsVisited = 64;
-// The index pays where few triangles change between calls. Filing one
-// triangle again (out of its cells and its neighbours' lists, then back) costs
-// about three times its share of a rebuild, and a rebuild about three one-off
-// checks of the whole mesh (find_self_intersections; with few triangles
-// involved, a one-off check tests only those near them). So: triangles are
-// filed again while at most this share of them changed; beyond it, calls are
-// one-off checks and no index is kept until two calls in a row find at most
-// that share changed since the call before. (On the liver's 303k triangles a
-// flip pass changes 10-18% of them, twice an iteration, and undoing flips
-// renumbers faces: the index would be built or mended at every pass for
-// nothing.)
-constexpr size_t kChangedShare = 6;
+// The index pays where few triangles change between calls. Measured on the
+// liver (303k triangles, 2 threads): filing a triangle again costs about 5 us,
+// twice its share of a rebuild (735 ms), and a rebuild costs about three
+// one-off checks of the whole mesh (find_self_intersections; with few
+// triangles involved, a one-off check tests only those near them). So no index
+// is built until two calls in a row find at most a sixth of the triangles
+// changed since the call before (the first iterations move everything), and
+// one is kept until a call finds more than half of them changed. (Dropping it
+// at a sixth made the liver's late flip passes, which change 55k triangles,
+// drop it and the next commit build it again, every iteration: 170 + 735 ms
+// where filing them again costs 280.)
+constexpr size_t kSettledShare = 6;
 constexpr int kSettledCalls = 2;
+constexpr size_t kDropShare = 2;
 
 uint64_t mix(uint64_t x) { // splitmix64's finaliser
   x ^= x >> 30;
@@ -490,7 +491,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     for (size_t i = 0; i < stale.size() && !anew; ++i)
       anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
   }
-  if (!anew && kChangedShare * stale.size() > n) {
+  if (!anew && kDropShare * stale.size() > n) {
     settled_calls_ = 0;
     return one_off(points, triangles, involved);
   }
@@ -507,7 +508,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
                    !contains(Bounds{(last.lo.array() - skin).matrix(), (last.hi.array() + skin).matrix()}, boxes_[t]);
       }
     }
-    settled_calls_ = kChangedShare * changed > n ? 0 : settled_calls_ + 1;
+    settled_calls_ = kSettledShare * changed > n ? 0 : settled_calls_ + 1;
     if (settled_calls_ < kSettledCalls) return one_off(points, triangles, involved);
     last_triangles_.clear();
     last_boxes_.clear();

@@ -14,10 +14,11 @@
 /// searches nothing. A triangle that leaves its filing box or changes nodes is
 /// filed again, and the lists it is on are mended through a hash of grid cells;
 /// a check after a few flips costs little more than those few triangles.
-/// Where many triangles change between calls (more than a sixth: the first
-/// iterations, or a flip pass over a large label volume), mending the index
-/// would cost more than checking anew, so those calls are one-off checks and
-/// the index is built again only once the mesh has settled.
+/// Where most triangles change between calls (the first iterations), mending
+/// the index would cost more than checking anew, so those calls are one-off
+/// checks: no index is built until the mesh has settled (a sixth or less
+/// changed, twice in a row), and one is dropped only when more than half of
+/// the triangles changed.
 ///
 /// The answers are find_self_intersections()'s (the same exact pair test,
 /// check/triangle_pair.hpp, and certificates made of the same predicates,
