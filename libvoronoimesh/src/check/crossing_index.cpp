@@ -181,7 +181,7 @@ void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
             // s is filed in every cell of its filing box and t searches every
             // cell of its own: s is taken in the cell of the overlap's lower corner.
             if (s.id == t || std::max(lo[0], int64_t(s.first[0])) != i || std::max(lo[1], int64_t(s.first[1])) != j ||
-                std::max(lo[2], int64_t(s.first[2])) != k || !ft.box.overlaps(s.box))
+                std::max(lo[2], int64_t(s.first[2])) != k || !ft.box.overlaps(filed_[size_t(s.id)].box))
               continue;
             take(s.id);
           }
@@ -264,7 +264,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     const auto filed = cells_.at(c);
     for (size_t i = 0; i < filed.size(); ++i) {
       const Filing& f = filed_[size_t(entries[first[c] + i].tri)];
-      filed[i] = {entries[first[c] + i].tri, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}, f.box};
+      filed[i] = {entries[first[c] + i].tri, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
     }
   });
   for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
@@ -317,7 +317,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   };
   std::vector<Edits> edits(m);
   auto entry_of = [](int32_t t, const Filing& f) {
-    return CellEntry{t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}, f.box};
+    return CellEntry{t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
   };
   detail::parallel_for_each_index(m, [&](size_t i) {
     const int32_t t = stale[i];
@@ -344,7 +344,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
       }
       // Other tasks read only the ids of the entries this one renews.
       for (CellEntry& e : cells_.at(size_t(find(k))))
-        if (e.id == t) e.first = entry_of(t, fresh[i]).first, e.box = fresh[i].box;
+        if (e.id == t) e.first = entry_of(t, fresh[i]).first;
     });
   });
   std::vector<int32_t> changed; // other nodes or fans: the fans around them change
