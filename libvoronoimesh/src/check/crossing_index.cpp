@@ -13,7 +13,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <tuple>
 
 namespace vm::detail {
 
@@ -152,6 +151,10 @@ void CrossingIndex::grow_table() {
   }
 }
 
+CrossingIndex::CellEntry CrossingIndex::cell_entry(int32_t t, const Filing& f) {
+  return {t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
+}
+
 void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
   const Filing& ft = filed_[size_t(t)];
   const size_t before = out.size();
@@ -263,8 +266,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   detail::parallel_for_each_index(sizes.size(), [&](size_t c) {
     const auto filed = cells_.at(c);
     for (size_t i = 0; i < filed.size(); ++i) {
-      const Filing& f = filed_[size_t(entries[first[c] + i].tri)];
-      filed[i] = {entries[first[c] + i].tri, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
+      const int32_t t = entries[first[c] + i].tri;
+      filed[i] = cell_entry(t, filed_[size_t(t)]);
     }
   });
   for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
@@ -316,9 +319,6 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
     std::vector<Neighbour> lost, gained; // triangles that stay, with the fan shared now
   };
   std::vector<Edits> edits(m);
-  auto entry_of = [](int32_t t, const Filing& f) {
-    return CellEntry{t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
-  };
   detail::parallel_for_each_index(m, [&](size_t i) {
     const int32_t t = stale[i];
     const Filing& old = filed_[size_t(t)];
@@ -344,7 +344,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
       }
       // Other tasks read only the ids of the entries this one renews.
       for (CellEntry& e : cells_.at(size_t(find(k))))
-        if (e.id == t) e.first = entry_of(t, fresh[i]).first;
+        if (e.id == t) e.first = cell_entry(t, fresh[i]).first;
     });
   });
   std::vector<int32_t> changed; // other nodes or fans: the fans around them change
@@ -357,7 +357,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
     --level_count_[size_t(old.level)];
     ++level_count_[size_t(fresh[i].level)];
     filed_[size_t(t)] = fresh[i];
-    for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), entry_of(t, fresh[i]));
+    for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(t, fresh[i]));
   }
   if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
 

@@ -103,6 +103,7 @@ private:
   static uint64_t key(int level, int64_t i, int64_t j, int64_t k);
   static std::array<int64_t, 3> key_cell(uint64_t key); ///< the cell of a key, without its level
   template <class F> void for_cells(const Filing& f, F&& f_of_key) const;
+  static CellEntry cell_entry(int32_t t, const Filing& f); ///< t's entry in each cell of its filing f
   int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none
   size_t find_or_add(uint64_t key);
   void grow_table();

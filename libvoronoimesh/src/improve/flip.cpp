@@ -197,12 +197,11 @@ std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const detail::Fli
   std::vector<int32_t> last_flip(om.n_faces(), -1);
   std::vector<uint8_t> flipped(om.n_faces(), 0);
   const auto& edges = log.edges();
-  for (size_t i = 0; i < edges.size(); ++i)
-    for (int side = 0; side < 2; ++side) {
-      const auto f = size_t(om.face_handle(om.halfedge_handle(OMesh::EdgeHandle(edges[i]), side)).idx());
-      last_flip[f] = int32_t(i);
-      flipped[f] = 1;
-    }
+  const std::vector<int32_t> faces = log.faces(); // two per flip, in order
+  for (size_t j = 0; j < faces.size(); ++j) {
+    last_flip[size_t(faces[j])] = int32_t(j / 2);
+    flipped[size_t(faces[j])] = 1;
+  }
   const auto& triangles = mesh.triangles();
   const auto pairs = guard.crossings(mesh, recheck.faces_to_test(mesh, flipped));
   recheck.checked(mesh, std::move(flipped), pairs);

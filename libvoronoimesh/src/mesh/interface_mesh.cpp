@@ -207,19 +207,17 @@ void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
   for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  // Found in parallel (walking the OpenMesh rings is most of the work), then
-  // stored in node order.
-  std::vector<uint32_t> offset(nodes.size() + 1, 0), size(nodes.size());
-  detail::parallel_for_each_index(nodes.size(), [&](size_t i) { offset[i + 1] = uint32_t(valence_of(size_t(nodes[i]))); });
-  for (size_t i = 0; i < nodes.size(); ++i) offset[i + 1] += offset[i];
-  std::vector<int32_t> rings(offset.back());
+  // As build_adjacency() does for all: room for each ring made first, then
+  // the rings (walking the OpenMesh rings is most of the work) found in parallel
+  // straight into their lists.
+  std::vector<uint32_t> valence(nodes.size());
+  detail::parallel_for_each_index(nodes.size(), [&](size_t i) { valence[i] = uint32_t(valence_of(size_t(nodes[i]))); });
+  for (size_t i = 0; i < nodes.size(); ++i) adj_.reserve(size_t(nodes[i]), valence[i]);
   detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
-    size[i] = uint32_t(ring_of(size_t(nodes[i]), rings.data() + offset[i]));
+    const size_t v = size_t(nodes[i]);
+    adj_.resize(v, valence[i]);
+    adj_.truncate(v, ring_of(v, adj_.at(v).data()));
   });
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    adj_.clear(size_t(nodes[i]));
-    for (uint32_t k = 0; k < size[i]; ++k) adj_.push(size_t(nodes[i]), rings[offset[i] + k]);
-  }
 }
 
 bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {
