@@ -5,6 +5,7 @@
 #include "improve/edge_lengths.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -15,6 +16,32 @@ namespace {
 std::span<const int16_t> phases_of(const InterfaceMesh& m, int32_t n) {
   const PhaseSet& s = m.phases()[size_t(n)];
   return {s.data(), size_t(phase_count(s))};
+}
+
+/// Removes from `force` its components across the node's constraints: the
+/// normals grad phi_0 - grad phi_i of its phases and the axes of its box faces.
+/// False when a gradient is not finite.
+bool keep_tangential(const PhaseField& field, std::span<const int16_t> phases, uint8_t box_faces, const Vec3& x,
+                     Vec3& force) {
+  std::array<Vec3, 5> normals;
+  size_t count = 0;
+  if (phases.size() >= 2) {
+    const Vec3 g0 = field.gradient(phases[0], x);
+    for (size_t i = 1; i < phases.size() && count < 2; ++i) normals[count++] = g0 - field.gradient(phases[i], x);
+  }
+  for (int a = 0; a < 3; ++a)
+    if (box_faces >> (2 * a) & 3u) normals[count++] = Vec3::Unit(a);
+  // Gram-Schmidt: each normal loses its parts along the earlier ones; one that
+  // is (almost) in their span adds no constraint.
+  for (size_t i = 0; i < count; ++i) {
+    Vec3 n = normals[i];
+    if (!n.allFinite()) return false;
+    for (size_t j = 0; j < i; ++j) n -= n.dot(normals[j]) * normals[j];
+    const double len = n.norm();
+    normals[i] = len > 1e-6 * normals[i].norm() ? Vec3(n / len) : Vec3::Zero();
+    force -= force.dot(normals[i]) * normals[i];
+  }
+  return true;
 }
 
 } // namespace
@@ -104,19 +131,14 @@ void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const Phas
       }
       force /= double(ring.size());
     }
-    if (order == 2) {
-      // Tangential only: a normal component would fight the projection (sect. 4.2.4).
-      auto ph = phases_of(mesh, v);
-      Vec3 n = field.gradient(ph[0], x) - field.gradient(ph[1], x);
-      if (!n.allFinite()) {
-        not_finite[vi] = 1;
-        return;
-      }
-      const double len = n.norm();
-      if (len > 0) {
-        n /= len;
-        force -= force.dot(n) * n;
-      }
+    // Along its surface or curve only: a component across it would fight the
+    // projection (sect. 4.2.4). The paper restricts surface nodes; on a curve the
+    // Laplacian's pull toward the curve's centre of curvature is such a
+    // component too, and would hold curve nodes off their curve by O(h) in
+    // balance with the projection.
+    if (!keep_tangential(field, phases_of(mesh, v), mesh.box_faces()[vi], x, force)) {
+      not_finite[vi] = 1;
+      return;
     }
     constrain_to_box(force, mesh.box_faces()[vi]);
     delta[vi] += force;

@@ -43,8 +43,11 @@ void constrain_to_box(Vec3& d, uint8_t box_faces);
 ///    (phases and box faces of x contained in y's);
 ///  - otherwise the DistMesh repulsion f_D = (x-y)/|x-y| max(l0 - |x-y|, 0),
 ///    averaged over all neighbours;
-///  surface forces are made tangential (normal ~ grad phi_a - grad phi_b of
-///  `field`), and every force is kept on the node's box faces.
+///  every force is kept along the node's surface or curve: its components
+///  along grad phi_a - grad phi_b of `field` (for each other phase b of the
+///  node) and across its box faces are removed. The paper does this for surface
+///  nodes; on a triple curve the half-Laplacian's pull toward the curve's centre
+///  of curvature would otherwise hold nodes off the curve (about 0.1 h).
 /// @param mesh   the mesh
 /// @param field  the phase functions, for the surface normals
 /// @param params the rest length factor: l0 = params.rest_factor x rms_edge_length(mesh) (eq. 3)
