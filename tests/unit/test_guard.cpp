@@ -8,6 +8,7 @@
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/project.hpp"
 
 #include "fixtures.hpp"
 
@@ -58,6 +59,46 @@ TEST(Guard, undoes_exactly_the_move_that_would_cross_and_keeps_the_others) {
   EXPECT_TRUE(delta[size_t(v)].isZero(0));
   EXPECT_EQ(mesh.positions()[size_t(far)], before[size_t(far)] + Vec3(1e-6, 0, 0));
   EXPECT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
+}
+
+// The quality floor (the pipeline passes the worst quality an iteration starts
+// with): a move that leaves a triangle below it is undone, unless it brings its
+// node at least halfway to its surface (accuracy before shape). Floor 1 puts
+// every moved triangle below it, so only the approaching move may stay.
+TEST(Guard, quality_floor_undoes_moves_that_spoil_the_worst_triangle_unless_they_approach_the_surface) {
+  const Scene scene = test::example_scene("four_spheres.json", 16);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  const PhaseField& field = *scene.field;
+  // Two surface nodes far apart, each off its surface after snapping.
+  int32_t v = -1, u = -1;
+  for (size_t n = 0; n < mesh.num_nodes() && u < 0; ++n) {
+    const bool off = phase_count(mesh.phases()[n]) == 2 &&
+                     node_projection_step(mesh, field, int32_t(n), mesh.positions()[n]).norm() > 1e-3;
+    if (!off) continue;
+    if (v < 0) v = int32_t(n);
+    else if ((mesh.positions()[n] - mesh.positions()[size_t(v)]).norm() > 0.3) u = int32_t(n);
+  }
+  ASSERT_GE(u, 0);
+  const std::vector<Vec3> before = mesh.positions();
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+  // v: its projection step, which takes it (almost) onto its surface; u: a
+  // small move across its own step, which leaves it as far from its surface.
+  const Vec3 step_u = node_projection_step(mesh, field, u, before[size_t(u)]);
+  delta[size_t(v)] = node_projection_step(mesh, field, v, before[size_t(v)]);
+  delta[size_t(u)] = 0.01 * step_u.unitOrthogonal() * step_u.norm();
+
+  InterfaceMesh without_floor = mesh;
+  std::vector<Vec3> free_delta = delta;
+  EXPECT_EQ(commit_without_crossings(without_floor, free_delta, &field).undone_nodes, 0u);
+
+  const GuardReport report = CrossingGuard().commit(mesh, delta, &field, {}, 1.0);
+  EXPECT_EQ(report.undone_nodes, 1u);
+  EXPECT_EQ(mesh.positions()[size_t(u)], before[size_t(u)]); // bit for bit
+  EXPECT_EQ(mesh.positions()[size_t(v)], without_floor.positions()[size_t(v)]);
+  // Without the field nothing tells an approaching move apart: both are undone.
+  InterfaceMesh blind = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  std::vector<Vec3> blind_delta = free_delta;
+  EXPECT_EQ(CrossingGuard().commit(blind, blind_delta, nullptr, {}, 1.0).undone_nodes, 2u);
 }
 
 // Eight large overlapping spheres at a coarse grid: phases thinner than an edge

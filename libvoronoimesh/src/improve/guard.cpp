@@ -1,6 +1,8 @@
 #include "voronoimesh/improve/guard.hpp"
 
+#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/improve/project.hpp"
 
 #include "check/crossing_index.hpp"
 #include "core/parallel.hpp"
@@ -25,7 +27,7 @@ void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_
 }
 
 GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
-                                  const AgreeOnUndone& agree) {
+                                  const AgreeOnUndone& agree, double quality_floor) {
   GuardReport report;
   const auto& triangles = mesh.triangles();
   const auto& points = mesh.positions(); // as the mesh's nodes move and are put back
@@ -44,7 +46,15 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   mesh.move_nodes(delta);
   std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
   detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
-  std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), inverted(triangles.size());
+  std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), spoilt(triangles.size()),
+      below_floor(triangles.size());
+  // The floor never holds a node back from its surface or curve: a move that at
+  // least halves the node's eq. 4 step (to first order, its distance from where
+  // it belongs) goes ahead, so accuracy comes before the worst triangle's shape.
+  auto closes_in = [&](int32_t n) {
+    return field && node_projection_step(mesh, *field, n, points[size_t(n)]).norm() <
+                        0.5 * node_projection_step(mesh, *field, n, before[size_t(n)]).norm();
+  };
   auto normal = [&](const std::vector<Vec3>& p, const std::array<int32_t, 3>& t) {
     return (p[size_t(t[1])] - p[size_t(t[0])]).cross(p[size_t(t[2])] - p[size_t(t[0])]);
   };
@@ -53,13 +63,15 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     // Clamping keeps triangles from turning over, but for triangles a millionth
     // of the mesh size its planes are round-off: any triangle whose normal
     // turned by 90 degrees or more, or that became one validate() calls
-    // zero-area, is undone as well.
+    // zero-area, is undone as well; so is any that ends below the quality floor.
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
       const auto& tri = triangles[t];
       involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
-      inverted[t] = involved[t] && (normal(points, tri).dot(normal(before, tri)) <= 0 ||
-                                    has_zero_area(points[size_t(tri[0])], points[size_t(tri[1])],
-                                                  points[size_t(tri[2])]));
+      spoilt[t] = below_floor[t] = 0;
+      if (!involved[t]) return;
+      const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
+      spoilt[t] = normal(points, tri).dot(normal(before, tri)) <= 0 || has_zero_area(a, b, c);
+      below_floor[t] = quality_floor > 0 && triangle_quality(a, b, c) < quality_floor;
     });
     detail::parallel_for_each_index(watched.size(),
                                     [&](size_t i) { turned[i] = agreed[i] && !agrees(size_t(watched[i])); });
@@ -68,17 +80,22 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     for (const auto& pair : crossings(mesh, involved)) culprits.insert(culprits.end(), pair.begin(), pair.end());
     for (size_t i = 0; i < watched.size(); ++i)
       if (turned[i]) culprits.push_back(watched[i]);
-    for (size_t t = 0; t < inverted.size(); ++t)
-      if (inverted[t]) culprits.push_back(int32_t(t));
+    for (size_t t = 0; t < spoilt.size(); ++t)
+      if (spoilt[t]) culprits.push_back(int32_t(t));
     std::fill(changed.begin(), changed.end(), 0);
     std::vector<int32_t> undo;
+    auto put_back = [&](int32_t n) {
+      moved[size_t(n)] = 0;
+      changed[size_t(n)] = 1;
+      undo.push_back(n);
+    };
     for (int32_t t : culprits)
       for (int32_t n : triangles[size_t(t)])
-        if (moved[size_t(n)]) {
-          moved[size_t(n)] = 0;
-          changed[size_t(n)] = 1;
-          undo.push_back(n);
-        }
+        if (moved[size_t(n)]) put_back(n);
+    for (size_t t = 0; t < below_floor.size(); ++t)
+      if (below_floor[t])
+        for (int32_t n : triangles[t])
+          if (moved[size_t(n)] && !closes_in(n)) put_back(n);
     // Clean, or only what the mesh had before the move: done. Ranks go on while
     // any of them undoes something, with every rank's culprits put back here too.
     const bool any = agree ? agree(undo) : !undo.empty();

@@ -21,7 +21,7 @@ void PassContext::commit() {
     parts->share_moves(delta);
     agree = [this](std::vector<int32_t>& undone) { return parts->agree_on_undone(undone); };
   }
-  if (guard_crossings) undone_moves += guard.commit(mesh, delta, field, agree).undone_nodes;
+  if (guard_crossings) undone_moves += guard.commit(mesh, delta, field, agree, quality_floor).undone_nodes;
   else mesh.move_nodes(delta);
   pending = false;
 }

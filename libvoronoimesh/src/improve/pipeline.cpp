@@ -147,6 +147,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   context.guard_crossings = options.guard_crossings;
   auto [best_min, best_mean] = quality_summary(mesh);
   if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
+  double worst_now = best_min;
   int stalled = 0, done = 0;
   for (int it = 1; it <= options.iterations; ++it) {
     if (options.stop_requested && options.stop_requested()) break;
@@ -155,9 +156,11 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     context.flips = 0;
     context.undone_moves = 0;
     context.stats.reset();
+    context.quality_floor = worst_now;
     const std::vector<double> pass_seconds = iterate(context, passes);
     done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);
+    worst_now = min_q;
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,

@@ -30,20 +30,26 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
   return p / double(n - 1);
 }
 
+Vec3 node_projection_step(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
+                          const ProjectParams& params) {
+  const PhaseSet& s = mesh.phases()[size_t(n)];
+  std::array<int32_t, 8> ids;
+  const int count = phase_count(s);
+  for (int i = 0; i < count; ++i) ids[size_t(i)] = s[size_t(i)];
+  Vec3 p = projection_step(field, x, {ids.data(), size_t(count)}, params);
+  if (p.allFinite()) constrain_to_box(p, mesh.box_faces()[size_t(n)]); // else reported by the caller
+  return p;
+}
+
 void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const ProjectParams& params,
                     std::vector<Vec3>& delta) {
   std::vector<uint8_t> not_finite(mesh.num_nodes(), 0);
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
-    const PhaseSet& s = mesh.phases()[v];
-    std::array<int32_t, 8> ids;
-    const int n = phase_count(s);
-    for (int i = 0; i < n; ++i) ids[size_t(i)] = s[size_t(i)];
-    Vec3 p = projection_step(field, mesh.positions()[v], {ids.data(), size_t(n)}, params);
+    const Vec3 p = node_projection_step(mesh, field, int32_t(v), mesh.positions()[v], params);
     if (!p.allFinite()) {
       not_finite[v] = 1;
       return;
     }
-    constrain_to_box(p, mesh.box_faces()[v]);
     delta[v] += p;
   });
   detail::refuse_not_finite(mesh, field, not_finite);

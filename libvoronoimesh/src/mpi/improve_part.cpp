@@ -206,10 +206,10 @@ private:
 };
 
 /// One iteration on windows reaching `margin` from the bands, edges up to
-/// `edge` long. Returns the largest move; or, when the moves turned out too
+/// `edge` long, no move leaving a triangle below `quality_floor`. Returns the largest move; or, when the moves turned out too
 /// large for the flips' window, minus that move, with nothing changed (the
 /// caller builds wider windows and runs the iteration again).
-double iterate(Run& run, double edge, double margin, std::vector<TriangleRecord>& sending,
+double iterate(Run& run, double edge, double margin, double quality_floor, std::vector<TriangleRecord>& sending,
                std::unordered_map<int64_t, Vec3>& moved_to) {
   Comm& comm = run.comm;
   const Bands& bands = run.bands;
@@ -230,6 +230,7 @@ double iterate(Run& run, double edge, double margin, std::vector<TriangleRecord>
   WindowAgreement parts(run, w, own, edge, margin, reach);
   PassContext context(mesh, &run.field);
   context.guard_crossings = run.guard_crossings;
+  context.quality_floor = quality_floor;
   context.parts = &parts;
   try {
     run.pipeline.iterate(context, run.passes);
@@ -309,6 +310,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     double expected_move = -1; // none yet
     for (int it = 1; it <= iterations; ++it) {
       const double edge = comm.max(detail::longest_edge(sending));
+      const double worst = comm.min(detail::worst_quality(sending)); // Pipeline::run's quality floor
       // Moving passes look two edges away (a neighbour's phases come from its
       // own ring); flips farther, for moves guessed from the last iteration's
       // (a quarter of an edge in the first, which moves most), and again wider
@@ -316,7 +318,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
       if (expected_move < 0) expected_move = 0.25 * edge;
       while (true) {
         const double margin = (flips ? flip_reach(edge, expected_move) : 2 * edge) + run.tolerance;
-        const double moved = iterate(run, edge, margin, sending, moved_to);
+        const double moved = iterate(run, edge, margin, worst, sending, moved_to);
         expected_move = 1.5 * std::abs(moved);
         if (moved >= 0) break;
         ++run.wider_windows;

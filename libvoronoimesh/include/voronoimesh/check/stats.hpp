@@ -10,7 +10,8 @@
 namespace vm {
 
 /// Triangle quality q = 4 sqrt(3) area / (sum of squared edge lengths); 1 for an
-/// equilateral triangle, 0 for a degenerate one (paper sect. 4.3).
+/// equilateral triangle, 0 for a degenerate one (paper sect. 4.3). Bit for bit
+/// the same for any order of the corners.
 /// @param a first corner
 /// @param b second corner
 /// @param c third corner

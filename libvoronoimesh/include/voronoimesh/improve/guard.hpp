@@ -72,17 +72,22 @@ public:
   /// clamping cannot see that, and near close quadruple points such triangles
   /// could stand across their surface for a few iterations.
   ///
+  /// And the moves that leave a triangle below `quality_floor` (triangle_quality()):
+  /// given the worst quality of the mesh before the moves, moving never makes the
+  /// worst triangle worse.
+  ///
   /// In a distributed run each rank passes its window of the mesh (moves of every
   /// node in it, exact) and `agree` (AgreeOnUndone), so every rank undoes the same
   /// moves and stops at the same round.
-  /// @param mesh  the mesh whose nodes move (in a distributed run, this rank's window)
-  /// @param delta the move of every node, one entry per node; set to the moves actually made
-  /// @param field the phase functions, to also undo moves that turn a junction triangle against its phase
-  ///              pair; null: not checked
-  /// @param agree in a distributed run, how the ranks agree on the nodes put back; empty in one process
+  /// @param mesh          the mesh whose nodes move (in a distributed run, this rank's window)
+  /// @param delta         the move of every node, one entry per node; set to the moves actually made
+  /// @param field         the phase functions, to also undo moves that turn a junction triangle against its
+  ///                      phase pair; null: not checked
+  /// @param agree         in a distributed run, how the ranks agree on the nodes put back; empty in one process
+  /// @param quality_floor no moved triangle may end below this quality; 0: not checked
   /// @return the nodes left where they were and the intersection checks made
   GuardReport commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field = nullptr,
-                     const AgreeOnUndone& agree = {});
+                     const AgreeOnUndone& agree = {}, double quality_floor = 0);
 
   /// The pairs of faces {f, g}, f < g, that intersect improperly and of which at
   /// least one is flagged in `involved` (one flag per face), sorted: what the

@@ -53,6 +53,12 @@ struct PassContext {
   /// over from one check to the next (commits and flips).
   CrossingGuard guard;
   size_t undone_moves = 0;           ///< moves the guard undid in the current iteration
+  /// The worst triangle quality at the start of the iteration (0: none). With the
+  /// guard on, no committed move leaves a triangle below it and flips only raise
+  /// the smaller quality of their pair, so only an ear flip (improve/flip.hpp),
+  /// the one cure for a triangle whose corners all lie on one curve, can make
+  /// the worst triangle worse within an iteration.
+  double quality_floor = 0;
   std::optional<MeshStats> stats;    ///< set by the stats pass
   /// In a distributed run (voronoimesh_mpi), how the passes agree across the
   /// parts of the mesh, each run on one part (PassInfo::distributed); null in one

@@ -29,6 +29,17 @@ struct ProjectParams {
 Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
                      const ProjectParams& params = {});
 
+/// projection_step() for node n of `mesh` at x, chi its phase set, kept on its
+/// box faces: the step add_projection() adds for it.
+/// @param mesh   the mesh; chi of a node is its phase set
+/// @param field  the original (unsnapped) phase functions
+/// @param n      a node id, in [0, mesh.num_nodes())
+/// @param x      where the node is taken to be
+/// @param params which pairs to skip (ProjectParams::min_gradient_gap)
+/// @return the step p(x, chi) along the node's box faces
+Vec3 node_projection_step(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
+                          const ProjectParams& params = {});
+
 /// Adds p(x, chi) of every node to `delta`, kept on the node's box faces.
 /// @param mesh   the mesh; chi of a node is its phase set
 /// @param field  the original (unsnapped) phase functions
