@@ -72,9 +72,11 @@ public:
   /// clamping cannot see that, and near close quadruple points such triangles
   /// could stand across their surface for a few iterations.
   ///
-  /// And the moves that leave a triangle below `quality_floor` (triangle_quality()):
-  /// given the worst quality of the mesh before the moves, moving never makes the
-  /// worst triangle worse.
+  /// And the moves that leave a triangle below `quality_floor` (triangle_quality()),
+  /// but not (with `field`) a move that at least halves the eq. 4 step of a node
+  /// whose step was over 2% of that triangle's longest edge: given the worst
+  /// quality of the mesh before the moves, moving never makes the worst triangle
+  /// worse except to bring a node visibly off its interface onto it.
   ///
   /// In a distributed run each rank passes its window of the mesh (moves of every
   /// node in it, exact) and `agree` (AgreeOnUndone), so every rank undoes the same
