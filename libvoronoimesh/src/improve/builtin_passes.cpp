@@ -63,11 +63,14 @@ void register_builtin_passes(PassRegistry& registry) {
       "flip", "flip edges inside a surface when it raises the pair's smaller quality (Alg. 5, sect. 4.3)",
       {{"skip_quality", FlipParams{}.skip_quality, 0.0, 1.0, false, "leave pairs of at least this quality (Alg. 5, line 7)"},
        {"max_rounds", double(FlipParams{}.max_rounds), 1, 1000, true, "rounds of node-disjoint flips per iteration"},
+       {"ear_below", FlipParams{}.ear_below, 0.0, 1.0, false,
+        "flip ears (all corners on one curve) below this quality even into a worse pair (not in the paper)"},
        {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
         "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
       false, false, true, [](PassContext& c, const ParamValues& p) {
-        const FlipParams params{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below"),
-                                c.guard_crossings, c.field, &c.guard};
+        const FlipParams params{p.at("skip_quality"),   int(p.at("max_rounds")), p.at("ear_below"),
+                                p.at("collapse_below"), c.guard_crossings,       c.field,
+                                &c.guard};
         c.flips += (c.parts ? detail::flip_edges(c.mesh, params, *c.parts) : flip_edges(c.mesh, params)).flips;
       }));
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (check/stats.hpp)", {},

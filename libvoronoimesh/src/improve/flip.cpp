@@ -58,8 +58,9 @@ bool is_ear_across(const OMesh& om, OMesh::HalfedgeHandle h) {
 }
 
 /// Algorithm 5 for one edge, read-only. Returns the quality gain of flipping it,
-/// or a negative number if it must not flip. Beyond the paper: an ear on either
-/// side flips whenever the flip is legal (gain 1 + its quality gain, so ears go first).
+/// or a negative number if it must not flip. Beyond the paper: an ear below
+/// p.ear_below on either side flips whenever the flip is legal (gain 1 + its
+/// quality gain, so ears go first).
 double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::EdgeHandle eh, const FlipParams& p,
                  std::array<int32_t, 4>& nodes) {
   const OMesh& om = mesh.omesh();
@@ -70,7 +71,7 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
   if (mesh.node(om.from_vertex_handle(h0)) > mesh.node(om.to_vertex_handle(h0))) std::swap(h0, h1);
   const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
-  const bool ear = is_ear_across(om, h0) || is_ear_across(om, h1);
+  const bool ear = before < p.ear_below && (is_ear_across(om, h0) || is_ear_across(om, h1));
   if (before >= p.skip_quality && !ear) return -1;
   // Triangles (i, j, k) and (i, l, j) as in the paper's Fig. 5.
   nodes = {mesh.node(om.from_vertex_handle(h0)), mesh.node(om.to_vertex_handle(h0)),
