@@ -68,9 +68,9 @@ void register_builtin_passes(PassRegistry& registry) {
        {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
         "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"}},
       false, false, true, [](PassContext& c, const ParamValues& p) {
-        const FlipParams params{p.at("skip_quality"),   int(p.at("max_rounds")), p.at("ear_below"),
-                                p.at("collapse_below"), c.guard_crossings,       c.field,
-                                &c.guard};
+        const FlipParams params{p.at("skip_quality"), int(p.at("max_rounds")), p.at("collapse_below"),
+                                c.guard_crossings,    c.field,                 &c.guard,
+                                p.at("ear_below")};
         c.flips += (c.parts ? detail::flip_edges(c.mesh, params, *c.parts) : flip_edges(c.mesh, params)).flips;
       }));
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (check/stats.hpp)", {},

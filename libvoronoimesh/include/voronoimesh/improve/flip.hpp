@@ -14,13 +14,6 @@ struct FlipParams {
   double skip_quality = 0.9;
   /// Rounds of flips per call; each round flips a set of edges sharing no node.
   int max_rounds = 8;
-  /// An ear (a triangle with all three corners on one junction curve or box edge,
-  /// which moves can only flatten) below this quality flips even into a worse
-  /// pair (beyond the paper). By default every ear: its corners cannot reach
-  /// their curve otherwise. 0.05 gives much better worst triangles on some
-  /// scenes (voronoi30 0.237 against 0.064 after 20 iterations) but leaves ear
-  /// corners held off their curve (docs/algorithm.md, "Known gaps").
-  double ear_below = 1;
   /// Afterwards, collapse junction triangles below this quality that no flip can
   /// remove (improve/collapse.hpp; beyond the paper). 0 turns it off.
   double collapse_below = 0.05;
@@ -32,6 +25,14 @@ struct FlipParams {
   /// With guard_crossings: the guard whose index of the mesh to reuse (a
   /// pipeline's, improve/guard.hpp); null: a fresh one for this call.
   CrossingGuard* guard = nullptr;
+  /// An ear (a triangle with all three corners on one junction curve or box
+  /// edge, which moves can only flatten) below this quality flips even into a
+  /// worse pair (beyond the paper). By default every ear: its corners cannot
+  /// reach their curve otherwise. 0.05 gives much better worst triangles on some
+  /// scenes (voronoi30 0.237 against 0.064 after 20 iterations) but leaves ear
+  /// corners held off their curve (docs/algorithm.md, "Known gaps"). Last, so
+  /// that positional initialisers written before it keep their meaning.
+  double ear_below = 1;
 };
 
 /// Times flip_edges() bans the flips that made surfaces cross and tries again
