@@ -1,10 +1,9 @@
 #include "voronoimesh/improve/collapse.hpp"
 
 #include "improve/collapse_peers.hpp"
+#include "improve/node_merge.hpp"
 
-#include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
-#include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
 #include <algorithm>
@@ -18,91 +17,8 @@ namespace {
 
 using detail::CollapsePeers;
 using detail::SliverCollapse;
-
-Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
-  const Vec3& a = m.points[size_t(t[0])];
-  return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
-}
-
-/// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
-/// triangles that lose a corner disappear. Appends to `turned` the corners of
-/// remaining triangles that would turn over.
-void merge(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-           std::vector<int32_t>& kept_triangles) {
-  kept_triangles.clear();
-  out = m.empty_like();
-  out.points = m.points;
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    auto tri = m.triangles[t];
-    bool moved = false;
-    for (int32_t& v : tri)
-      if (into[size_t(v)] >= 0) v = into[size_t(v)], moved = true;
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-    if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
-    out.triangles.push_back(tri);
-    out.pairs.push_back(m.pairs[t]);
-    kept_triangles.push_back(int32_t(t));
-  }
-}
-
-/// Drops nodes no triangle uses and renumbers the rest in order; appends the
-/// old index of each kept node to `kept`.
-void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
-  std::vector<int32_t> id(m.num_nodes(), -1);
-  for (const auto& t : m.triangles)
-    for (int32_t v : t) id[size_t(v)] = 0;
-  std::vector<Vec3> points;
-  for (size_t v = 0; v < id.size(); ++v)
-    if (id[v] == 0) {
-      id[v] = int32_t(points.size());
-      points.push_back(m.points[v]);
-      kept.push_back(int32_t(v));
-    }
-  for (auto& t : m.triangles)
-    for (int32_t& v : t) v = id[size_t(v)];
-  m.points = std::move(points);
-}
-
-/// Where `trial` (m after merging by `into`) fails: appends the nodes of
-/// validation problems and, if asked, the corners of triangles at a merge target
-/// that cross a triangle of another surface. Returns false if it fails somewhere
-/// no node names (then nothing in the batch can be trusted).
-bool find_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                   CollapsePeers* peers, std::vector<int32_t>& nodes) {
-  // Validation is local: a merge changes only triangles at its target a, whose
-  // corners (a and its ring, the "core") are the only nodes whose triangles,
-  // edges and fans can change. The triangles at core nodes are validated alone;
-  // problems they show only at other nodes are where that cut-out ends, and the
-  // mesh around them is as it was (valid). Linear in the mesh only for scans.
-  std::vector<uint8_t> target(trial.num_nodes(), 0), core(trial.num_nodes(), 0);
-  for (int32_t a : into)
-    if (a >= 0 && (!peers || peers->answers_for(a))) target[size_t(a)] = 1; // another rank checks its own
-  for (const auto& t : trial.triangles)
-    if (target[size_t(t[0])] | target[size_t(t[1])] | target[size_t(t[2])])
-      for (int32_t v : t) core[size_t(v)] = 1;
-  NodeMesh local = trial.empty_like();
-  local.points = trial.points;
-  for (size_t t = 0; t < trial.num_triangles(); ++t) {
-    const auto& tri = trial.triangles[t];
-    if (core[size_t(tri[0])] | core[size_t(tri[1])] | core[size_t(tri[2])]) {
-      local.triangles.push_back(tri);
-      local.pairs.push_back(trial.pairs[t]);
-    }
-  }
-  const ValidationReport report = validate(local);
-  if (!report.ok() && report.nodes.empty()) return false;
-  for (int32_t n : report.nodes)
-    if (core[size_t(n)]) nodes.push_back(n);
-  if (!guard_crossings) return true;
-  std::vector<uint8_t> involved(trial.num_triangles(), 0);
-  for (size_t t = 0; t < trial.num_triangles(); ++t)
-    for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
-  const IntersectionReport crossings =
-      find_self_intersections(trial, std::numeric_limits<size_t>::max(), involved, false);
-  for (const auto& pair : crossings.pairs)
-    for (int32_t t : pair) nodes.insert(nodes.end(), trial.triangles[size_t(t)].begin(), trial.triangles[size_t(t)].end());
-  return true;
-}
+using detail::drop_unused_nodes;
+using detail::merge_passing;
 
 /// The collapses of one batch, chosen from every sliver worst first (ties by
 /// triangle), at most `max` of them, that share no triangle: each claims its
@@ -172,48 +88,9 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   if (slivers.empty()) return 0;
   std::unordered_map<int64_t, int32_t> claimed; // id -> the collapse claiming it
   const std::vector<std::pair<int64_t, int64_t>> chosen = choose(std::move(slivers), params.max_collapses, claimed);
-  // Ids back to this mesh's nodes (ids ascend with the nodes).
-  auto local = [&](int64_t id) {
-    const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
-    return at != node_ids.end() && *at == id ? int32_t(at - node_ids.begin()) : -1;
-  };
   NodeMesh m = mesh.to_node_mesh();
-
-  // All at once, checked once. Collapses in a batch share no triangle, so each
-  // failing node belongs to one collapse's rings: those collapses are dropped
-  // and the rest checked again (one or two whole-mesh checks, not one per collapse).
-  std::vector<char> active(chosen.size(), 1);
-  std::vector<int32_t> into(m.num_nodes(), -1), failed, kept_triangles;
-  NodeMesh trial;
-  size_t done = 0;
-  for (size_t left = chosen.size(); left > 0;) {
-    std::fill(into.begin(), into.end(), -1);
-    for (size_t i = 0; i < chosen.size(); ++i)
-      if (const int32_t a = local(chosen[i].first), b = local(chosen[i].second); active[i] && a >= 0 && b >= 0)
-        into[size_t(b)] = a;
-    failed.clear();
-    merge(m, into, trial, failed, kept_triangles);
-    if (peers) std::erase_if(failed, [&](int32_t n) { return !peers->answers_for(n); });
-    // Triangles that turn over are failures enough; only without them is the
-    // merged mesh validated (by every rank, if any rank saw them).
-    bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
-    if (!blamed) blamed = find_failures(trial, into, params.guard_crossings, peers, failed);
-    if (peers) blamed = !peers->any(!blamed);
-    std::vector<int64_t> failed_ids;
-    for (int32_t n : failed) failed_ids.push_back(node_ids[size_t(n)]);
-    if (peers) failed_ids = peers->all(failed_ids);
-    if (blamed && failed_ids.empty()) {
-      m = std::move(trial);
-      done = left;
-      break;
-    }
-    size_t dropped = 0;
-    for (int64_t id : failed_ids)
-      if (const auto c = claimed.find(id); c != claimed.end() && active[size_t(c->second)])
-        active[size_t(c->second)] = 0, ++dropped;
-    if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
-    left -= dropped;
-  }
+  std::vector<int32_t> kept_triangles;
+  const size_t done = merge_passing(m, chosen, claimed, params.guard_crossings, peers, node_ids, kept_triangles);
   if (done) {
     kept.triangles = kept_triangles;
     drop_unused_nodes(m, kept.nodes);

@@ -1,0 +1,58 @@
+#pragma once
+/// @file improve/node_merge.hpp
+/// Edge collapses done at the node level, in batches: merge nodes into others
+/// on a NodeMesh, then find where the merged mesh fails (validation, turned or
+/// crossing triangles) so that the collapses to blame can be dropped. Shared by
+/// the junction-sliver collapse (improve/collapse.cpp) and the remesh pass
+/// (improve/remesh.cpp).
+
+#include "voronoimesh/mesh/node_mesh.hpp"
+
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace vm::detail {
+
+class CollapsePeers;
+
+/// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
+/// triangles that lose a corner disappear. Appends to `turned` the corners of
+/// remaining triangles that would turn over, and sets `kept_triangles` to the
+/// index in `m` of each triangle of `out`.
+void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
+                 std::vector<int32_t>& kept_triangles);
+
+/// Drops nodes no triangle uses and renumbers the rest in order; appends the
+/// old index of each kept node to `kept`.
+void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
+
+/// Where `trial` (a mesh after merge_nodes() by `into`) fails: appends the nodes
+/// of validation problems around merge targets and, if asked, the corners of
+/// triangles at a merge target that cross a triangle of another surface.
+/// Returns false if it fails somewhere no node names (then nothing in the
+/// batch can be trusted). `peers`: in a distributed run, which rank answers
+/// for which target; null in one process.
+bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
+                         CollapsePeers* peers, std::vector<int32_t>& nodes);
+
+/// Makes as many of the collapses `chosen` (b -> a, as node ids; no two share a
+/// triangle) as pass, all at once: after each merge of the active ones, the
+/// collapses claiming a failing node (find_merge_failures()) are dropped and the
+/// rest tried again (one or two whole-mesh checks, not one per collapse). A
+/// failure that no collapse claims keeps `m` as it was.
+/// @param m              the mesh, replaced by the merged one when anything was collapsed
+/// @param chosen         the collapses {a, b} as node ids
+/// @param claimed        the index in `chosen` of the collapse claiming each node id (a, b and their rings)
+/// @param guard_crossings also fail merges after which a triangle at a target crosses another surface
+/// @param peers          in a distributed run, how the ranks agree; null in one process
+/// @param node_ids       the id of each node of `m`, increasing
+/// @param kept_triangles set to the old index of each triangle of the merged mesh
+/// @return the number of collapses made (0: `m` unchanged)
+size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
+                     const std::unordered_map<int64_t, int32_t>& claimed, bool guard_crossings, CollapsePeers* peers,
+                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles);
+
+} // namespace vm::detail
