@@ -452,7 +452,7 @@ TEST(Registry, lists_the_builtin_passes_with_schemas) {
   const PassRegistry registry = builtin_registry();
   std::vector<std::string> names;
   for (const PassInfo* p : registry.all()) names.push_back(p->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "project", "smooth", "stats"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "project", "remesh", "smooth", "stats"}));
   EXPECT_EQ(registry.get("smooth").params.at(0).default_value, 1.2);
   PassRegistry r2 = builtin_registry();
   PassInfo dup;

@@ -8,6 +8,7 @@
 #include "voronoimesh/improve/flip.hpp"
 #include "voronoimesh/improve/project.hpp"
 #include "voronoimesh/improve/registry.hpp"
+#include "voronoimesh/improve/remesh.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
 #include "improve/part_agreement.hpp"
@@ -25,6 +26,27 @@ public:
 private:
   Body body_;
   ParamValues params_;
+};
+
+/// The remesh pass: its lengths are multiples of the mesh's RMS edge length when
+/// it first runs (for a created mesh, about the lattice's), kept for the run so
+/// that the target does not shrink or grow with the mesh it makes.
+class RemeshPass : public Pass {
+public:
+  explicit RemeshPass(const ParamValues& p)
+      : params_{p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("min_quality")}, last_(int(p.at("last"))) {}
+  void run(PassContext& c) override {
+    if (c.iteration > last_) return;
+    if (reference_ == 0) reference_ = rms_edge_length(c.mesh);
+    RemeshParams params = params_;
+    params.guard_crossings = c.guard_crossings;
+    remesh_edges(c.mesh, c.field, reference_, params);
+  }
+
+private:
+  RemeshParams params_;
+  int last_;
+  double reference_ = 0;
 };
 
 PassInfo make_info(std::string name, std::string summary, std::vector<ParamSpec> params, bool moves, bool field,
@@ -73,6 +95,19 @@ void register_builtin_passes(PassRegistry& registry) {
                                 p.at("ear_below")};
         c.flips += (c.parts ? detail::flip_edges(c.mesh, params, *c.parts) : flip_edges(c.mesh, params)).flips;
       }));
+  const RemeshParams remesh;
+  registry.add(PassInfo{
+      "remesh",
+      "split long and collapse short edges toward a target length, junctions kept (not in the paper)",
+      {{"size", remesh.size, 0.25, 8.0, false,
+        "target edge length, x the RMS edge length when the run began (with tolerance: the largest)"},
+       {"tolerance", remesh.tolerance, 0.0, 1.0, false,
+        "largest distance from a curved surface, same unit: shorter edges where surfaces curve (0: uniform)"},
+       {"min_size", remesh.min_size, 0.1, 8.0, false, "shortest target edge length with tolerance, same unit"},
+       {"min_quality", remesh.min_quality, 0.0, 1.0, false,
+        "collapses leave no triangle below this or the worst they replace"},
+       {"last", 3, 0, 1000000, true, "the last iteration it runs in (each run rebuilds the mesh)"}},
+      false, false, false, [](const ParamValues& p) { return std::make_unique<RemeshPass>(p); }});
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (check/stats.hpp)", {},
                          false, false, false,
                          [](PassContext& c, const ParamValues&) { c.stats = compute_stats(c.mesh.to_node_mesh()); }));

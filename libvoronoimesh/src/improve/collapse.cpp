@@ -90,7 +90,9 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   const std::vector<std::pair<int64_t, int64_t>> chosen = choose(std::move(slivers), params.max_collapses, claimed);
   NodeMesh m = mesh.to_node_mesh();
   std::vector<int32_t> kept_triangles;
-  const size_t done = merge_passing(m, chosen, claimed, params.guard_crossings, peers, node_ids, kept_triangles);
+  // A failure can only be at a node some collapse claims (its a, b and rings).
+  const std::unordered_multimap<int64_t, int32_t> blame(claimed.begin(), claimed.end());
+  const size_t done = merge_passing(m, chosen, blame, params.guard_crossings, peers, node_ids, kept_triangles);
   if (done) {
     kept.triangles = kept_triangles;
     drop_unused_nodes(m, kept.nodes);

@@ -90,15 +90,15 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 }
 
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
-                     const std::unordered_map<int64_t, int32_t>& claimed, bool guard_crossings, CollapsePeers* peers,
+                     const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
     return at != node_ids.end() && *at == id ? int32_t(at - node_ids.begin()) : -1;
   };
-  // All at once, checked once. Collapses in a batch share no triangle, so each
-  // failing node belongs to one collapse's rings: those collapses are dropped
+  // All at once, checked once. Collapses in a batch share no triangle, so a
+  // failing node is blamed on the few collapses around it: those are dropped
   // and the rest checked again (one or two whole-mesh checks, not one per collapse).
   std::vector<char> active(chosen.size(), 1);
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
@@ -127,8 +127,8 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     }
     size_t dropped = 0;
     for (int64_t id : failed_ids)
-      if (const auto c = claimed.find(id); c != claimed.end() && active[size_t(c->second)])
-        active[size_t(c->second)] = 0, ++dropped;
+      for (auto [c, end] = blame.equal_range(id); c != end; ++c)
+        if (active[size_t(c->second)]) active[size_t(c->second)] = 0, ++dropped;
     if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
     left -= dropped;
   }

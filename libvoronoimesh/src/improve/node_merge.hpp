@@ -40,19 +40,20 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 
 /// Makes as many of the collapses `chosen` (b -> a, as node ids; no two share a
 /// triangle) as pass, all at once: after each merge of the active ones, the
-/// collapses claiming a failing node (find_merge_failures()) are dropped and the
+/// collapses blamed for a failing node (find_merge_failures()) are dropped and the
 /// rest tried again (one or two whole-mesh checks, not one per collapse). A
-/// failure that no collapse claims keeps `m` as it was.
+/// failure that no collapse is blamed for keeps `m` as it was.
 /// @param m              the mesh, replaced by the merged one when anything was collapsed
 /// @param chosen         the collapses {a, b} as node ids
-/// @param claimed        the index in `chosen` of the collapse claiming each node id (a, b and their rings)
+/// @param blame          the indices in `chosen` of the collapses to drop for a failure at each node id
+///                       (at least every collapse whose target's new ring the node is in, and the target)
 /// @param guard_crossings also fail merges after which a triangle at a target crosses another surface
 /// @param peers          in a distributed run, how the ranks agree; null in one process
 /// @param node_ids       the id of each node of `m`, increasing
 /// @param kept_triangles set to the old index of each triangle of the merged mesh
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
-                     const std::unordered_map<int64_t, int32_t>& claimed, bool guard_crossings, CollapsePeers* peers,
+                     const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles);
 
 } // namespace vm::detail

@@ -1,0 +1,75 @@
+#pragma once
+/// @file improve/remesh.hpp
+/// Junction-aware remeshing toward a target edge length (beyond the paper, which
+/// keeps the lattice's size): long edges are split and short ones collapsed, in
+/// every surface that shares them at once, so the junction graph never changes.
+/// The flip and smooth passes do the rest of isotropic remeshing (Botsch and
+/// Kobbelt 2004): flips toward quality, tangential relaxation.
+///
+/// Node classes come from the phase sets: a surface node (two phases, no box
+/// face) may collapse into any neighbour that lies on its surface; a curve node
+/// (three phases, or two and a box face) only along its curve, into another
+/// node inside the same curve, so every curve keeps at least one edge; corners (quadruple and higher points, box
+/// corners and edges) are never collapsed. Splits only add nodes on existing
+/// edges (each new triangle lies in its old one), so they need no check;
+/// collapses pass validation and, with the guard on, the crossing check.
+
+#include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace vm {
+
+/// Parameters of remesh_edges() (the remesh pass). Lengths are in multiples of a
+/// reference length (the pass's: the mesh's RMS edge length when the run began).
+struct RemeshParams {
+  /// The target edge length, and with `tolerance` the largest one.
+  double size = 1.5;
+  /// With the phase functions: the largest distance a triangle may keep from a
+  /// curved surface (like CGAL's facet distance), which shortens the target
+  /// where surfaces curve: L = sqrt(8 tolerance / curvature). 0: uniform size.
+  double tolerance = 0;
+  /// The shortest target edge length (with `tolerance`).
+  double min_size = 0.5;
+  /// A collapse may leave no triangle below the smaller of this and the worst
+  /// quality among the triangles it replaces.
+  double min_quality = 0.3;
+  /// Rounds of collapses per call; each claims the rings around its collapses,
+  /// so one round reaches only part of the short edges.
+  int collapse_rounds = 4;
+  /// Refuse collapses after which a moved triangle crosses another surface.
+  bool guard_crossings = true;
+};
+
+/// What remesh_edges() did.
+struct RemeshStats {
+  size_t splits = 0;    ///< edges split
+  size_t collapses = 0; ///< edges collapsed
+};
+
+/// The target edge length at every node: params.size, or with a field and a
+/// tolerance the length whose chord stays within the tolerance of the node's
+/// most curved surface, in [min_size, size] (all times `reference`).
+/// @param mesh      the mesh
+/// @param field     the phase functions whose level sets give the curvature; null: uniform
+/// @param reference the length the parameters are multiples of
+/// @param params    size, tolerance and min_size
+/// @return one length per node
+std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseField* field, double reference,
+                                        const RemeshParams& params);
+
+/// One round of remeshing: collapses edges shorter than 4/5 of the target (the
+/// smaller of their nodes'), as many as share no triangle, shortest first,
+/// never making an edge longer than 4/3 of the target; then splits every edge
+/// longer than 4/3 of the target at its midpoint (projection brings new nodes
+/// onto their surface or curve later). Rebuilds `mesh` when anything changed.
+/// @param mesh      the mesh, changed in place (node and triangle ids change when anything changed)
+/// @param field     the phase functions for the target lengths (target_edge_lengths()); null: uniform
+/// @param reference the length the parameters are multiples of
+/// @param params    the target and the checks
+/// @return the splits and collapses made
+RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double reference, const RemeshParams& params);
+
+} // namespace vm

@@ -1,0 +1,290 @@
+#include "voronoimesh/improve/remesh.hpp"
+
+#include "core/parallel.hpp"
+#include "improve/node_merge.hpp"
+
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/improve/smooth.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <iterator>
+#include <numeric>
+#include <optional>
+#include <tuple>
+#include <unordered_map>
+
+namespace vm {
+namespace {
+
+/// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
+constexpr double kShortEdge = 0.8;
+/// Splits edges longer than this share of their target, and lets no collapse make one (their 4/3).
+constexpr double kLongEdge = 4.0 / 3.0;
+
+/// The unit normal of the level set of phi_j - phi_i through y, or zero.
+Vec3 level_set_normal(const PhaseField& field, int i, int j, const Vec3& y) {
+  const Vec3 g = field.gradient(j, y) - field.gradient(i, y);
+  const double n = g.norm();
+  return n > 0 && std::isfinite(n) ? Vec3(g / n) : Vec3::Zero();
+}
+
+/// sqrt(k1^2 + k2^2) of the interface between phases i and j at x (at least its
+/// largest principal curvature), from the normal's change over +-delta along two
+/// tangents; 0 where the normal is not defined.
+double interface_curvature(const PhaseField& field, int i, int j, const Vec3& x, double delta) {
+  const Vec3 n = level_set_normal(field, i, j, x);
+  if (n.isZero()) return 0;
+  Eigen::Index least = 0;
+  n.cwiseAbs().minCoeff(&least);
+  const Vec3 t1 = n.cross(Vec3::Unit(least)).normalized(), t2 = n.cross(t1);
+  double sum = 0;
+  for (const Vec3& t : {t1, t2}) {
+    const Vec3 a = level_set_normal(field, i, j, x + delta * t), b = level_set_normal(field, i, j, x - delta * t);
+    if (a.isZero() || b.isZero()) return 0;
+    sum += ((a - b) / (2 * delta)).squaredNorm();
+  }
+  return std::sqrt(sum);
+}
+
+/// The number of independent constraints on node n: its phases less one, plus
+/// its box faces, less one for the outside phase of a closed mesh (whose
+/// surfaces are the box faces). 2 on a surface, 3 on a curve (a triple curve,
+/// a surface meeting the box, a box edge), more at a corner.
+int constraint_order(const InterfaceMesh& mesh, int32_t n) {
+  const int outside = mesh.outside_phase();
+  return junction_order(mesh, n) - (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
+}
+
+/// True when the edge a-b runs along a curve: its triangles are not exactly two
+/// of one phase pair (a junction, or a surface's edge on the box), or both ends
+/// lie on one edge of the box.
+bool along_curve(const InterfaceMesh& mesh, int32_t a, int32_t b) {
+  if (std::popcount(unsigned(mesh.box_faces()[size_t(a)] & mesh.box_faces()[size_t(b)])) >= 2) return true;
+  const OMesh& om = mesh.omesh();
+  std::vector<PhasePair> pairs;
+  for (int32_t c : mesh.copies(a))
+    for (auto h : om.voh_range(OMesh::VertexHandle(c))) {
+      if (mesh.node(om.to_vertex_handle(h)) != b) continue;
+      for (auto side : {h, om.opposite_halfedge_handle(h)})
+        if (!om.is_boundary(side)) pairs.push_back(mesh.pair(om.face_handle(side)));
+    }
+  return pairs.size() != 2 || pairs[0] != pairs[1];
+}
+
+/// True when the nodes next to both a and b are exactly the third corners of
+/// the triangles on edge a-b (the link condition, at the node level): else the
+/// collapse would fold two edges into one that more triangles share.
+bool link_condition(const InterfaceMesh& mesh, int32_t a, int32_t b) {
+  std::vector<int32_t> opposite, common;
+  mesh.for_each_triangle_at(b, [&](int32_t x, int32_t y) {
+    if (x == a) opposite.push_back(y);
+    else if (y == a) opposite.push_back(x);
+  });
+  const auto ra = mesh.neighbours(a), rb = mesh.neighbours(b);
+  std::set_intersection(ra.begin(), ra.end(), rb.begin(), rb.end(), std::back_inserter(common));
+  return std::all_of(common.begin(), common.end(),
+                     [&](int32_t n) { return std::find(opposite.begin(), opposite.end(), n) != opposite.end(); });
+}
+
+/// A collapse b -> a and how short its edge is against its target.
+struct Candidate {
+  double ratio;
+  int32_t b, a;
+};
+
+/// The best collapse of node b, if any: b's shortest edge below kShortEdge of
+/// its target whose far end a lies on all of b's constraints (and, if b is on a
+/// curve, is its neighbour along it inside the curve), that makes no edge longer than kLongEdge of its target and no
+/// triangle worse than RemeshParams::min_quality (or the worst it replaces).
+std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<const double> target, int32_t b,
+                                       const RemeshParams& params) {
+  const int order = constraint_order(mesh, b);
+  if (order > 3) return std::nullopt; // corners stay
+  const auto& pos = mesh.positions();
+  std::optional<Candidate> best;
+  for (int32_t a : mesh.neighbours(b)) {
+    const double ratio = (pos[size_t(a)] - pos[size_t(b)]).norm() / std::min(target[size_t(a)], target[size_t(b)]);
+    if (ratio >= kShortEdge || (best && std::tie(best->ratio, best->a) <= std::tie(ratio, a))) continue;
+    // A curve node moves only into its neighbour along the same curve, never
+    // into the curve's end: a curve of one edge between two corners would fold
+    // onto another curve between them.
+    if (!mesh.constraints_within(b, a)) continue;
+    if (order == 3 && (constraint_order(mesh, a) != 3 || !along_curve(mesh, a, b))) continue;
+    bool ok = true;
+    for (int32_t w : mesh.neighbours(b))
+      if (w != a && (pos[size_t(a)] - pos[size_t(w)]).norm() > kLongEdge * std::min(target[size_t(a)], target[size_t(w)]))
+        ok = false;
+    if (!ok || !link_condition(mesh, a, b)) continue;
+    double old_q = 1, new_q = 1;
+    mesh.for_each_triangle_at(b, [&](int32_t x, int32_t y) {
+      const Vec3 &px = pos[size_t(x)], &py = pos[size_t(y)];
+      old_q = std::min(old_q, triangle_quality(pos[size_t(b)], px, py));
+      if (x == a || y == a) return; // this triangle disappears
+      const Vec3 before = (px - pos[size_t(b)]).cross(py - pos[size_t(b)]);
+      const Vec3 after = (px - pos[size_t(a)]).cross(py - pos[size_t(a)]);
+      new_q = before.dot(after) > 0 ? std::min(new_q, triangle_quality(pos[size_t(a)], px, py)) : 0;
+    });
+    if (new_q < std::min(params.min_quality, old_q)) continue;
+    best = Candidate{ratio, b, a};
+  }
+  return best;
+}
+
+/// The collapses of one round, shortest first. No two nodes b that collapse
+/// are neighbours, and no b is another collapse's a: then no triangle loses two
+/// corners and every node a collapse's checks looked at stays where it was, so
+/// each is judged exactly. Several may share their a. `blame` gets, for each
+/// node a failure may be reported at (a, b and their rings), the collapses to
+/// drop for it.
+std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& mesh, std::span<const double> target,
+                                                          const RemeshParams& params,
+                                                          std::unordered_multimap<int64_t, int32_t>& blame) {
+  std::vector<std::optional<Candidate>> found(mesh.num_nodes());
+  detail::parallel_for_each_index(mesh.num_nodes(),
+                                  [&](size_t b) { found[b] = best_collapse(mesh, target, int32_t(b), params); });
+  std::vector<Candidate> candidates;
+  for (const auto& c : found)
+    if (c) candidates.push_back(*c);
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& x, const Candidate& y) { return std::tie(x.ratio, x.b) < std::tie(y.ratio, y.b); });
+  std::vector<std::pair<int64_t, int64_t>> chosen;
+  std::vector<uint8_t> near_b(mesh.num_nodes(), 0), is_b(mesh.num_nodes(), 0);
+  for (const Candidate& c : candidates) {
+    if (near_b[size_t(c.b)] || is_b[size_t(c.a)]) continue;
+    const int32_t id = int32_t(chosen.size());
+    is_b[size_t(c.b)] = near_b[size_t(c.b)] = 1;
+    for (int32_t n : mesh.neighbours(c.b)) near_b[size_t(n)] = 1;
+    for (int32_t end : {c.a, c.b}) {
+      blame.emplace(end, id);
+      for (int32_t n : mesh.neighbours(end))
+        if (n != c.a && n != c.b) blame.emplace(n, id);
+    }
+    chosen.push_back({c.a, c.b});
+  }
+  return chosen;
+}
+
+/// Splits, in `m`, every edge longer than kLongEdge of the smaller target of
+/// its nodes at its midpoint, in every triangle that has it; each triangle is
+/// cut by the pattern of its split edges (two split edges: the shorter diagonal
+/// of the remaining quad). Returns the number of edges split.
+size_t split_long_edges(NodeMesh& m, std::span<const double> target) {
+  std::unordered_map<uint64_t, int32_t> midpoint; // edge (low, high) -> new node
+  auto key = [](int32_t u, int32_t v) { return uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)); };
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u = t[size_t(k)], v = t[size_t((k + 1) % 3)];
+      const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
+      if (len <= kLongEdge * std::min(target[size_t(u)], target[size_t(v)])) continue;
+      if (midpoint.emplace(key(u, v), int32_t(m.points.size())).second)
+        m.points.push_back(0.5 * (m.points[size_t(u)] + m.points[size_t(v)]));
+    }
+  if (midpoint.empty()) return 0;
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<PhasePair> pairs;
+  auto add = [&](int32_t a, int32_t b, int32_t c, const PhasePair& p) {
+    triangles.push_back({a, b, c});
+    pairs.push_back(p);
+  };
+  for (size_t i = 0; i < m.num_triangles(); ++i) {
+    const auto t = m.triangles[i];
+    const PhasePair p = m.pairs[i];
+    std::array<int32_t, 3> mid;
+    int split = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto at = midpoint.find(key(t[size_t(k)], t[size_t((k + 1) % 3)]));
+      mid[size_t(k)] = at == midpoint.end() ? -1 : at->second;
+      split += mid[size_t(k)] >= 0;
+    }
+    if (split == 0) {
+      add(t[0], t[1], t[2], p);
+    } else if (split == 3) {
+      add(t[0], mid[0], mid[2], p);
+      add(mid[0], t[1], mid[1], p);
+      add(mid[2], mid[1], t[2], p);
+      add(mid[0], mid[1], mid[2], p);
+    } else {
+      // Rotate so that edge (r0, r1) is split, and with two splits also (r1, r2).
+      int k = 0;
+      while (!(mid[size_t(k)] >= 0 && (split == 1 || mid[size_t((k + 1) % 3)] >= 0))) ++k;
+      const int32_t r0 = t[size_t(k)], r1 = t[size_t((k + 1) % 3)], r2 = t[size_t((k + 2) % 3)];
+      const int32_t m01 = mid[size_t(k)];
+      if (split == 1) {
+        add(r0, m01, r2, p);
+        add(m01, r1, r2, p);
+      } else {
+        const int32_t m12 = mid[size_t((k + 1) % 3)];
+        add(m01, r1, m12, p);
+        // The quad r0, m01, m12, r2 by its shorter diagonal.
+        const auto& x = m.points;
+        if ((x[size_t(r0)] - x[size_t(m12)]).squaredNorm() <= (x[size_t(m01)] - x[size_t(r2)]).squaredNorm()) {
+          add(r0, m01, m12, p);
+          add(r0, m12, r2, p);
+        } else {
+          add(r0, m01, r2, p);
+          add(m01, m12, r2, p);
+        }
+      }
+    }
+  }
+  m.triangles = std::move(triangles);
+  m.pairs = std::move(pairs);
+  return midpoint.size();
+}
+
+} // namespace
+
+std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseField* field, double reference,
+                                        const RemeshParams& params) {
+  const double longest = params.size * reference, shortest = std::min(params.min_size, params.size) * reference;
+  std::vector<double> target(mesh.num_nodes(), longest);
+  if (!field || params.tolerance <= 0) return target;
+  const double tolerance = params.tolerance * reference, delta = 0.5 * reference;
+  detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
+    const PhaseSet& s = mesh.phases()[v];
+    const int count = std::min(phase_count(s), 3);
+    double curvature = 0;
+    for (int i = 0; i < count; ++i)
+      for (int j = i + 1; j < count; ++j)
+        curvature = std::max(curvature, interface_curvature(*field, s[size_t(i)], s[size_t(j)], mesh.positions()[v], delta));
+    // A chord of length L on a circle of radius R stands L^2 / (8 R) off it.
+    if (curvature > 0) target[v] = std::clamp(std::sqrt(8 * tolerance / curvature), shortest, longest);
+  });
+  return target;
+}
+
+RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double reference, const RemeshParams& params) {
+  RemeshStats stats;
+  // Collapses in rounds (each claims the rings around it, so one round reaches
+  // a fraction of the short edges), the mesh rebuilt after each; then splits.
+  NodeMesh m;
+  std::vector<double> target;
+  bool changed = false;
+  for (int round = 0; round < params.collapse_rounds; ++round) {
+    target = target_edge_lengths(mesh, field, reference, params);
+    std::unordered_multimap<int64_t, int32_t> blame;
+    const auto chosen = choose_collapses(mesh, target, params, blame);
+    if (chosen.empty()) break;
+    m = mesh.to_node_mesh();
+    std::vector<int64_t> ids(m.num_nodes());
+    std::iota(ids.begin(), ids.end(), 0);
+    std::vector<int32_t> kept_triangles, kept_nodes;
+    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles);
+    if (done == 0) break;
+    stats.collapses += done;
+    detail::drop_unused_nodes(m, kept_nodes);
+    mesh = InterfaceMesh::from_node_mesh(m);
+    changed = true;
+  }
+  if (!changed) {
+    target = target_edge_lengths(mesh, field, reference, params);
+    m = mesh.to_node_mesh();
+  }
+  stats.splits = split_long_edges(m, target);
+  if (stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
+  return stats;
+}
+
+} // namespace vm

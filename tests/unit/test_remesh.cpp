@@ -1,0 +1,161 @@
+// The remesh pass (improve/remesh.hpp): splits and collapses toward a target edge
+// length that keep the junction graph, the validity of the mesh and its quality.
+
+#include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/improve/remesh.hpp"
+#include "voronoimesh/improve/smooth.hpp"
+#include "voronoimesh/mesh/junctions.hpp"
+
+#include "fixtures.hpp"
+#include "mesh_checks.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace {
+
+using namespace vm;
+
+/// Triple curves by phase triple, quadruple points by phase set: what remeshing
+/// must leave as it found it.
+std::map<std::vector<int32_t>, int> junction_graph(const NodeMesh& m) {
+  const Junctions j = find_junctions(m);
+  std::map<std::vector<int32_t>, int> graph;
+  for (const TripleCurve& c : j.curves) ++graph[c.phases];
+  for (int32_t q : j.quadruple_points) {
+    const auto p = j.phases_at(size_t(q));
+    ++graph[std::vector<int32_t>(p.begin(), p.end())];
+  }
+  return graph;
+}
+
+std::vector<Vec3> quadruple_point_positions(const NodeMesh& m) {
+  std::vector<Vec3> out;
+  for (int32_t q : find_junctions(m).quadruple_points) out.push_back(m.points[size_t(q)]);
+  std::sort(out.begin(), out.end(), [](const Vec3& a, const Vec3& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return out;
+}
+
+double total_area(const NodeMesh& m) {
+  double area = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3& a = m.points[size_t(t[0])];
+    area += 0.5 * (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a).norm();
+  }
+  return area;
+}
+
+/// voronoi7 at grid 32 after `iterations` of `pipeline`.
+NodeMesh improved_voronoi7(const std::string& pipeline, int iterations) {
+  const Scene scene = test::example_scene("voronoi7.json", 32);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  RunOptions options;
+  options.iterations = iterations;
+  Pipeline::parse(pipeline, builtin_registry()).run(mesh, scene.field.get(), options);
+  return mesh.to_node_mesh();
+}
+
+TEST(Remesh, coarsening_keeps_the_junction_graph_validity_and_quality) {
+  const Scene scene = test::example_scene("voronoi7.json", 32);
+  const NodeMesh created = test::created_mesh(scene);
+  const NodeMesh plain = improved_voronoi7("smooth,project,clamp,flip", 10);
+  const NodeMesh coarse = improved_voronoi7("remesh:size=2,smooth,project,clamp,flip", 10);
+  EXPECT_TRUE(validate(coarse).ok());
+  EXPECT_TRUE(find_self_intersections(coarse).ok());
+  EXPECT_EQ(test::inverted_triangles(coarse, *scene.field), 0u);
+  EXPECT_EQ(junction_graph(coarse), junction_graph(created));
+  // Edges twice as long: about a quarter of the triangles; at most half.
+  EXPECT_LT(coarse.num_triangles(), plain.num_triangles() / 2);
+  // Fewer, rounder triangles: the worst is no worse than without remeshing.
+  EXPECT_GE(compute_stats(coarse).min_quality, compute_stats(plain).min_quality);
+}
+
+TEST(Remesh, splits_refine_without_moving_the_surfaces) {
+  // Three planes meeting along a triple line, on a regular grid: no edge is
+  // short enough to collapse at half the size, and every edge is long enough to split.
+  const NodeMesh created = test::box_t_junction(4);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  RemeshParams params;
+  params.size = 0.5;
+  const RemeshStats stats = remesh_edges(mesh, nullptr, rms_edge_length(mesh), params);
+  const NodeMesh fine = mesh.to_node_mesh();
+  EXPECT_EQ(stats.collapses, 0u);
+  EXPECT_EQ(fine.num_triangles(), 4 * created.num_triangles());
+  EXPECT_TRUE(validate(fine).ok());
+  EXPECT_TRUE(find_self_intersections(fine).ok());
+  EXPECT_EQ(junction_graph(fine), junction_graph(created));
+  EXPECT_EQ(find_junctions(fine).curves[0].num_edges(), 2 * find_junctions(created).curves[0].num_edges());
+  // New nodes lie on old edges: the surfaces have the area they had.
+  EXPECT_NEAR(total_area(fine), total_area(created), 1e-12 * total_area(created));
+}
+
+class RemeshCorners : public testing::TestWithParam<std::string> {};
+
+TEST_P(RemeshCorners, collapses_never_move_a_quadruple_point) {
+  const NodeMesh created = test::created_mesh(test::example_scene(GetParam(), 20));
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  RemeshParams params;
+  params.size = 3;
+  const RemeshStats stats = remesh_edges(mesh, nullptr, rms_edge_length(mesh), params);
+  const NodeMesh coarse = mesh.to_node_mesh();
+  EXPECT_GT(stats.collapses, created.num_nodes() / 4);
+  EXPECT_TRUE(validate(coarse).ok());
+  EXPECT_TRUE(find_self_intersections(coarse).ok());
+  EXPECT_EQ(junction_graph(coarse), junction_graph(created));
+  EXPECT_EQ(quadruple_point_positions(coarse), quadruple_point_positions(created));
+}
+
+// voronoi30's quadruple points lie closer than a cell: at grid 20 curves of one
+// or two edges run between them, which a curve node collapsed into a corner
+// folds onto another curve (a valid mesh with a different junction graph).
+INSTANTIATE_TEST_SUITE_P(Scenes, RemeshCorners, testing::Values("four_spheres.json", "voronoi30.json"),
+                         [](const auto& info) { return info.param.substr(0, info.param.find('.')); });
+
+TEST(Remesh, the_same_mesh_for_any_thread_count) {
+  auto run = [](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    return improved_voronoi7("remesh:size=1.5:tolerance=0.05,smooth,project,clamp,flip", 4);
+  };
+  const NodeMesh one = run(1), two = run(2);
+  EXPECT_EQ(one.triangles, two.triangles);
+  EXPECT_EQ(one.points, two.points);
+}
+
+TEST(Remesh, tolerance_sizes_edges_by_the_curvature_of_the_surface) {
+  // Sphere k's surface against the outside is its sphere: curvature
+  // sqrt(k1^2 + k2^2) = sqrt(2) / r, so the chord rule gives
+  // L = sqrt(8 tolerance r / sqrt(2)) wherever the bounds do not bite.
+  const Scene scene = test::example_scene("four_spheres.json", 32);
+  const InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  const double reference = rms_edge_length(mesh);
+  RemeshParams params;
+  params.size = 100;
+  params.min_size = 0.01;
+  params.tolerance = 0.02;
+  const std::vector<double> target = target_edge_lengths(mesh, scene.field.get(), reference, params);
+  const Vec3 centre(0.6181, 0.5991, 0.6101); // sphere1's (examples/four_spheres.json)
+  size_t checked = 0;
+  for (size_t n = 0; n < mesh.num_nodes(); ++n) {
+    const PhaseSet& s = mesh.phases()[n];
+    if (phase_count(s) != 2 || s[0] != 0 || s[1] != 1) continue;
+    const double r = (mesh.positions()[n] - centre).norm();
+    EXPECT_NEAR(target[n], std::sqrt(8 * params.tolerance * reference * r / std::sqrt(2.0)), 0.02 * target[n]);
+    ++checked;
+  }
+  EXPECT_GT(checked, 100u);
+  // Without a tolerance, or without a field, the size is uniform.
+  params.tolerance = 0;
+  for (double t : target_edge_lengths(mesh, scene.field.get(), reference, params))
+    EXPECT_EQ(t, params.size * reference);
+}
+
+} // namespace
