@@ -1,0 +1,146 @@
+// bench/label_agreement.cpp: how well a mesh of a label volume keeps its labels.
+// Meshes the volume with a closed domain (so that every phase is a closed volume
+// and every voxel centre lies in exactly one), improves it with a pipeline, then
+// locates every voxel centre in the mesh (check/locate.hpp) and prints one
+// markdown row: triangles, min/mean quality, the share of voxel centres in
+// their own label's phase (all; interior ones, whose 26 neighbours share their
+// label; the worst label), labels missing from the mesh, and seconds.
+//
+// usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]
+//        label_agreement --header
+
+#include "voronoimesh/check/locate.hpp"
+#include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/io/volume.hpp"
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <map>
+#include <string>
+
+namespace {
+
+struct Options {
+  vm::InputOptions input;
+  std::string pipeline = vm::kDefaultPipeline;
+  int iterations = 20;
+  int threads = 2;
+};
+
+/// Voxel centres of one label: how many, and how many lie in its phase.
+struct Count {
+  int64_t voxels = 0, agree = 0;
+};
+
+int run(const std::string& path, const Options& o) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+  const auto t0 = std::chrono::steady_clock::now();
+  const vm::io::Volume volume = vm::io::read_volume(path);
+  if (!volume.integer || volume.components != 1 || !volume.direction.isIdentity()) {
+    std::fprintf(stderr, "label_agreement: %s: needs one integer label per voxel and axis-aligned voxels\n",
+                 path.c_str());
+    return 2;
+  }
+  const vm::Scene scene = vm::load_input(path, o.input);
+  vm::CreateParams close;
+  close.close = true;
+  const auto phases = vm::with_outside_phase(scene.field, scene.grid.domain);
+  const vm::SampledField samples =
+      vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice));
+  vm::NodeMesh created;
+  vm::create_initial_mesh(samples, close, created);
+  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(created);
+  created = {};
+  vm::RunOptions run;
+  run.iterations = o.iterations;
+  vm::Pipeline::parse(o.pipeline, vm::builtin_registry()).run(mesh, phases.get(), run);
+  const vm::NodeMesh m = mesh.to_node_mesh();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const vm::PointGrid centres{volume.origin, volume.spacing, volume.size};
+  const std::vector<int32_t> located = vm::locate_grid_points(m, centres);
+  const int64_t nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
+  auto label_at = [&](int64_t i, int64_t j, int64_t k) { return volume.labels[size_t(i + nx * (j + ny * k))]; };
+  std::map<int32_t, Count> by_label;
+  Count all, interior;
+  int64_t undecided = 0;
+  for (int64_t k = 0; k < nz; ++k)
+    for (int64_t j = 0; j < ny; ++j)
+      for (int64_t i = 0; i < nx; ++i) {
+        const int32_t label = label_at(i, j, k);
+        const int32_t phase = located[size_t(i + nx * (j + ny * k))];
+        if (i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) continue; // on the box
+        if (phase < 0) {
+          ++undecided;
+          continue;
+        }
+        const bool agree = phase < scene.field->num_phases() && scene.field->phase_label(phase) == label;
+        bool uniform = true;
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) uniform = uniform && label_at(i + di, j + dj, k + dk) == label;
+        for (Count* c : {&all, &by_label[label]}) ++c->voxels, c->agree += agree;
+        if (uniform) ++interior.voxels, interior.agree += agree;
+      }
+  double worst = 100;
+  int32_t worst_label = 0;
+  int64_t worst_voxels = 0;
+  std::string missing;
+  for (const auto& [label, c] : by_label) {
+    const double share = 100.0 * double(c.agree) / double(c.voxels);
+    if (share < worst) worst = share, worst_label = label, worst_voxels = c.voxels;
+    if (c.agree == 0) missing += (missing.empty() ? "" : " ") + std::to_string(label);
+  }
+  const vm::MeshStats stats = vm::compute_stats(m);
+  std::printf("| %s | %s | %g | %zu | %.3f | %.3f | %.3f | %.3f | %.2f (label %d, %lld voxels) | %s | %lld | %.1f |\n",
+              path.c_str(), o.pipeline.c_str(), o.input.voxels_per_cell, m.num_triangles(), stats.min_quality,
+              stats.mean_quality, 100.0 * double(all.agree) / double(all.voxels),
+              100.0 * double(interior.agree) / double(interior.voxels), worst, worst_label, (long long)worst_voxels,
+              missing.empty() ? "none" : missing.c_str(), (long long)undecided, seconds);
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && std::strcmp(argv[1], "--header") == 0) {
+    std::printf("| volume | pipeline | voxels per cell | triangles (closed) | min q | mean q | voxel centres in their "
+                "label %% | interior %% | worst label %% | labels lost | undecided | seconds |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    return 0;
+  }
+  if (argc < 2) {
+    std::fputs("usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]\n"
+               "       label_agreement --header\n",
+               stderr);
+    return 2;
+  }
+  Options o;
+  for (int i = 2; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--voxels-per-cell" && i + 1 < argc) o.input.voxels_per_cell = std::atof(argv[++i]);
+    else if (flag == "--pipeline" && i + 1 < argc) o.pipeline = argv[++i];
+    else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
+    else if (flag == "--threads" && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "label_agreement: unknown option '%s'\n", flag.c_str());
+      return 2;
+    }
+  }
+  try {
+    return run(argv[1], o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "label_agreement: %s\n", e.what());
+    return 1;
+  }
+}
