@@ -20,6 +20,8 @@ namespace {
 
 /// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
 constexpr double kShortEdge = 0.8;
+/// Rounds of splits per call: each halves the edges still too long.
+constexpr int kSplitRounds = 4;
 /// Splits edges longer than this share of their target, and lets no collapse make one (their 4/3).
 constexpr double kLongEdge = 4.0 / 3.0;
 
@@ -167,10 +169,11 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& m
 }
 
 /// Splits, in `m`, every edge longer than kLongEdge of the smaller target of
-/// its nodes at its midpoint, in every triangle that has it; each triangle is
+/// its nodes at its midpoint (whose target, appended to `target`, is the mean
+/// of its ends'), in every triangle that has it; each triangle is
 /// cut by the pattern of its split edges (two split edges: the shorter diagonal
 /// of the remaining quad). Returns the number of edges split.
-size_t split_long_edges(NodeMesh& m, std::span<const double> target) {
+size_t split_long_edges(NodeMesh& m, std::vector<double>& target) {
   std::unordered_map<uint64_t, int32_t> midpoint; // edge (low, high) -> new node
   auto key = [](int32_t u, int32_t v) { return uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)); };
   for (const auto& t : m.triangles)
@@ -178,8 +181,10 @@ size_t split_long_edges(NodeMesh& m, std::span<const double> target) {
       const int32_t u = t[size_t(k)], v = t[size_t((k + 1) % 3)];
       const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
       if (len <= kLongEdge * std::min(target[size_t(u)], target[size_t(v)])) continue;
-      if (midpoint.emplace(key(u, v), int32_t(m.points.size())).second)
+      if (midpoint.emplace(key(u, v), int32_t(m.points.size())).second) {
         m.points.push_back(0.5 * (m.points[size_t(u)] + m.points[size_t(v)]));
+        target.push_back(0.5 * (target[size_t(u)] + target[size_t(v)]));
+      }
     }
   if (midpoint.empty()) return 0;
   std::vector<std::array<int32_t, 3>> triangles;
@@ -282,7 +287,13 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     target = target_edge_lengths(mesh, field, reference, params);
     m = mesh.to_node_mesh();
   }
-  stats.splits = split_long_edges(m, target);
+  // Splits in rounds too (new nodes take the mean target of their edge), so an
+  // edge several times too long is cut down in one call.
+  for (int round = 0; round < kSplitRounds; ++round) {
+    const size_t splits = split_long_edges(m, target);
+    if (splits == 0) break;
+    stats.splits += splits;
+  }
   if (stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
   return stats;
 }

@@ -60,11 +60,12 @@ struct RemeshStats {
 std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseField* field, double reference,
                                         const RemeshParams& params);
 
-/// One round of remeshing: collapses edges shorter than 4/5 of the target (the
-/// smaller of their nodes'), as many as share no triangle, shortest first,
-/// never making an edge longer than 4/3 of the target; then splits every edge
-/// longer than 4/3 of the target at its midpoint (projection brings new nodes
-/// onto their surface or curve later). Rebuilds `mesh` when anything changed.
+/// One call of the remesh pass: rounds of collapses of edges shorter than 4/5
+/// of the target (the smaller of their nodes'), shortest first, no two
+/// neighbouring nodes removed in one round, never making an edge longer than 4/3
+/// of the target (RemeshParams::collapse_rounds, the mesh rebuilt after each);
+/// then rounds of splits of every edge longer than 4/3 of the target at its
+/// midpoint (projection brings new nodes onto their surface or curve later).
 /// @param mesh      the mesh, changed in place (node and triangle ids change when anything changed)
 /// @param field     the phase functions for the target lengths (target_edge_lengths()); null: uniform
 /// @param reference the length the parameters are multiples of
