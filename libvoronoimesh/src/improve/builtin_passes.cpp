@@ -34,7 +34,8 @@ private:
 class RemeshPass : public Pass {
 public:
   explicit RemeshPass(const ParamValues& p)
-      : params_{p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("min_quality")}, last_(int(p.at("last"))) {}
+      : params_{p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"), p.at("min_quality")},
+        last_(int(p.at("last"))) {}
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
     if (reference_ == 0) reference_ = rms_edge_length(c.mesh);
@@ -104,6 +105,8 @@ void register_builtin_passes(PassRegistry& registry) {
        {"tolerance", remesh.tolerance, 0.0, 1.0, false,
         "largest distance from a curved surface, same unit: shorter edges where surfaces curve (0: uniform)"},
        {"min_size", remesh.min_size, 0.1, 8.0, false, "shortest target edge length with tolerance, same unit"},
+       {"merge_corners", remesh.merge_corners, 0.0, 0.5, false,
+        "neighbouring quadruple points closer than this x the target merge into one point (0: never)"},
        {"min_quality", remesh.min_quality, 0.0, 1.0, false,
         "collapses leave no triangle below this or the worst they replace"},
        {"last", 3, 0, 1000000, true, "the last iteration it runs in (each run rebuilds the mesh)"}},

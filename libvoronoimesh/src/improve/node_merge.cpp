@@ -19,17 +19,19 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
 } // namespace
 
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-                 std::vector<int32_t>& kept_triangles) {
+                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points) {
   kept_triangles.clear();
   out = m.empty_like();
-  out.points = m.points;
+  out.points = points ? *points : m.points;
   for (size_t t = 0; t < m.num_triangles(); ++t) {
     auto tri = m.triangles[t];
     bool moved = false;
-    for (int32_t& v : tri)
+    for (int32_t& v : tri) {
       if (into[size_t(v)] >= 0) v = into[size_t(v)], moved = true;
+      moved = moved || (points && out.points[size_t(v)] != m.points[size_t(v)]);
+    }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-    if (moved && normal(m, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
+    if (moved && normal(out, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
     out.triangles.push_back(tri);
     out.pairs.push_back(m.pairs[t]);
     kept_triangles.push_back(int32_t(t));
@@ -91,7 +93,8 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
-                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles) {
+                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
+                     std::span<const Vec3> moved_to) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
@@ -104,13 +107,17 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
   NodeMesh trial;
   size_t done = 0;
+  std::vector<Vec3> points;
   for (size_t left = chosen.size(); left > 0;) {
     std::fill(into.begin(), into.end(), -1);
+    if (!moved_to.empty()) points = m.points;
     for (size_t i = 0; i < chosen.size(); ++i)
-      if (const int32_t a = local(chosen[i].first), b = local(chosen[i].second); active[i] && a >= 0 && b >= 0)
+      if (const int32_t a = local(chosen[i].first), b = local(chosen[i].second); active[i] && a >= 0 && b >= 0) {
         into[size_t(b)] = a;
+        if (!moved_to.empty() && moved_to[i].allFinite()) points[size_t(a)] = moved_to[i];
+      }
     failed.clear();
-    merge_nodes(m, into, trial, failed, kept_triangles);
+    merge_nodes(m, into, trial, failed, kept_triangles, moved_to.empty() ? nullptr : &points);
     if (peers) std::erase_if(failed, [&](int32_t n) { return !peers->answers_for(n); });
     // Triangles that turn over are failures enough; only without them is the
     // merged mesh validated (by every rank, if any rank saw them).

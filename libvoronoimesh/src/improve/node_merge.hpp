@@ -19,11 +19,12 @@ namespace vm::detail {
 class CollapsePeers;
 
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
-/// triangles that lose a corner disappear. Appends to `turned` the corners of
+/// triangles that lose a corner disappear. With `points`, the nodes of `out`
+/// lie there (a merge target may move). Appends to `turned` the corners of
 /// remaining triangles that would turn over, and sets `kept_triangles` to the
 /// index in `m` of each triangle of `out`.
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-                 std::vector<int32_t>& kept_triangles);
+                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr);
 
 /// Drops nodes no triangle uses and renumbers the rest in order; appends the
 /// old index of each kept node to `kept`.
@@ -51,9 +52,11 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 /// @param peers          in a distributed run, how the ranks agree; null in one process
 /// @param node_ids       the id of each node of `m`, increasing
 /// @param kept_triangles set to the old index of each triangle of the merged mesh
+/// @param moved_to       empty, or where each collapse's a goes (not finite: it stays)
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
-                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles);
+                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
+                     std::span<const Vec3> moved_to = {});
 
 } // namespace vm::detail

@@ -94,7 +94,50 @@ bool link_condition(const InterfaceMesh& mesh, int32_t a, int32_t b) {
 struct Candidate {
   double ratio;
   int32_t b, a;
+  bool merge = false; ///< two corners merged at their midpoint: a moves too
 };
+
+/// The smallest quality of the triangles that change when b merges into a
+/// placed at `to` (those at b, and at a if it moves): before (`old_q`) and
+/// after (`new_q`; 0 if one turns over).
+void merge_qualities(const InterfaceMesh& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves, double& old_q,
+                     double& new_q) {
+  const auto& pos = mesh.positions();
+  old_q = new_q = 1;
+  for (int32_t n : {b, a}) {
+    if (n == a && !a_moves) continue; // a's triangles stay as they are
+    mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
+      const Vec3 &p = pos[size_t(n)], &px = pos[size_t(x)], &py = pos[size_t(y)];
+      old_q = std::min(old_q, triangle_quality(p, px, py));
+      if (x == a || y == a || x == b || y == b) return; // this triangle disappears
+      const bool turned = (px - p).cross(py - p).dot((px - to).cross(py - to)) <= 0;
+      new_q = turned ? 0 : std::min(new_q, triangle_quality(to, px, py));
+    });
+  }
+}
+
+/// For a corner b, the merge with a neighbouring corner a < b on the same box
+/// faces closer than RemeshParams::merge_corners of the target, at their
+/// midpoint: close quadruple points become one higher-order point, where no
+/// triangle between them could be anything but a sliver. The phases keep their
+/// topology (the merged mesh must validate); the curve between them goes.
+std::optional<Candidate> best_corner_merge(const InterfaceMesh& mesh, std::span<const double> target, int32_t b,
+                                           const RemeshParams& params) {
+  if (params.merge_corners <= 0) return std::nullopt;
+  const auto& pos = mesh.positions();
+  std::optional<Candidate> best;
+  for (int32_t a : mesh.neighbours(b)) {
+    if (a > b || constraint_order(mesh, a) < 4 || mesh.box_faces()[size_t(a)] != mesh.box_faces()[size_t(b)]) continue;
+    const double ratio = (pos[size_t(a)] - pos[size_t(b)]).norm() / std::min(target[size_t(a)], target[size_t(b)]);
+    if (ratio >= params.merge_corners || (best && std::tie(best->ratio, best->a) <= std::tie(ratio, a))) continue;
+    if (!link_condition(mesh, a, b)) continue;
+    double old_q, new_q;
+    merge_qualities(mesh, b, a, 0.5 * (pos[size_t(a)] + pos[size_t(b)]), true, old_q, new_q);
+    if (new_q < std::min(params.min_quality, old_q)) continue;
+    best = Candidate{ratio, b, a, true};
+  }
+  return best;
+}
 
 /// The best collapse of node b, if any: b's shortest edge below kShortEdge of
 /// its target whose far end a lies on all of b's constraints (and, if b is on a
@@ -103,7 +146,7 @@ struct Candidate {
 std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<const double> target, int32_t b,
                                        const RemeshParams& params) {
   const int order = constraint_order(mesh, b);
-  if (order > 3) return std::nullopt; // corners stay
+  if (order > 3) return best_corner_merge(mesh, target, b, params);
   const auto& pos = mesh.positions();
   std::optional<Candidate> best;
   for (int32_t a : mesh.neighbours(b)) {
@@ -119,15 +162,8 @@ std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<cons
       if (w != a && (pos[size_t(a)] - pos[size_t(w)]).norm() > kLongEdge * std::min(target[size_t(a)], target[size_t(w)]))
         ok = false;
     if (!ok || !link_condition(mesh, a, b)) continue;
-    double old_q = 1, new_q = 1;
-    mesh.for_each_triangle_at(b, [&](int32_t x, int32_t y) {
-      const Vec3 &px = pos[size_t(x)], &py = pos[size_t(y)];
-      old_q = std::min(old_q, triangle_quality(pos[size_t(b)], px, py));
-      if (x == a || y == a) return; // this triangle disappears
-      const Vec3 before = (px - pos[size_t(b)]).cross(py - pos[size_t(b)]);
-      const Vec3 after = (px - pos[size_t(a)]).cross(py - pos[size_t(a)]);
-      new_q = before.dot(after) > 0 ? std::min(new_q, triangle_quality(pos[size_t(a)], px, py)) : 0;
-    });
+    double old_q, new_q;
+    merge_qualities(mesh, b, a, pos[size_t(a)], false, old_q, new_q);
     if (new_q < std::min(params.min_quality, old_q)) continue;
     best = Candidate{ratio, b, a};
   }
@@ -142,7 +178,8 @@ std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<cons
 /// drop for it.
 std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& mesh, std::span<const double> target,
                                                           const RemeshParams& params,
-                                                          std::unordered_multimap<int64_t, int32_t>& blame) {
+                                                          std::unordered_multimap<int64_t, int32_t>& blame,
+                                                          std::vector<Vec3>& moved_to) {
   std::vector<std::optional<Candidate>> found(mesh.num_nodes());
   detail::parallel_for_each_index(mesh.num_nodes(),
                                   [&](size_t b) { found[b] = best_collapse(mesh, target, int32_t(b), params); });
@@ -153,11 +190,17 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& m
             [](const Candidate& x, const Candidate& y) { return std::tie(x.ratio, x.b) < std::tie(y.ratio, y.b); });
   std::vector<std::pair<int64_t, int64_t>> chosen;
   std::vector<uint8_t> near_b(mesh.num_nodes(), 0), is_b(mesh.num_nodes(), 0);
+  const auto& pos = mesh.positions();
   for (const Candidate& c : candidates) {
-    if (near_b[size_t(c.b)] || is_b[size_t(c.a)]) continue;
+    if (near_b[size_t(c.b)] || is_b[size_t(c.a)] || (c.merge && near_b[size_t(c.a)])) continue;
     const int32_t id = int32_t(chosen.size());
-    is_b[size_t(c.b)] = near_b[size_t(c.b)] = 1;
-    for (int32_t n : mesh.neighbours(c.b)) near_b[size_t(n)] = 1;
+    // A merge moves its a as well: a is then held like a b (nobody's target, no
+    // neighbour of another b) so that every check stays exact.
+    for (int32_t moved : {c.b, c.merge ? c.a : c.b}) {
+      is_b[size_t(moved)] = near_b[size_t(moved)] = 1;
+      for (int32_t n : mesh.neighbours(moved)) near_b[size_t(n)] = 1;
+    }
+    moved_to.push_back(c.merge ? Vec3(0.5 * (pos[size_t(c.a)] + pos[size_t(c.b)])) : Vec3::Constant(NAN));
     for (int32_t end : {c.a, c.b}) {
       blame.emplace(end, id);
       for (int32_t n : mesh.neighbours(end))
@@ -270,13 +313,15 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   for (int round = 0; round < params.collapse_rounds; ++round) {
     target = target_edge_lengths(mesh, field, reference, params);
     std::unordered_multimap<int64_t, int32_t> blame;
-    const auto chosen = choose_collapses(mesh, target, params, blame);
+    std::vector<Vec3> moved_to;
+    const auto chosen = choose_collapses(mesh, target, params, blame, moved_to);
     if (chosen.empty()) break;
     m = mesh.to_node_mesh();
     std::vector<int64_t> ids(m.num_nodes());
     std::iota(ids.begin(), ids.end(), 0);
     std::vector<int32_t> kept_triangles, kept_nodes;
-    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles);
+    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
+                                                      moved_to);
     if (done == 0) break;
     stats.collapses += done;
     detail::drop_unused_nodes(m, kept_nodes);

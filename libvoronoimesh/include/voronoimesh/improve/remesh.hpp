@@ -33,6 +33,11 @@ struct RemeshParams {
   double tolerance = 0;
   /// The shortest target edge length (with `tolerance`).
   double min_size = 0.5;
+  /// Neighbouring corners (quadruple and higher points) closer than this share
+  /// of the target merge at their midpoint into one higher-order point, when
+  /// the mesh stays valid: the curve between them is too short for any
+  /// triangle at it to be more than a sliver. 0: corners never merge.
+  double merge_corners = 0.1;
   /// A collapse may leave no triangle below the smaller of this and the worst
   /// quality among the triangles it replaces.
   double min_quality = 0.3;
