@@ -6,7 +6,7 @@
 // their own label's phase (all; interior ones, whose 26 neighbours share their
 // label; the worst label), labels missing from the mesh, and seconds.
 //
-// usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]
+// usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T] [--lattice bcc|cube6]
 //        label_agreement --header
 
 #include "voronoimesh/check/locate.hpp"
@@ -35,6 +35,7 @@ struct Options {
   std::string pipeline = vm::kDefaultPipeline;
   int iterations = 20;
   int threads = 2;
+  vm::Lattice lattice = vm::Lattice::bcc;
 };
 
 /// Voxel centres of one label: how many, and how many lie in its phase.
@@ -54,6 +55,7 @@ int run(const std::string& path, const Options& o) {
   const vm::Scene scene = vm::load_input(path, o.input);
   vm::CreateParams close;
   close.close = true;
+  close.lattice = o.lattice;
   const auto phases = vm::with_outside_phase(scene.field, scene.grid.domain);
   const vm::SampledField samples =
       vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice));
@@ -98,7 +100,7 @@ int run(const std::string& path, const Options& o) {
   std::string missing;
   for (const auto& [label, c] : by_label) {
     const double share = 100.0 * double(c.agree) / double(c.voxels);
-    if (share < worst) worst = share, worst_label = label, worst_voxels = c.voxels;
+    if (share < worst || worst_voxels == 0) worst = share, worst_label = label, worst_voxels = c.voxels;
     if (c.agree == 0) missing += (missing.empty() ? "" : " ") + std::to_string(label);
   }
   const vm::MeshStats stats = vm::compute_stats(m);
@@ -121,6 +123,7 @@ int main(int argc, char** argv) {
   }
   if (argc < 2) {
     std::fputs("usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]\n"
+               "                       [--lattice bcc|cube6]\n"
                "       label_agreement --header\n",
                stderr);
     return 2;
@@ -132,6 +135,7 @@ int main(int argc, char** argv) {
     else if (flag == "--pipeline" && i + 1 < argc) o.pipeline = argv[++i];
     else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
     else if (flag == "--threads" && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else if (flag == "--lattice" && i + 1 < argc) o.lattice = std::strcmp(argv[++i], "cube6") == 0 ? vm::Lattice::cube6 : vm::Lattice::bcc;
     else {
       std::fprintf(stderr, "label_agreement: unknown option '%s'\n", flag.c_str());
       return 2;
