@@ -20,6 +20,11 @@ namespace {
 
 /// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
 constexpr double kShortEdge = 0.8;
+/// The target edge length for a tolerance e where a surface curves by k is
+/// sqrt(kCentroidRule e / k): an equilateral triangle of edge L on a sphere of
+/// radius R has its centroid L^2 / (6 R) off it, and edges reach 4/3 of the
+/// target before they split, so (3/4)^2 6 = 3.375.
+constexpr double kCentroidRule = 3.375;
 /// Rounds of splits per call: each halves the edges still too long.
 constexpr int kSplitRounds = 4;
 /// Splits edges longer than this share of their target, and lets no collapse make one (their 4/3).
@@ -297,8 +302,7 @@ std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseFi
     for (int i = 0; i < count; ++i)
       for (int j = i + 1; j < count; ++j)
         curvature = std::max(curvature, interface_curvature(*field, s[size_t(i)], s[size_t(j)], mesh.positions()[v], delta));
-    // A chord of length L on a circle of radius R stands L^2 / (8 R) off it.
-    if (curvature > 0) target[v] = std::clamp(std::sqrt(8 * tolerance / curvature), shortest, longest);
+    if (curvature > 0) target[v] = std::clamp(std::sqrt(kCentroidRule * tolerance / curvature), shortest, longest);
   });
   return target;
 }

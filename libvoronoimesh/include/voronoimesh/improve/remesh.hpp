@@ -29,7 +29,10 @@ struct RemeshParams {
   double size = 1.5;
   /// With the phase functions: the largest distance a triangle may keep from a
   /// curved surface (like CGAL's facet distance), which shortens the target
-  /// where surfaces curve: L = sqrt(8 tolerance / curvature). 0: uniform size.
+  /// where surfaces curve: L = sqrt(3.375 tolerance / curvature), so that a
+  /// triangle's centroid stays within the tolerance of a sphere even with edges
+  /// at 4/3 of the target (curvature: sqrt(k1^2 + k2^2) of the level sets of
+  /// the phase functions). 0: uniform size.
   double tolerance = 0;
   /// The shortest target edge length (with `tolerance`).
   double min_size = 0.5;
