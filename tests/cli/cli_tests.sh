@@ -87,6 +87,7 @@ expect_error "mesh without phases" 3 "nophase\.ply: .*phase0" -- "$vm" smooth no
 expect_error "field with too few phases" 2 "twophases\.json: has 2 phases" -- "$vm" smooth demo.ply --field twophases.json -o out.ply
 expect_error "field elsewhere" 2 "elsewhere\.json: its domain" -- "$vm" smooth demo.ply --field elsewhere.json -o out.ply
 expect_error "smooth without a field" 2 "needs the phase functions" -- "$vm" smooth demo.ply -o out.ply
+expect_error "remesh tolerance without a field" 2 "remesh.tolerance needs the phase functions" -- "$vm" smooth demo.ply --pipeline remesh:tolerance=0.1,flip -o out.ply
 expect_error "unknown pass" 2 "unknown pass 'smoth'" -- "$vm" mesh --grid 8 --pipeline smoth,flip -o out.ply
 expect_error "unknown parameter" 2 "no parameter 'rest'" -- "$vm" mesh --grid 8 --pipeline smooth:rest=1 -o out.ply
 expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8 --pipeline smooth:rest_factor=9 -o out.ply

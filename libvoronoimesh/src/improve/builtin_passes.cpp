@@ -4,6 +4,7 @@
 /// Defaults are the paper's. smooth, project, clamp and flip also run on a part
 /// of a distributed mesh (PassContext::parts, improve/part_agreement.hpp).
 
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/improve/clamp.hpp"
 #include "voronoimesh/improve/flip.hpp"
 #include "voronoimesh/improve/project.hpp"
@@ -11,6 +12,7 @@
 #include "voronoimesh/improve/remesh.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
+#include "core/text.hpp"
 #include "improve/part_agreement.hpp"
 
 namespace vm {
@@ -38,6 +40,11 @@ public:
         last_(int(p.at("last"))) {}
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
+    // Curvature comes from the phase functions: without them the target would
+    // silently be uniform.
+    if (params_.tolerance > 0 && !c.field)
+      throw InvalidInput(located("pipeline", "remesh.tolerance needs the phase functions: give the input the mesh was "
+                                             "made from (--field)"));
     if (reference_ == 0) reference_ = rms_edge_length(c.mesh);
     RemeshParams params = params_;
     params.guard_crossings = c.guard_crossings;
