@@ -49,6 +49,8 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   const PassRegistry registry = builtin_registry();
   const Pipeline moving = Pipeline::parse("smooth,project,clamp", registry);
   const Pipeline flips = Pipeline::parse("flip", registry);
+  const std::optional<Pipeline> remesh =
+      o.remesh.empty() ? std::nullopt : std::optional<Pipeline>(Pipeline::parse(o.remesh, registry));
   // A closed mesh has the extra phase outside the box; the passes need its function too.
   const auto field = phases_of_mesh(created, c.scene.field);
   InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
@@ -56,6 +58,12 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   once.iterations = 1;
   for (int it = 1; it <= o.iterations; ++it) {
     const std::string stage = "iteration " + std::to_string(it);
+    if (remesh) {
+      // A fresh pass each iteration: it remeshes the mesh as it is, so a size
+      // over 1 coarsens it every time (a stress test, not a normal run).
+      remesh->run(mesh, field.get(), once);
+      if (!valid_and_unintersected(mesh.to_node_mesh(), stage + " after remeshing", r)) return;
+    }
     const std::vector<Vec3> before = face_normals(mesh);
     moving.run(mesh, field.get(), once);
     if (const size_t turned = turned_faces(before, face_normals(mesh)); turned > 0) {

@@ -17,6 +17,9 @@ struct CheckOptions {
   /// Also mesh the case (create and improve, as mesh_scene does) on 1 and on
   /// 2 threads and require identical results.
   bool compare_threads = false;
+  /// A remesh pass spec ("remesh:size=2"), run first in every iteration and
+  /// checked like the others (valid, nothing intersecting); empty: none.
+  std::string remesh;
 };
 
 /// What check_case() found.

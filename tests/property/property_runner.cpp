@@ -4,7 +4,7 @@
 // line per failing case with the command that reproduces it.
 //
 //   property_runner [--seed S] [--first A] [--count N] [--iterations K]
-//                   [--threads-every M] [--progress P]
+//                   [--threads-every M] [--progress P] [--remesh SPEC]
 //   property_runner --seed S --case I --verbose     one case, with its scene
 
 #include "case_checks.hpp"
@@ -25,11 +25,12 @@ struct Args {
   uint64_t threads_every = 16; ///< 0: never compare thread counts
   uint64_t progress = 0;       ///< print a progress line every this many cases (0: never)
   bool verbose = false;
+  std::string remesh; ///< a remesh pass spec run first in every iteration; empty: none
 };
 
 [[noreturn]] void usage(const char* problem) {
   std::fprintf(stderr, "property_runner: %s\nusage: property_runner [--seed S] [--first A] [--count N] "
-                       "[--case I] [--iterations K] [--threads-every M] [--progress P] [--verbose]\n", problem);
+                       "[--case I] [--iterations K] [--threads-every M] [--progress P] [--remesh SPEC] [--verbose]\n", problem);
   std::exit(2);
 }
 
@@ -39,6 +40,10 @@ Args parse(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--verbose") {
       a.verbose = true;
+      continue;
+    }
+    if (arg == "--remesh" && i + 1 < argc) {
+      a.remesh = argv[++i];
       continue;
     }
     if (i + 1 >= argc) usage(("missing value after " + arg).c_str());
@@ -75,6 +80,7 @@ int main(int argc, char** argv) {
     CheckOptions o;
     o.iterations = a.iterations;
     o.compare_threads = a.threads_every > 0 && index % a.threads_every == 0;
+    o.remesh = a.remesh;
     if (a.verbose) {
       std::printf("%s\n", c.description().c_str());
       if (!c.scene_json.empty()) std::printf("scene:\n%s\n", c.scene_json.c_str());

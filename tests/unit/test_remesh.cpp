@@ -99,6 +99,19 @@ TEST(Remesh, splits_refine_without_moving_the_surfaces) {
   EXPECT_NEAR(total_area(fine), total_area(created), 1e-12 * total_area(created));
 }
 
+TEST(Remesh, splits_stop_at_the_triangle_limit) {
+  // A target a quarter of the edges would take four rounds of splits (up to
+  // 256x the triangles); with a limit of twice the mesh, only the first runs.
+  const NodeMesh created = test::box_t_junction(4);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  RemeshParams params;
+  params.size = 0.25;
+  params.max_triangles = 2 * created.num_triangles();
+  remesh_edges(mesh, nullptr, rms_edge_length(mesh), params);
+  EXPECT_EQ(mesh.num_triangles(), 4 * created.num_triangles());
+  EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+}
+
 class RemeshCorners : public testing::TestWithParam<std::string> {};
 
 TEST_P(RemeshCorners, collapses_never_move_a_quadruple_point) {

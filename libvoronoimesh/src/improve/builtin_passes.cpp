@@ -15,6 +15,8 @@
 #include "core/text.hpp"
 #include "improve/part_agreement.hpp"
 
+#include <cmath>
+
 namespace vm {
 namespace {
 
@@ -32,7 +34,8 @@ private:
 
 /// The remesh pass: its lengths are multiples of the mesh's RMS edge length when
 /// it first runs (for a created mesh, about the lattice's), kept for the run so
-/// that the target does not shrink or grow with the mesh it makes.
+/// that the target does not shrink or grow with the mesh it makes; so is the
+/// most triangles its splits may make.
 class RemeshPass : public Pass {
 public:
   explicit RemeshPass(const ParamValues& p)
@@ -45,8 +48,14 @@ public:
     if (params_.tolerance > 0 && !c.field)
       throw InvalidInput(located("pipeline", "remesh.tolerance needs the phase functions: give the input the mesh was "
                                              "made from (--field)"));
-    if (reference_ == 0) reference_ = rms_edge_length(c.mesh);
+    if (reference_ == 0) {
+      reference_ = rms_edge_length(c.mesh);
+      // Uniform refinement to `size` multiplies the triangles by 1/size^2; four
+      // times that (at least 4x) is the most a run may make.
+      max_triangles_ = c.mesh.num_triangles() * size_t(std::ceil(4 / std::min(1.0, params_.size * params_.size)));
+    }
     RemeshParams params = params_;
+    params.max_triangles = max_triangles_;
     params.guard_crossings = c.guard_crossings;
     remesh_edges(c.mesh, c.field, reference_, params);
   }
@@ -55,6 +64,7 @@ private:
   RemeshParams params_;
   int last_;
   double reference_ = 0;
+  size_t max_triangles_ = 0;
 };
 
 PassInfo make_info(std::string name, std::string summary, std::vector<ParamSpec> params, bool moves, bool field,

@@ -339,6 +339,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // Splits in rounds too (new nodes take the mean target of their edge), so an
   // edge several times too long is cut down in one call.
   for (int round = 0; round < kSplitRounds; ++round) {
+    if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
     const size_t splits = split_long_edges(m, target);
     if (splits == 0) break;
     stats.splits += splits;

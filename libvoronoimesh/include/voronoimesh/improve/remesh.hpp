@@ -47,6 +47,10 @@ struct RemeshParams {
   /// Rounds of collapses per call; each claims the rings around its collapses,
   /// so one round reaches only part of the short edges.
   int collapse_rounds = 4;
+  /// No split round starts once the mesh has this many triangles (0: no limit):
+  /// a target far below the mesh's edges (a closed box whose interfaces are a
+  /// few tiny triangles) must not refine without bound.
+  size_t max_triangles = 0;
   /// Refuse collapses after which a moved triangle crosses another surface.
   bool guard_crossings = true;
 };
