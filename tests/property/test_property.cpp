@@ -70,6 +70,18 @@ TEST(PropertyLongTier, cases_it_found_failing_pass) {
   }
 }
 
+// Found by `property_runner --remesh remesh:size=1:merge_corners=0.1` (seed 11):
+// on a grid-values scene's flat interfaces, splitting edges after collapses put
+// a rounded midpoint a hair off a coplanar neighbour's plane, and 4 triangle
+// pairs crossed; splits are now checked and undone where they cross.
+TEST(PropertyRemesh, a_case_where_splits_crossed_passes) {
+  const RandomCase c = random_case(11, 290);
+  CheckOptions o;
+  o.remesh = "remesh:size=1:merge_corners=0.1";
+  const CaseResult r = check_case(c, o);
+  EXPECT_TRUE(r.ok()) << c.description() << "\n  " << (r.ok() ? "" : r.failures.front());
+}
+
 // The generator is a pure function of (seed, case): the long tier's failing
 // case ids reproduce anywhere.
 TEST(PropertyGenerator, cases_are_reproducible_and_cover_every_kind) {

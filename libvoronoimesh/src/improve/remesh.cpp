@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 #include "improve/node_merge.hpp"
 
+#include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
@@ -10,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <tuple>
@@ -217,21 +219,26 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& m
 }
 
 /// Splits, in `m`, every edge longer than kLongEdge of the smaller target of
-/// its nodes at its midpoint (whose target, appended to `target`, is the mean
+/// its nodes and with neither node `held` (one flag per node, extended for the
+/// new ones; `parents` gets each new node's edge) at its midpoint (whose target, appended to `target`, is the mean
 /// of its ends'), in every triangle that has it; each triangle is
 /// cut by the pattern of its split edges (two split edges: the shorter diagonal
 /// of the remaining quad). Returns the number of edges split.
-size_t split_long_edges(NodeMesh& m, std::vector<double>& target) {
+size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<uint8_t>& held,
+                        std::vector<std::array<int32_t, 2>>& parents) {
   std::unordered_map<uint64_t, int32_t> midpoint; // edge (low, high) -> new node
   auto key = [](int32_t u, int32_t v) { return uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)); };
   for (const auto& t : m.triangles)
     for (int k = 0; k < 3; ++k) {
       const int32_t u = t[size_t(k)], v = t[size_t((k + 1) % 3)];
       const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
-      if (len <= kLongEdge * std::min(target[size_t(u)], target[size_t(v)])) continue;
+      if (len <= kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) || held[size_t(u)] || held[size_t(v)])
+        continue;
       if (midpoint.emplace(key(u, v), int32_t(m.points.size())).second) {
         m.points.push_back(0.5 * (m.points[size_t(u)] + m.points[size_t(v)]));
         target.push_back(0.5 * (target[size_t(u)] + target[size_t(v)]));
+        held.push_back(0);
+        parents.push_back({u, v});
       }
     }
   if (midpoint.empty()) return 0;
@@ -337,12 +344,48 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     m = mesh.to_node_mesh();
   }
   // Splits in rounds too (new nodes take the mean target of their edge), so an
-  // edge several times too long is cut down in one call.
-  for (int round = 0; round < kSplitRounds; ++round) {
-    if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
-    const size_t splits = split_long_edges(m, target);
-    if (splits == 0) break;
-    stats.splits += splits;
+  // edge several times too long is cut down in one call. New triangles lie in
+  // old ones, but on flat interfaces a rounded midpoint can stand a hair off a
+  // coplanar neighbour's plane: with the guard, splits whose triangles cross
+  // another are undone and the nodes around them held from splitting.
+  const NodeMesh unsplit = m;
+  const std::vector<double> unsplit_target = target;
+  const size_t old_nodes = m.num_nodes();
+  std::vector<uint8_t> held(old_nodes, 0);
+  for (int attempt = 0;; ++attempt) {
+    std::vector<uint8_t> now_held = held;
+    std::vector<std::array<int32_t, 2>> parents;
+    stats.splits = 0;
+    for (int round = 0; round < kSplitRounds; ++round) {
+      if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
+      const size_t splits = split_long_edges(m, target, now_held, parents);
+      if (splits == 0) break;
+      stats.splits += splits;
+    }
+    if (stats.splits == 0 || !params.guard_crossings) break;
+    std::vector<uint8_t> involved(m.num_triangles(), 0);
+    for (size_t t = 0; t < m.num_triangles(); ++t)
+      for (int32_t v : m.triangles[t]) involved[t] |= size_t(v) >= old_nodes;
+    const IntersectionReport crossings = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
+    if (crossings.ok()) break;
+    // Hold the old nodes behind every corner of a crossing triangle (a new
+    // node's are those of the edge it split, walked back) and split again.
+    std::vector<int32_t> walk;
+    for (const auto& pair : crossings.pairs)
+      for (int32_t t : pair)
+        for (int32_t v : m.triangles[size_t(t)]) walk.push_back(v);
+    while (!walk.empty()) {
+      const int32_t v = walk.back();
+      walk.pop_back();
+      if (size_t(v) < old_nodes) held[size_t(v)] = 1;
+      else walk.insert(walk.end(), parents[size_t(v) - old_nodes].begin(), parents[size_t(v) - old_nodes].end());
+    }
+    m = unsplit;
+    target = unsplit_target;
+    if (attempt == 2) { // still crossing: no splits in this call
+      stats.splits = 0;
+      break;
+    }
   }
   if (stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
   return stats;

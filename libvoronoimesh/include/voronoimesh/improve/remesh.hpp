@@ -11,8 +11,9 @@
 /// (three phases, or two and a box face) only along its curve, into another
 /// node inside the same curve, so every curve keeps at least one edge; corners (quadruple and higher points, box
 /// corners and edges) are never collapsed. Splits only add nodes on existing
-/// edges (each new triangle lies in its old one), so they need no check;
-/// collapses pass validation and, with the guard on, the crossing check.
+/// edges (each new triangle lies in its old one); collapses pass validation,
+/// and with the guard on both pass the crossing check (a rounded midpoint can
+/// stand a hair off a coplanar neighbour).
 
 #include "voronoimesh/fields/phase_field.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
