@@ -320,9 +320,10 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // a fraction of the short edges), the mesh rebuilt after each; then splits.
   NodeMesh m;
   std::vector<double> target;
-  bool changed = false;
+  bool changed = false, target_current = false;
   for (int round = 0; round < params.collapse_rounds; ++round) {
     target = target_edge_lengths(mesh, field, reference, params);
+    target_current = true;
     std::unordered_multimap<int64_t, int32_t> blame;
     std::vector<Vec3> moved_to;
     const auto chosen = choose_collapses(mesh, target, params, blame, moved_to);
@@ -338,11 +339,10 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     detail::drop_unused_nodes(m, kept_nodes);
     mesh = InterfaceMesh::from_node_mesh(m);
     changed = true;
+    target_current = false; // its nodes were renumbered
   }
-  if (!changed) {
-    target = target_edge_lengths(mesh, field, reference, params);
-    m = mesh.to_node_mesh();
-  }
+  if (!changed) m = mesh.to_node_mesh();
+  if (!target_current) target = target_edge_lengths(mesh, field, reference, params);
   // Splits in rounds too (new nodes take the mean target of their edge), so an
   // edge several times too long is cut down in one call. New triangles lie in
   // old ones, but on flat interfaces a rounded midpoint can stand a hair off a
