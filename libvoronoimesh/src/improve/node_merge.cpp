@@ -55,7 +55,7 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
 }
 
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes) {
+                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -81,13 +81,23 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   for (int32_t n : report.nodes)
     if (core[size_t(n)]) nodes.push_back(n);
   if (!guard_crossings) return true;
-  std::vector<uint8_t> involved(trial.num_triangles(), 0);
+  // A crossing counts if one of its triangles is at a target. After a retry,
+  // only pairs with a triangle at a changed node can be new: any other pair was
+  // tested in the last trial, and had it crossed, its collapses would be gone.
+  std::vector<uint8_t> involved(trial.num_triangles(), 0), searched;
   for (size_t t = 0; t < trial.num_triangles(); ++t)
     for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
+  if (!changed.empty()) {
+    searched.assign(trial.num_triangles(), 0);
+    for (size_t t = 0; t < trial.num_triangles(); ++t)
+      for (int32_t v : trial.triangles[t]) searched[t] |= changed[size_t(v)];
+  }
   const IntersectionReport crossings =
-      find_self_intersections(trial, std::numeric_limits<size_t>::max(), involved, false);
-  for (const auto& pair : crossings.pairs)
+      find_self_intersections(trial, std::numeric_limits<size_t>::max(), changed.empty() ? involved : searched, false);
+  for (const auto& pair : crossings.pairs) {
+    if (!involved[size_t(pair[0])] && !involved[size_t(pair[1])]) continue;
     for (int32_t t : pair) nodes.insert(nodes.end(), trial.triangles[size_t(t)].begin(), trial.triangles[size_t(t)].end());
+  }
   return true;
 }
 
@@ -102,9 +112,12 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
   };
   // All at once, checked once. Collapses in a batch share no triangle, so a
   // failing node is blamed on the few collapses around it: those are dropped
-  // and the rest checked again (one or two whole-mesh checks, not one per collapse).
+  // and the rest checked again (one whole-mesh check, then searches around the
+  // dropped collapses only; not one check per collapse).
   std::vector<char> active(chosen.size(), 1);
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
+  // Once a trial has searched for crossings: the ends of the collapses dropped since.
+  std::vector<uint8_t> changed;
   NodeMesh trial;
   size_t done = 0;
   std::vector<Vec3> points;
@@ -122,7 +135,10 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     // Triangles that turn over are failures enough; only without them is the
     // merged mesh validated (by every rank, if any rank saw them).
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
-    if (!blamed) blamed = find_merge_failures(trial, into, guard_crossings, peers, failed);
+    if (!blamed) {
+      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed);
+      changed.assign(m.num_nodes(), 0);
+    }
     if (peers) blamed = !peers->any(!blamed);
     std::vector<int64_t> failed_ids;
     for (int32_t n : failed) failed_ids.push_back(node_ids[size_t(n)]);
@@ -135,7 +151,11 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     size_t dropped = 0;
     for (int64_t id : failed_ids)
       for (auto [c, end] = blame.equal_range(id); c != end; ++c)
-        if (active[size_t(c->second)]) active[size_t(c->second)] = 0, ++dropped;
+        if (active[size_t(c->second)]) {
+          active[size_t(c->second)] = 0, ++dropped;
+          for (int64_t end_id : {chosen[size_t(c->second)].first, chosen[size_t(c->second)].second})
+            if (const int32_t n = local(end_id); n >= 0 && !changed.empty()) changed[size_t(n)] = 1;
+        }
     if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
     left -= dropped;
   }

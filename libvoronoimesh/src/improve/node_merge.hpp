@@ -35,9 +35,12 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 /// triangles at a merge target that cross a triangle of another surface.
 /// Returns false if it fails somewhere no node names (then nothing in the
 /// batch can be trusted). `peers`: in a distributed run, which rank answers
-/// for which target; null in one process.
+/// for which target; null in one process. `changed`: empty, or when `trial`
+/// retries a batch whose last trial's crossings were all reported, one flag per
+/// node set where that trial differed (the ends of the collapses dropped since):
+/// then only crossings with a triangle at a flagged node are searched for.
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes);
+                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {});
 
 /// Makes as many of the collapses `chosen` (b -> a, as node ids; no two share a
 /// triangle) as pass, all at once: after each merge of the active ones, the
