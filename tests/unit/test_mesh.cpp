@@ -2,11 +2,17 @@
 
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include "mesh/node_rings.hpp"
 
 #include <OpenMesh/Tools/Utils/MeshCheckerT.hh>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <random>
 #include <sstream>
 
@@ -228,4 +234,37 @@ TEST(InterfaceMesh, random_soups_never_crash_openmesh) {
   }
   EXPECT_GT(built, 100u);
   EXPECT_GT(refused, 100u);
+}
+
+// The remesh pass asks NodeRings between rebuilds what it asked the
+// InterfaceMesh before: every answer must be the same, on an open mesh (box
+// faces on its surfaces' borders) and a closed one (an outside phase).
+TEST(NodeRings, answers_as_the_interface_mesh_does) {
+  const Scene scene = test::example_scene("voronoi7.json", 16);
+  CreateParams closed;
+  closed.close = true;
+  for (const NodeMesh& m : {test::created_mesh(scene),
+                            test::created_mesh(scene, closed, with_outside_phase(scene.field, scene.grid.domain).get())}) {
+    const InterfaceMesh im = InterfaceMesh::from_node_mesh(m);
+    const detail::NodeRings rings(m);
+    ASSERT_EQ(rings.num_nodes(), im.num_nodes());
+    EXPECT_EQ(rings.phases(), im.phases());
+    EXPECT_EQ(rings.box_faces(), im.box_faces());
+    EXPECT_EQ(rings.outside_phase(), im.outside_phase());
+    size_t box_nodes = 0;
+    for (int32_t n = 0; n < int32_t(m.num_nodes()); ++n) {
+      const auto a = rings.neighbours(n), b = im.neighbours(n);
+      ASSERT_EQ(std::vector<int32_t>(a.begin(), a.end()), std::vector<int32_t>(b.begin(), b.end())) << "node " << n;
+      std::vector<std::array<int32_t, 2>> from_rings, from_mesh;
+      rings.for_each_triangle_at(n, [&](int32_t x, int32_t y) { from_rings.push_back({x, y}); });
+      im.for_each_triangle_at(n, [&](int32_t x, int32_t y) { from_mesh.push_back({x, y}); });
+      std::sort(from_rings.begin(), from_rings.end());
+      std::sort(from_mesh.begin(), from_mesh.end());
+      EXPECT_EQ(from_rings, from_mesh) << "node " << n;
+      for (int32_t w : b) EXPECT_EQ(rings.constraints_within(n, w), im.constraints_within(n, w)) << n << "-" << w;
+      for (int32_t p = -1; p <= int32_t(scene.field->num_phases()); ++p) EXPECT_EQ(rings.has_phase(n, p), im.has_phase(n, p));
+      box_nodes += im.box_faces()[size_t(n)] != 0;
+    }
+    EXPECT_GT(box_nodes, 0u); // the box faces were compared where they are set
+  }
 }

@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "improve/node_merge.hpp"
+#include "mesh/node_rings.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
@@ -19,6 +20,8 @@
 
 namespace vm {
 namespace {
+
+using detail::NodeRings;
 
 /// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
 constexpr double kShortEdge = 0.8;
@@ -61,31 +64,29 @@ double interface_curvature(const PhaseField& field, int i, int j, const Vec3& x,
 /// its box faces, less one for the outside phase of a closed mesh (whose
 /// surfaces are the box faces). 2 on a surface, 3 on a curve (a triple curve,
 /// a surface meeting the box, a box edge), more at a corner.
-int constraint_order(const InterfaceMesh& mesh, int32_t n) {
+int constraint_order(const NodeRings& mesh, int32_t n) {
   const int outside = mesh.outside_phase();
-  return junction_order(mesh, n) - (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
+  return phase_count(mesh.phases()[size_t(n)]) + std::popcount(unsigned(mesh.box_faces()[size_t(n)])) -
+         (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
 }
 
 /// True when the edge a-b runs along a curve: its triangles are not exactly two
 /// of one phase pair (a junction, or a surface's edge on the box), or both ends
 /// lie on one edge of the box.
-bool along_curve(const InterfaceMesh& mesh, int32_t a, int32_t b) {
+bool along_curve(const NodeRings& mesh, int32_t a, int32_t b) {
   if (std::popcount(unsigned(mesh.box_faces()[size_t(a)] & mesh.box_faces()[size_t(b)])) >= 2) return true;
-  const OMesh& om = mesh.omesh();
   std::vector<PhasePair> pairs;
-  for (int32_t c : mesh.copies(a))
-    for (auto h : om.voh_range(OMesh::VertexHandle(c))) {
-      if (mesh.node(om.to_vertex_handle(h)) != b) continue;
-      for (auto side : {h, om.opposite_halfedge_handle(h)})
-        if (!om.is_boundary(side)) pairs.push_back(mesh.pair(om.face_handle(side)));
-    }
+  for (int32_t t : mesh.triangles_at(a)) {
+    const auto& tri = mesh.mesh().triangles[size_t(t)];
+    if (std::find(tri.begin(), tri.end(), b) != tri.end()) pairs.push_back(mesh.mesh().pairs[size_t(t)]);
+  }
   return pairs.size() != 2 || pairs[0] != pairs[1];
 }
 
 /// True when the nodes next to both a and b are exactly the third corners of
 /// the triangles on edge a-b (the link condition, at the node level): else the
 /// collapse would fold two edges into one that more triangles share.
-bool link_condition(const InterfaceMesh& mesh, int32_t a, int32_t b) {
+bool link_condition(const NodeRings& mesh, int32_t a, int32_t b) {
   std::vector<int32_t> opposite, common;
   mesh.for_each_triangle_at(b, [&](int32_t x, int32_t y) {
     if (x == a) opposite.push_back(y);
@@ -107,7 +108,7 @@ struct Candidate {
 /// The smallest quality of the triangles that change when b merges into a
 /// placed at `to` (those at b, and at a if it moves): before (`old_q`) and
 /// after (`new_q`; 0 if one turns over).
-void merge_qualities(const InterfaceMesh& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves, double& old_q,
+void merge_qualities(const NodeRings& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves, double& old_q,
                      double& new_q) {
   const auto& pos = mesh.positions();
   old_q = new_q = 1;
@@ -128,7 +129,7 @@ void merge_qualities(const InterfaceMesh& mesh, int32_t b, int32_t a, const Vec3
 /// midpoint: close quadruple points become one higher-order point, where no
 /// triangle between them could be anything but a sliver. The phases keep their
 /// topology (the merged mesh must validate); the curve between them goes.
-std::optional<Candidate> best_corner_merge(const InterfaceMesh& mesh, std::span<const double> target, int32_t b,
+std::optional<Candidate> best_corner_merge(const NodeRings& mesh, std::span<const double> target, int32_t b,
                                            const RemeshParams& params) {
   if (params.merge_corners <= 0) return std::nullopt;
   const auto& pos = mesh.positions();
@@ -150,7 +151,7 @@ std::optional<Candidate> best_corner_merge(const InterfaceMesh& mesh, std::span<
 /// its target whose far end a lies on all of b's constraints (and, if b is on a
 /// curve, is its neighbour along it inside the curve), that makes no edge longer than kLongEdge of its target and no
 /// triangle worse than RemeshParams::min_quality (or the worst it replaces).
-std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<const double> target, int32_t b,
+std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const double> target, int32_t b,
                                        const RemeshParams& params) {
   const int order = constraint_order(mesh, b);
   if (order > 3) return best_corner_merge(mesh, target, b, params);
@@ -183,7 +184,7 @@ std::optional<Candidate> best_collapse(const InterfaceMesh& mesh, std::span<cons
 /// each is judged exactly. Several may share their a. `blame` gets, for each
 /// node a failure may be reported at (a, b and their rings), the collapses to
 /// drop for it.
-std::vector<std::pair<int64_t, int64_t>> choose_collapses(const InterfaceMesh& mesh, std::span<const double> target,
+std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh, std::span<const double> target,
                                                           const RemeshParams& params,
                                                           std::unordered_multimap<int64_t, int32_t>& blame,
                                                           std::vector<Vec3>& moved_to) {
@@ -294,55 +295,61 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
   return midpoint.size();
 }
 
-} // namespace
 
-std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseField* field, double reference,
-                                        const RemeshParams& params) {
+/// target_edge_lengths() of nodes at `positions` with phase sets `phases`.
+std::vector<double> targets(const std::vector<Vec3>& positions, const std::vector<PhaseSet>& phases,
+                            const PhaseField* field, double reference, const RemeshParams& params) {
   const double longest = params.size * reference, shortest = std::min(params.min_size, params.size) * reference;
-  std::vector<double> target(mesh.num_nodes(), longest);
+  std::vector<double> target(positions.size(), longest);
   if (!field || params.tolerance <= 0) return target;
   const double tolerance = params.tolerance * reference, delta = 0.5 * reference;
-  detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
-    const PhaseSet& s = mesh.phases()[v];
+  detail::parallel_for_each_index(positions.size(), [&](size_t v) {
+    const PhaseSet& s = phases[v];
     const int count = std::min(phase_count(s), 3);
     double curvature = 0;
     for (int i = 0; i < count; ++i)
       for (int j = i + 1; j < count; ++j)
-        curvature = std::max(curvature, interface_curvature(*field, s[size_t(i)], s[size_t(j)], mesh.positions()[v], delta));
+        curvature = std::max(curvature, interface_curvature(*field, s[size_t(i)], s[size_t(j)], positions[v], delta));
     if (curvature > 0) target[v] = std::clamp(std::sqrt(kCentroidRule * tolerance / curvature), shortest, longest);
   });
   return target;
 }
 
+} // namespace
+
+std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseField* field, double reference,
+                                        const RemeshParams& params) {
+  return targets(mesh.positions(), mesh.phases(), field, reference, params);
+}
+
 RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double reference, const RemeshParams& params) {
   RemeshStats stats;
   // Collapses in rounds (each claims the rings around it, so one round reaches
-  // a fraction of the short edges), the mesh rebuilt after each; then splits.
-  NodeMesh m;
+  // a fraction of the short edges), each on the NodeMesh the last one left:
+  // the InterfaceMesh is rebuilt once, after the splits.
+  NodeMesh m = mesh.to_node_mesh();
   std::vector<double> target;
-  bool changed = false, target_current = false;
+  bool collapsed = false, target_current = false;
   for (int round = 0; round < params.collapse_rounds; ++round) {
-    target = target_edge_lengths(mesh, field, reference, params);
+    const NodeRings rings(m);
+    target = targets(m.points, rings.phases(), field, reference, params);
     target_current = true;
     std::unordered_multimap<int64_t, int32_t> blame;
     std::vector<Vec3> moved_to;
-    const auto chosen = choose_collapses(mesh, target, params, blame, moved_to);
+    const auto chosen = choose_collapses(rings, target, params, blame, moved_to);
     if (chosen.empty()) break;
-    m = mesh.to_node_mesh();
     std::vector<int64_t> ids(m.num_nodes());
     std::iota(ids.begin(), ids.end(), 0);
     std::vector<int32_t> kept_triangles, kept_nodes;
     const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
-                                                      moved_to);
+                                              moved_to);
     if (done == 0) break;
     stats.collapses += done;
     detail::drop_unused_nodes(m, kept_nodes);
-    mesh = InterfaceMesh::from_node_mesh(m);
-    changed = true;
+    collapsed = true;
     target_current = false; // its nodes were renumbered
   }
-  if (!changed) m = mesh.to_node_mesh();
-  if (!target_current) target = target_edge_lengths(mesh, field, reference, params);
+  if (!target_current) target = targets(m.points, NodeRings(m).phases(), field, reference, params);
   // Splits in rounds too (new nodes take the mean target of their edge), so an
   // edge several times too long is cut down in one call. New triangles lie in
   // old ones, but on flat interfaces a rounded midpoint can stand a hair off a
@@ -387,7 +394,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
       break;
     }
   }
-  if (stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
+  if (collapsed || stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
   return stats;
 }
 

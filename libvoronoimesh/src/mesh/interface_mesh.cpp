@@ -10,6 +10,7 @@
 #include "core/parallel.hpp"
 #include "core/text.hpp"
 #include "core/union_find.hpp"
+#include "mesh/node_rings.hpp"
 #include "mesh/topology.hpp"
 #include "voronoimesh/core/errors.hpp"
 
@@ -229,13 +230,7 @@ bool InterfaceMesh::adjacent(int32_t a, int32_t b) const {
 }
 
 void InterfaceMesh::find_box_faces() {
-  const double tol = 1e-9 * (domain_.max - domain_.min).norm();
-  box_.assign(pos_.size(), 0);
-  for (size_t n = 0; n < pos_.size(); ++n)
-    for (int a = 0; a < 3; ++a) {
-      if (std::abs(pos_[n][a] - domain_.min[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a));
-      if (std::abs(pos_[n][a] - domain_.max[a]) <= tol) box_[n] |= uint8_t(1u << (2 * a + 1));
-    }
+  box_ = detail::box_faces_of(pos_, domain_);
 }
 
 void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
@@ -287,9 +282,7 @@ std::array<int32_t, 3> InterfaceMesh::face_nodes(OMesh::FaceHandle f) const {
 }
 
 bool InterfaceMesh::constraints_within(int32_t a, int32_t b) const {
-  if (box_[size_t(a)] & ~box_[size_t(b)]) return false;
-  const PhaseSet &pa = phases_[size_t(a)], &pb = phases_[size_t(b)];
-  return std::includes(pb.begin(), pb.begin() + phase_count(pb), pa.begin(), pa.begin() + phase_count(pa));
+  return detail::constraints_within(phases_[size_t(a)], box_[size_t(a)], phases_[size_t(b)], box_[size_t(b)]);
 }
 
 } // namespace vm

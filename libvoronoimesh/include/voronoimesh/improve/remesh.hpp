@@ -76,7 +76,7 @@ std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseFi
 /// One call of the remesh pass: rounds of collapses of edges shorter than 4/5
 /// of the target (the smaller of their nodes'), shortest first, no two
 /// neighbouring nodes removed in one round, never making an edge longer than 4/3
-/// of the target (RemeshParams::collapse_rounds, the mesh rebuilt after each);
+/// of the target (RemeshParams::collapse_rounds, each on the node-level mesh the last left);
 /// then rounds of splits of every edge longer than 4/3 of the target at its
 /// midpoint (projection brings new nodes onto their surface or curve later).
 /// @param mesh      the mesh, changed in place (node and triangle ids change when anything changed)

@@ -1,0 +1,62 @@
+#include "mesh/node_rings.hpp"
+
+#include "core/parallel.hpp"
+
+#include <algorithm>
+
+namespace vm::detail {
+
+std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain) {
+  const double tol = 1e-9 * (domain.max - domain.min).norm();
+  std::vector<uint8_t> box(points.size(), 0);
+  for (size_t n = 0; n < points.size(); ++n)
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(points[n][a] - domain.min[a]) <= tol) box[n] |= uint8_t(1u << (2 * a));
+      if (std::abs(points[n][a] - domain.max[a]) <= tol) box[n] |= uint8_t(1u << (2 * a + 1));
+    }
+  return box;
+}
+
+bool constraints_within(const PhaseSet& phases_a, uint8_t box_a, const PhaseSet& phases_b, uint8_t box_b) {
+  if (box_a & ~box_b) return false;
+  return std::includes(phases_b.begin(), phases_b.begin() + phase_count(phases_b), phases_a.begin(),
+                       phases_a.begin() + phase_count(phases_a));
+}
+
+NodeRings::NodeRings(const NodeMesh& m)
+    : m_(m), at_(node_triangles(m.num_nodes(), m.triangles)), box_(box_faces_of(m.points, m.domain)) {
+  const size_t n = m.num_nodes();
+  // Each node's ring, at most two new nodes per triangle, sorted in parallel.
+  adj_off_.assign(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + 2 * int32_t(at_.of(v).size());
+  std::vector<int32_t> ring(static_cast<size_t>(adj_off_[n]));
+  std::vector<int32_t> count(n, 0);
+  parallel_for_each_index(n, [&](size_t v) {
+    int32_t* out = ring.data() + adj_off_[v];
+    int32_t* end = out;
+    for_each_triangle_at(int32_t(v), [&](int32_t a, int32_t b) { *end++ = a, *end++ = b; });
+    std::sort(out, end);
+    count[v] = int32_t(std::unique(out, end) - out);
+  });
+  adj_.reserve(ring.size() / 2);
+  for (size_t v = 0; v < n; ++v) {
+    const int32_t* from = ring.data() + adj_off_[v];
+    adj_off_[v] = int32_t(adj_.size());
+    adj_.insert(adj_.end(), from, from + count[v]);
+  }
+  adj_off_[n] = int32_t(adj_.size());
+  const NodePhases np = node_phases(at_, m.pairs);
+  phases_.assign(n, PhaseSet{});
+  for (size_t v = 0; v < n; ++v) {
+    phases_[v].fill(-1);
+    const auto ph = np.of(v);
+    std::copy(ph.begin(), ph.begin() + std::min(ph.size(), phases_[v].size()), phases_[v].begin());
+  }
+}
+
+bool NodeRings::has_phase(int32_t n, int32_t p) const {
+  const PhaseSet& s = phases_[size_t(n)];
+  return std::find(s.begin(), s.end(), int16_t(p)) != s.end();
+}
+
+} // namespace vm::detail
