@@ -32,7 +32,7 @@ namespace {
 
 struct Options {
   vm::InputOptions input;
-  std::string pipeline = vm::kDefaultPipeline;
+  std::string pipeline = vm::kLabelVolumePipeline; ///< the CLI's default for label volumes
   int iterations = 20;
   int threads = 2;
   vm::Lattice lattice = vm::Lattice::bcc;

@@ -5,7 +5,9 @@
 
 #include "fixtures.hpp"
 #include "scratch_dir.hpp"
+#include "nrrd_file.hpp"
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/array_input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
@@ -196,6 +198,54 @@ TEST_F(RunJob, a_phase_of_a_scene_named_like_the_outside_is_not_the_outside) {
   open.phase_names = {"outside", "a", "b", "c", kOutsidePhaseName};
   io::write_ply(open, path("open.ply"));
   EXPECT_EQ(io::read_ply(path("open.ply")).outside_phase, -1);
+}
+
+/// Records the pipeline each improvement ran.
+struct PipelineRecorder : RunObserver {
+  std::vector<std::string> pipelines;
+  size_t created_triangles = 0;
+  void created(const CreateReport& r) override { created_triangles = r.triangles; }
+  void improved(const ImproveReport& r) override { pipelines.push_back(r.pipeline); }
+};
+
+TEST_F(RunJob, label_volumes_are_remeshed_by_default_other_inputs_and_meshes_from_files_are_not) {
+  // A ball of label 5 in 24^3 voxels: its voxel grid is finer than the ball needs.
+  std::vector<int32_t> labels;
+  for (int k = 0; k < 24; ++k)
+    for (int j = 0; j < 24; ++j)
+      for (int i = 0; i < 24; ++i) labels.push_back((Vec3(i, j, k) - Vec3(11.5, 11.2, 11.7)).norm() < 8 ? 5 : 0);
+  const std::string file = test::write_nrrd("ball.nrrd", "type: int\ndimension: 3\nsizes: 24 24 24\n", labels);
+  MeshJob job;
+  job.input = file;
+  job.options.iterations = 3;
+  job.outputs.mesh = path("ball.ply");
+  PipelineRecorder seen;
+  const NodeMesh remeshed = run_job(job, &seen);
+  ASSERT_EQ(seen.pipelines, std::vector<std::string>{kLabelVolumePipeline});
+  EXPECT_LT(remeshed.num_triangles(), seen.created_triangles * 3 / 4); // coarsened, not only smoothed
+  // The same through the library's other doors; a pipeline given is the one run.
+  GridSpec grid;
+  grid.cells = {23, 23, 23};
+  grid.domain.max = Vec3(23, 23, 23);
+  const Scene volume = scene_from_labels(grid, labels);
+  EXPECT_TRUE(volume.voxel_grid);
+  EXPECT_EQ(pipeline_for(MeshOptions{}, &volume), kLabelVolumePipeline);
+  MeshOptions flip_only;
+  flip_only.pipeline = "flip";
+  EXPECT_EQ(pipeline_for(flip_only, &volume), "flip");
+  const Scene spheres = read_input(kFourSpheres);
+  EXPECT_FALSE(spheres.voxel_grid);
+  EXPECT_EQ(pipeline_for(MeshOptions{}, &spheres), kDefaultPipeline);
+  EXPECT_EQ(pipeline_for(MeshOptions{}, nullptr), kDefaultPipeline);
+  // A mesh from a file is improved as it is, not coarsened again.
+  MeshJob again;
+  again.mesh = path("ball.ply");
+  again.input = file;
+  again.options.iterations = 1;
+  PipelineRecorder improved;
+  EXPECT_EQ(run_job(again, &improved).num_triangles(), remeshed.num_triangles());
+  EXPECT_EQ(improved.pipelines, std::vector<std::string>{kDefaultPipeline});
+  std::filesystem::remove(file);
 }
 
 } // namespace

@@ -82,7 +82,7 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o);
 struct ImproveOptions {
   int iterations = 20;
   std::vector<std::string> plugins; ///< --plugin files
-  std::string pipeline = vm::kDefaultPipeline;
+  std::string pipeline; ///< empty: the input's default (vm::pipeline_for())
   bool stop_when_converged = false;
   bool unguarded = false; ///< skip the crossing guard (improve/guard.hpp)
   std::string history;    ///< where to write per-iteration histograms (.csv, .json, .svg)

@@ -80,8 +80,11 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
   o.iterations = default_iterations;
   cmd->add_option("--iterations", o.iterations, "Iterations of the pipeline")->capture_default_str();
   cmd->add_option("--pipeline", o.pipeline,
-                  "Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh passes')")
-      ->capture_default_str();
+                  std::string("Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh "
+                              "passes'). Default: ") +
+                      vm::kDefaultPipeline + "; for label volumes " + vm::kLabelVolumePipeline +
+                      " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
+                      "edges 1.4x the lattice's, about half the triangles, before the paper's passes)");
   add_plugin_option(cmd, o.plugins);
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");

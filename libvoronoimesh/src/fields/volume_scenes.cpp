@@ -117,7 +117,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   params.band = o.band;
   params.k = o.top_k;
   auto field = label_field(pv, params, path);
-  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field};
+  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true};
 }
 
 Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,

@@ -73,7 +73,7 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
     // A closed mesh has one more phase, outside the box; the passes need its function too.
     const auto phases = part.outside_phase >= 0 ? with_outside_phase(scene.field, part.domain) : scene.field;
     improve_part(comm, part, *phases, *pipeline, o.iterations, o.guard_crossings, &improved);
-    if (observer) observer->improved_parts(o.iterations, o.pipeline, improved);
+    if (observer) observer->improved_parts(o.iterations, pipeline_for(o, nullptr), improved);
   }
   if (pieces) {
     write_pvtu(comm, part, job.outputs.mesh);

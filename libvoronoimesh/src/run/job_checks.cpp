@@ -37,8 +37,8 @@ std::optional<tbb::global_control> thread_limit(const MeshOptions& o) {
 }
 
 Pipeline parse_pipeline(const MeshOptions& o) {
-  if (o.passes) return Pipeline::parse(o.pipeline, *o.passes);
-  return Pipeline::parse(o.pipeline, builtin_registry());
+  const std::string text = pipeline_for(o, nullptr);
+  return Pipeline::parse(text, o.passes ? *o.passes : builtin_registry());
 }
 
 void check_writable(const std::string& path) {
@@ -98,7 +98,7 @@ void check_job(const MeshJob& job) {
   const Pipeline pipeline = detail::parse_pipeline(job.options);
   // A mesh improved without the input it was made from has no phase functions.
   if (!job.mesh.empty() && job.input.empty() && job.options.iterations > 0 && pipeline.needs_field())
-    throw InvalidOption("pipeline", "'" + job.options.pipeline +
+    throw InvalidOption("pipeline", "'" + pipeline_for(job.options, nullptr) +
                                         "' needs the phase functions: give the input the mesh was made from (--field)");
 }
 

@@ -61,7 +61,7 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   // A closed mesh has one more phase, outside the box; the passes need its function too.
   const auto phases = field ? phases_of_mesh(mesh, std::move(field)) : nullptr;
   if (pipeline.needs_field() && !phases)
-    throw InvalidOption("pipeline", "'" + o.pipeline + "' needs the phase functions, and the mesh has none");
+    throw InvalidOption("pipeline", "'" + pipeline_for(o, nullptr) + "' needs the phase functions, and the mesh has none");
   begin(observer, Stage::improve, "improving...");
   InterfaceMesh im = InterfaceMesh::from_node_mesh(mesh);
   RunOptions run;
@@ -70,7 +70,7 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   run.guard_crossings = o.guard_crossings;
   if (observer) run.stop_requested = [observer] { return observer->stop_requested(); };
   ImproveReport report;
-  report.pipeline = o.pipeline;
+  report.pipeline = pipeline_for(o, nullptr);
   run.observer = [&](const IterationReport& r, const InterfaceMesh& current) {
     if (r.iteration == 0) report.initial_min_quality = r.min_quality, report.initial_mean_quality = r.mean_quality;
     report.min_quality = r.min_quality;
@@ -215,9 +215,16 @@ int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const 
   return improve(mesh, std::move(field), o, observer, nullptr);
 }
 
+std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
+  if (!options.pipeline.empty()) return options.pipeline;
+  return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
+}
+
 NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options) {
   NodeMesh mesh = create_mesh(scene, options);
-  improve_mesh(mesh, scene.field, options);
+  MeshOptions improving = options;
+  improving.pipeline = pipeline_for(options, &scene);
+  improve_mesh(mesh, scene.field, improving);
   return mesh;
 }
 
@@ -233,6 +240,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
   input.top_k = job.options.top_k;
   NodeMesh mesh;
   std::shared_ptr<const PhaseField> field;
+  MeshJob resolved = job;
   if (job.mesh.empty()) {
     const Scene scene = read_input(job.input, input, observer);
     mesh = create_mesh(scene, job.options, observer);
@@ -241,6 +249,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
                                  "meshes to nothing: no two phases meet between the grid's nodes (a finer grid, or "
                                  "less smoothing of labels, may resolve them)"));
     field = scene.field;
+    resolved.options.pipeline = pipeline_for(job.options, &scene);
   } else {
     mesh = read_mesh(job.mesh, observer);
     if (!job.input.empty()) {
@@ -249,7 +258,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
       field = scene.field;
     }
   }
-  detail::finish_job(mesh, field, job, observer);
+  detail::finish_job(mesh, field, resolved, observer);
   return mesh;
 }
 

@@ -21,8 +21,9 @@ void check_options(const MeshOptions& options);
 /// Limits TBB to options.threads while alive (none when 0).
 std::optional<tbb::global_control> thread_limit(const MeshOptions& options);
 
-/// The pipeline of `options`, parsed against options.passes (or the built-in
-/// passes). Throws InvalidInput naming the bad pass or parameter.
+/// The pipeline of `options` (pipeline_for() without a scene), parsed against
+/// options.passes (or the built-in passes). Throws InvalidInput naming the bad
+/// pass or parameter.
 Pipeline parse_pipeline(const MeshOptions& options);
 
 /// Throws IoError "<path>: cannot write: ..." when `path` cannot be written: its

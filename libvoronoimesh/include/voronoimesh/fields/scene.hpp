@@ -15,6 +15,10 @@ namespace vm {
 struct Scene {
   GridSpec grid;                           ///< the domain and the default background grid
   std::shared_ptr<const PhaseField> field; ///< the phase functions (shared: scenes are cheap to copy)
+  /// The grid is the input's own voxel grid (a label volume), not one chosen to
+  /// resolve its surfaces: a run's default pipeline then coarsens the mesh
+  /// toward the size of its features (run/meshing.hpp, pipeline_for()).
+  bool voxel_grid = false;
 };
 
 /// Parses a scene from JSON text (format: docs/scenes.md).

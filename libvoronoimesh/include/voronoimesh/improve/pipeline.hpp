@@ -16,6 +16,12 @@ namespace vm {
 /// The paper's pipeline: smoothing, projection, clamping, then flipping.
 inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 
+/// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
+/// is the voxel grid, finer than their surfaces need, so the remesh pass first
+/// coarsens the mesh to edges 1.4 times the lattice's (about half the triangles),
+/// then the paper's passes.
+inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip";
+
 /// What happened in one iteration, for progress lines and stopping rules.
 struct IterationReport {
   int iteration = 0;          ///< 1-based

@@ -57,9 +57,10 @@ struct MeshOptions {
   // --- improve --------------------------------------------------------------
   /// Iterations of the pipeline, 0 or more; 0 leaves the initial mesh as created.
   int iterations = 20;
-  /// Passes per iteration, "name,name:key=value,..." (improve/pipeline.hpp); the
-  /// paper's smoothing, projection, clamping and flipping by default.
-  std::string pipeline = kDefaultPipeline;
+  /// Passes per iteration, "name,name:key=value,..." (improve/pipeline.hpp).
+  /// Empty: the input's default (pipeline_for()): the paper's smoothing,
+  /// projection, clamping and flipping, after remeshing for label volumes.
+  std::string pipeline;
   /// The passes `pipeline` may name (e.g. built-ins plus a plugin's); null:
   /// the built-in passes. Not owned; must outlive the call.
   const PassRegistry* passes = nullptr;
@@ -236,8 +237,18 @@ CreateParams create_params(const MeshOptions& options);
 /// @throws Cancelled     if the observer asked to stop
 NodeMesh create_mesh(const Scene& scene, const MeshOptions& options = {}, RunObserver* observer = nullptr);
 
-/// Runs options.pipeline for options.iterations on `mesh`, moving its nodes and
-/// flipping its edges in place (paper Algorithm 1).
+/// The pipeline a run of `options` improves with: options.pipeline, or if that
+/// is empty the default for the input: kLabelVolumePipeline when `scene` is a
+/// label volume (Scene::voxel_grid), else kDefaultPipeline (also without a scene:
+/// a mesh read from a file is not coarsened again).
+/// @param options the options of the run
+/// @param scene   the scene the mesh is created from; null for none
+/// @return the pipeline, "name,name:key=value,..."
+std::string pipeline_for(const MeshOptions& options, const Scene* scene);
+
+/// Runs options.pipeline (pipeline_for() without a scene) for
+/// options.iterations on `mesh`, moving its nodes and flipping its edges in
+/// place (paper Algorithm 1).
 /// @param mesh     the mesh to improve, changed in place
 /// @param field    the phase functions `mesh` was created from (for a closed mesh without the outside
 ///                 phase, which is added: phases_of_mesh()); may be null when no pass needs it
@@ -252,8 +263,8 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& options = {}, RunObs
 int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& options = {},
                  RunObserver* observer = nullptr);
 
-/// create_mesh() then improve_mesh(): the CLI's `voronoimesh mesh` without the
-/// files. It never exits.
+/// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
+/// `voronoimesh mesh` without the files. It never exits.
 /// @param scene   the scene to mesh; its field must not be null
 /// @param options the options of the run
 /// @return the improved mesh
