@@ -105,7 +105,8 @@ int run(const std::string& path, int grid, int threads, const Options& o) {
   double sampling = 0, create = 0;
   {
     t0 = std::chrono::steady_clock::now();
-    const vm::SampledField samples = vm::SampledField::sample(*scene.field, vm::grid_for_lattice(scene.grid, params.lattice));
+    const vm::SampledField samples = vm::SampledField::sample(*scene.field, vm::grid_for_lattice(scene.grid, params.lattice),
+                                                              4, vm::SampledNodes::bcc);
     sampling = seconds_since(t0);
     double spent = 0;
     for (int r = 0; r < 5 && spent < 1.0; ++r) {

@@ -58,7 +58,8 @@ int run(const std::string& path, const Options& o) {
   close.lattice = o.lattice;
   const auto phases = vm::with_outside_phase(scene.field, scene.grid.domain);
   const vm::SampledField samples =
-      vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice));
+      vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice), 4,
+                               close.lattice == vm::Lattice::bcc ? vm::SampledNodes::bcc : vm::SampledNodes::all);
   vm::NodeMesh created;
   vm::create_initial_mesh(samples, close, created);
   vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(created);

@@ -23,7 +23,10 @@ constexpr uint64_t kThreadsEvery = 6;
 /// over its closed-form cases (CaseResult::against_field), as of this commit: a
 /// statistic (coarse grids and junctions closer than a cell have them
 /// legitimately) that may only shrink. Cases and improvement are deterministic.
-constexpr std::array<size_t, kShards> kAgainstAtMost = {674, 875, 104, 1311, 784, 196, 556, 292};
+/// Since create quantizes over the range of the lattice's nodes alone (not every
+/// grid node's), some cases mesh differently: 4792 -> 4802 in all, shards 0, 4, 7
+/// up by 3, 16, 2, shards 1, 2, 3, 6 down by 3, 1, 5, 2.
+constexpr std::array<size_t, kShards> kAgainstAtMost = {677, 872, 103, 1306, 800, 196, 554, 294};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

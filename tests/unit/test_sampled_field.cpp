@@ -1,5 +1,6 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
+#include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/scene.hpp"
 
 #include <gtest/gtest.h>
@@ -32,6 +33,28 @@ private:
   std::vector<Vec3> a_{Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0.5), Vec3(0, -2, 0), Vec3(0.3, 0.3, -1),
                        Vec3(0.3, 0.3, -1)};
   std::vector<double> b_{0, 1, -0.2, 0.9, 0.4, 0.4};
+};
+
+/// A bump of phase 1 peaking at grid node (1, 0, 0) of the unit box on 6 x 8 x
+/// 10 cells, which is no bcc lattice node, in planes of phases 0 and 2.
+class PeakField final : public PhaseField {
+public:
+  int num_phases() const override { return 3; }
+  std::string phase_name(int i) const override { return "peak" + std::to_string(i); }
+  void values(const Vec3& x, std::span<double> out) const override {
+    for (int i = 0; i < 3; ++i) out[size_t(i)] = value(i, x);
+  }
+  double value(int i, const Vec3& x) const override {
+    if (i == 1) return 0.6 - 2 * (x - peak_).squaredNorm();
+    return i == 0 ? x.y() - 0.5 : 0.4 - x.z();
+  }
+  Vec3 gradient(int i, const Vec3& x) const override {
+    if (i == 1) return -4 * (x - peak_);
+    return i == 0 ? Vec3(0, 1, 0) : Vec3(0, 0, -1);
+  }
+
+private:
+  Vec3 peak_{1.0 / 6, 0, 0};
 };
 
 GridSpec small_grid(int n = 8) {
@@ -206,4 +229,43 @@ TEST(SampledField, expression_field_is_safe_from_many_plain_threads) {
     });
   for (auto& t : threads) t.join();
   for (const auto& out : got) EXPECT_EQ(out, want);
+}
+
+// Create with the bcc lattice reads only nodes whose indices are all even or
+// all odd: sampling only those (SampledNodes::bcc) must give them the same
+// samples, and create the same mesh bit for bit, though the field's range over
+// all nodes (min_value(), max_value()) is not the range over those.
+TEST(SampledField, bcc_nodes_hold_what_every_node_sampling_holds_there_and_create_the_same_mesh) {
+  const PeakField field;
+  GridSpec grid;
+  grid.cells = {6, 8, 10};
+  const SampledField all = SampledField::sample(field, grid, 3);
+  const SampledField bcc = SampledField::sample(field, grid, 3, SampledNodes::bcc);
+  EXPECT_EQ(SampledField::count_nodes(grid, SampledNodes::bcc), 4 * 5 * 6 + 3 * 4 * 5);
+  EXPECT_EQ(int64_t(bcc.all_floors().size()), SampledField::count_nodes(grid, SampledNodes::bcc));
+  const auto nodes = grid.nodes();
+  int64_t held = 0;
+  for (int64_t k = 0; k < nodes[2]; ++k)
+    for (int64_t j = 0; j < nodes[1]; ++j)
+      for (int64_t i = 0; i < nodes[0]; ++i) {
+        if (i % 2 != j % 2 || j % 2 != k % 2) continue;
+        const int64_t n = grid.node_index(i, j, k);
+        ++held;
+        ASSERT_TRUE(std::ranges::equal(all.ids(n), bcc.ids(n))) << "node " << n;
+        ASSERT_TRUE(std::ranges::equal(all.values(n), bcc.values(n))) << "node " << n;
+        ASSERT_EQ(all.floor_value(n), bcc.floor_value(n)) << "node " << n;
+      }
+  EXPECT_EQ(held, SampledField::count_nodes(grid, SampledNodes::bcc));
+  // The largest value over all nodes is at (1, 0, 0), no lattice node: the
+  // ranges differ, and create must quantize over the lattice's alone.
+  EXPECT_GT(all.max_value(), bcc.max_value());
+  NodeMesh from_all, from_bcc;
+  create_initial_mesh(all, CreateParams{}, from_all);
+  create_initial_mesh(bcc, CreateParams{}, from_bcc);
+  ASSERT_GT(from_all.num_triangles(), 0u);
+  EXPECT_EQ(from_all.points, from_bcc.points);
+  EXPECT_EQ(from_all.triangles, from_bcc.triangles);
+  EXPECT_EQ(from_all.pairs, from_bcc.pairs);
+  grid.cells = {6, 7, 10};
+  EXPECT_THROW(SampledField::sample(field, grid, 3, SampledNodes::bcc), InvalidInput);
 }

@@ -272,8 +272,10 @@ uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t,
 uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
   const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
   const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
-  // NodeValues: id and quantized value per slot (8 B), floor and label 8 B.
-  return saturated(sample_bytes(grid, k, {0, grid.cells[2]}) + lattice_nodes * (8.0 * k + 8));
+  // Samples of the lattice's nodes only (SampledNodes::bcc): id (4 B) and value
+  // (8 B) per slot, floor 8 B; NodeValues: id and quantized value per slot (8 B),
+  // floor and label 8 B.
+  return saturated(lattice_nodes * (12.0 * k + 8) + lattice_nodes * (8.0 * k + 8));
 }
 
 namespace {
@@ -480,8 +482,9 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
   const detail::TetLattice lattice(field.grid(), params.lattice);
   detail::CreatePeers alone;
   SlabsMesh part;
-  const CreateStats stats = detail::create_slabs(field, {field.min_value(), field.max_value()}, params,
-                                                {0, lattice.num_slabs() - 1}, alone, part);
+  const CreateStats stats =
+      detail::create_slabs(field, detail::lattice_value_range(field, lattice, {0, field.grid().cells[2]}), params,
+                           {0, lattice.num_slabs() - 1}, alone, part);
   out = NodeMesh{};
   out.domain = field.grid().domain;
   out.outside_phase = params.close ? int32_t(field.num_phases()) : -1;

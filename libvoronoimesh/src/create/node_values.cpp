@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace vm::detail {
 
@@ -21,6 +22,28 @@ uint64_t mix_bits(uint64_t x) {
 
 } // namespace
 
+std::array<double, 2> lattice_value_range(const SampledField& field, const TetLattice& lattice,
+                                          std::array<int32_t, 2> layers) {
+  const GridSpec& grid = field.grid();
+  using Range = std::array<double, 2>;
+  const Range none{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  return detail::parallel_reduce(
+      tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), none,
+      [&](const tbb::blocked_range<int64_t>& rows, Range range) {
+        for (int64_t r = rows.begin(); r < rows.end(); ++r) {
+          const TetLattice::NodeRow row = lattice.node_row(r);
+          if (row.z < layers[0] || row.z > layers[1]) continue;
+          for (int32_t x = 0; x < row.count; ++x) {
+            const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
+            // The floor is below every stored value of its node, and slot 0 is the node's largest.
+            range = {std::min(range[0], field.floor_value(g)), std::max(range[1], field.values(g)[0])};
+          }
+        }
+        return range;
+      },
+      [](const Range& a, const Range& b) { return Range{std::min(a[0], b[0]), std::max(a[1], b[1])}; });
+}
+
 NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps,
                        const std::vector<RepairLevel>* repair, const NodeScope* scope)
     : window_(scope ? scope->window : lattice.window(0, field.grid().cells[2])), k_(field.k()) {
@@ -34,8 +57,10 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
 
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
-  lo_ = scope ? scope->min_value : field.min_value();
-  const double range = (scope ? scope->max_value : field.max_value()) - lo_;
+  const std::array<double, 2> whole =
+      scope ? std::array{scope->min_value, scope->max_value} : lattice_value_range(field, lattice, {0, grid.cells[2]});
+  lo_ = whole[0];
+  const double range = whole[1] - lo_;
   scale_ = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
   eps_ = std::llround(snap_eps * scale_);
   // Small against the grid yet far above round-off, so that the caps it opens

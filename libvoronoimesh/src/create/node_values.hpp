@@ -14,6 +14,7 @@
 #include "create/lattice.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -36,6 +37,13 @@ struct NodeScope {
   NodeWindow window;
   double min_value = 0, max_value = 0;
 };
+
+/// The smallest floor value and the largest value of `field` over the lattice
+/// nodes of grid layers `layers` (inclusive): the range NodeValues quantizes
+/// over. Taken over the lattice's nodes only, it is the same whether the field
+/// holds every grid node or only those (SampledNodes::bcc).
+std::array<double, 2> lattice_value_range(const SampledField& field, const TetLattice& lattice,
+                                          std::array<int32_t, 2> layers);
 
 class NodeValues {
 public:

@@ -60,12 +60,26 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
 
 SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k,
                                   std::array<int32_t, 2> layers) {
+  return sample_nodes(field, grid, k, layers, SampledNodes::all);
+}
+
+SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid, int k, SampledNodes nodes) {
+  return sample_nodes(field, grid, k, {0, grid.cells[2]}, nodes);
+}
+
+SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec& grid, int k,
+                                        std::array<int32_t, 2> layers, SampledNodes which) {
   if (k < 1 || k > 16)
     throw InvalidInput(located("sample", "k (phases kept per node) must be between 1 and 16, got " + std::to_string(k)));
   check_grid(grid);
   if (layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1])
     throw InvalidInput(located("sample", "layers " + std::to_string(layers[0]) + ".." + std::to_string(layers[1]) +
                                              " are not within the grid's 0.." + std::to_string(grid.cells[2])));
+  if (which == SampledNodes::bcc)
+    for (int a = 0; a < 3; ++a)
+      if (grid.cells[a] % 2 != 0)
+        throw InvalidInput(located("sample", "the bcc lattice's nodes need an even number of grid cells per axis, got " +
+                                                 std::to_string(grid.cells[a])));
   const int n_phases = field.num_phases();
   if (n_phases < 1) throw InvalidInput(located("sample", "the field has no phases"));
 
@@ -73,11 +87,13 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
   s.grid_ = grid;
   s.num_phases_ = n_phases;
   s.k_ = std::min(k, n_phases);
+  s.nodes_ = which;
   const size_t kk = size_t(s.k_);
   const auto nodes = grid.nodes();
   s.layers_ = layers;
   s.first_node_ = grid.node_index(0, 0, layers[0]);
-  const int64_t count = (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
+  const bool bcc = which == SampledNodes::bcc;
+  const int64_t count = bcc ? count_nodes(grid, which) : (layers[1] - layers[0] + 1) * nodes[0] * nodes[1];
   s.ids_.resize(size_t(count) * kk);
   s.values_.resize(size_t(count) * kk);
   s.floor_.resize(size_t(count));
@@ -88,23 +104,28 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
   // scheduling.
   std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
 
-  // One task range = rows of nodes along x; every node is written by one task only.
+  // One task range = rows of nodes along x; every node is written by one task
+  // only. With bcc, rows whose y and z differ in parity hold no node, and a row
+  // holds every second node, starting at its parity.
   const int64_t first_row = layers[0] * nodes[1], end_row = (layers[1] + 1) * nodes[1];
   detail::parallel_for(tbb::blocked_range<int64_t>(first_row, end_row), [&](const auto& rows) {
     for (int64_t row = rows.begin(); row != rows.end(); ++row) {
       const int64_t j = row % nodes[1], kz = row / nodes[1];
-      for (int64_t i = 0; i < nodes[0]; ++i) {
-        const int64_t n = grid.node_index(i, j, kz) - s.first_node_;
-        if (n > first_bad.load(std::memory_order_relaxed)) return;
-        const std::span<int32_t> ids{&s.ids_[size_t(n) * kk], kk};
-        const std::span<double> vals{&s.values_[size_t(n) * kk], kk};
+      if (bcc && (j & 1) != (kz & 1)) continue;
+      const int64_t step = bcc ? 2 : 1;
+      for (int64_t i = bcc ? (j & 1) : 0; i < nodes[0]; i += step) {
+        const int64_t n = grid.node_index(i, j, kz);
+        if (n - s.first_node_ > first_bad.load(std::memory_order_relaxed)) return;
+        const int64_t at = s.slot(n);
+        const std::span<int32_t> ids{&s.ids_[size_t(at) * kk], kk};
+        const std::span<double> vals{&s.values_[size_t(at) * kk], kk};
         field.top_values(grid.node_position(i, j, kz), ids, vals);
         if (!std::all_of(vals.begin(), vals.end(), [](double d) { return std::isfinite(d); })) {
           int64_t seen = first_bad.load();
-          while (n < seen && !first_bad.compare_exchange_weak(seen, n)) {}
+          while (n - s.first_node_ < seen && !first_bad.compare_exchange_weak(seen, n - s.first_node_)) {}
           return;
         }
-        s.floor_[size_t(n)] = node_floor(vals, h);
+        s.floor_[size_t(at)] = node_floor(vals, h);
       }
     }
   });
@@ -112,6 +133,22 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
     throw_not_finite(field, grid, bad + s.first_node_);
   s.find_range();
   return s;
+}
+
+int64_t SampledField::count_nodes(const GridSpec& grid, SampledNodes nodes) {
+  const auto n = grid.nodes();
+  if (nodes == SampledNodes::all) return n[0] * n[1] * n[2];
+  // (cells/2 + 1)^3 even nodes, (cells/2)^3 odd ones (cells = nodes - 1, even).
+  return (n[0] / 2 + 1) * (n[1] / 2 + 1) * (n[2] / 2 + 1) + (n[0] / 2) * (n[1] / 2) * (n[2] / 2);
+}
+
+int64_t SampledField::bcc_slot(int64_t n) const {
+  const auto nodes = grid_.nodes();
+  const int64_t i = n % nodes[0], j = n / nodes[0] % nodes[1], k = n / (nodes[0] * nodes[1]);
+  if (i & 1) // odd: after all (cells/2 + 1)^3 even nodes
+    return (nodes[0] / 2 + 1) * (nodes[1] / 2 + 1) * (nodes[2] / 2 + 1) + (i >> 1) +
+           nodes[0] / 2 * ((j >> 1) + nodes[1] / 2 * (k >> 1));
+  return (i >> 1) + (nodes[0] / 2 + 1) * ((j >> 1) + (nodes[1] / 2 + 1) * (k >> 1));
 }
 
 SampledField SampledField::from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,

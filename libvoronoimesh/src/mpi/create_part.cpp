@@ -9,6 +9,7 @@
 #include "core/text.hpp"
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
+#include "create/node_values.hpp"
 #include "mpi/balance.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/layers.hpp"
@@ -65,7 +66,8 @@ Plan plan(Comm& comm, const SampledField& block, Lattice kind) {
   Plan p;
   p.blocks = detail::agree_on_blocks(comm, block.layers(), grid.cells[2]);
   // Quantizing needs the range of the whole field on every rank (node_values.hpp).
-  p.range = {comm.min(block.min_value()), comm.max(block.max_value())};
+  const std::array<double, 2> range = vm::detail::lattice_value_range(block, lattice, block.layers());
+  p.range = {comm.min(range[0]), comm.max(range[1])};
 
   // The work of the slabs starting in this block, from the winners at its nodes
   // and at the layers above that those slabs reach.

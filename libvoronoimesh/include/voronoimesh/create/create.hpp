@@ -71,7 +71,8 @@ constexpr double kUntieFraction = 1e-3;
 GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice);
 
 /// Bytes that sampling `grid` with `k` phases per node and creating the mesh
-/// will need at least (field samples, lattice node values; the mesh itself is
+/// will need at least (field samples of the lattice's nodes, SampledNodes::bcc
+/// for the bcc lattice; lattice node values; the mesh itself is
 /// usually far smaller). Used to refuse impossible sizes before starting.
 /// @param grid    the grid to sample (from grid_for_lattice())
 /// @param k       phases kept per grid node
