@@ -92,6 +92,10 @@ expect_error "unknown pass" 2 "unknown pass 'smoth'" -- "$vm" mesh --grid 8 --pi
 expect_error "unknown parameter" 2 "no parameter 'rest'" -- "$vm" mesh --grid 8 --pipeline smooth:rest=1 -o out.ply
 expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8 --pipeline smooth:rest_factor=9 -o out.ply
 expect_error "bad history format" 2 "history" -- "$vm" mesh --grid 8 --history h.txt -o out.ply
+expect_error "size with a pipeline" 2 "--size: .*remesh:length=L" -- "$vm" mesh --grid 8 --size 0.1 --pipeline flip -o out.ply
+expect_error "negative size" 2 "--size: must be a length above 0" -- "$vm" mesh --grid 8 --size -1 -o out.ply
+if "$vm" mesh --grid 16 --iterations 2 --size 0.1 -o sized.ply 2>&1 | grep -q "iterations of remesh:length=0.1,smooth"; then pass
+else fail "--size does not remesh to the length given"; fi
 
 # Label volumes (NRRD written here): a 16^3 cube of label 1 inside label 3, and a cube of label 5 beside it.
 nrrd_labels() { # FILE [extra header lines]: 16x16x16 uchar

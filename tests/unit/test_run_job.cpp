@@ -9,6 +9,7 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/array_input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/improve/smooth.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/run/meshing.hpp"
@@ -246,6 +247,35 @@ TEST_F(RunJob, label_volumes_are_remeshed_by_default_other_inputs_and_meshes_fro
   EXPECT_EQ(run_job(again, &improved).num_triangles(), remeshed.num_triangles());
   EXPECT_EQ(improved.pipelines, std::vector<std::string>{kDefaultPipeline});
   std::filesystem::remove(file);
+}
+
+TEST_F(RunJob, a_size_in_world_units_remeshes_any_input_to_it_and_a_mesh_read_back_stays_there) {
+  // Four spheres in the unit cube on 24^3 cells (h = 0.042): edges of 0.06.
+  MeshJob job = four_spheres_job(path("sized.ply"), 10);
+  job.options.grid = std::array{24, 24, 24};
+  job.options.size = 0.06;
+  PipelineRecorder seen;
+  const NodeMesh sized = run_job(job, &seen);
+  ASSERT_EQ(seen.pipelines, std::vector<std::string>{"remesh:length=0.06,smooth,project,clamp,flip"});
+  const double rms = rms_edge_length(InterfaceMesh::from_node_mesh(sized));
+  EXPECT_GT(rms, 0.06 * 0.85);
+  EXPECT_LT(rms, 0.06 * 1.15);
+  // The same size again on the mesh from the file: the target is the same, so
+  // the mesh keeps about its triangles (a size relative to the mesh would
+  // coarsen it once more).
+  MeshJob again;
+  again.mesh = path("sized.ply");
+  again.input = kFourSpheres;
+  again.options.iterations = 5;
+  again.options.size = 0.06;
+  const NodeMesh resized = run_job(again);
+  EXPECT_NEAR(double(resized.num_triangles()), double(sized.num_triangles()), 0.1 * double(sized.num_triangles()));
+  // Negative, or with a pipeline of one's own: refused before any work.
+  job.options.size = -1;
+  EXPECT_THROW(run_job(job), InvalidOption);
+  job.options.size = 0.06;
+  job.options.pipeline = "smooth,flip";
+  EXPECT_THROW(run_job(job), InvalidOption);
 }
 
 } // namespace

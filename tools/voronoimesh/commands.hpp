@@ -83,6 +83,7 @@ struct ImproveOptions {
   int iterations = 20;
   std::vector<std::string> plugins; ///< --plugin files
   std::string pipeline; ///< empty: the input's default (vm::pipeline_for())
+  double size = 0;      ///< --size: target edge length in world units (0: none)
   bool stop_when_converged = false;
   bool unguarded = false; ///< skip the crossing guard (improve/guard.hpp)
   std::string history;    ///< where to write per-iteration histograms (.csv, .json, .svg)

@@ -85,6 +85,10 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                       vm::kDefaultPipeline + "; for label volumes " + vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
                       "edges 1.4x the lattice's, about half the triangles, before the paper's passes)");
+  cmd->add_option("--size", o.size,
+                  "Target edge length in world units (the input's units): remesh to edges of about L first "
+                  "(remesh:length=L, junctions kept), for any input; not with --pipeline (put remesh:length=L in "
+                  "it)");
   add_plugin_option(cmd, o.plugins);
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
@@ -132,6 +136,7 @@ void set_create_options(const CreateOptions& create, vm::MeshOptions& options) {
 void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
   job.options.iterations = improve.iterations;
   job.options.pipeline = improve.pipeline;
+  job.options.size = improve.size;
   job.options.stop_when_converged = improve.stop_when_converged;
   job.options.guard_crossings = !improve.unguarded;
   job.outputs.history = improve.history;

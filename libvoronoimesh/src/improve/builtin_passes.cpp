@@ -35,12 +35,16 @@ private:
 /// The remesh pass: its lengths are multiples of the mesh's RMS edge length when
 /// it first runs (for a created mesh, about the lattice's), kept for the run so
 /// that the target does not shrink or grow with the mesh it makes; so is the
-/// most triangles its splits may make.
+/// most triangles its splits may make. With `length` they are multiples of that
+/// length in world units instead, and the target is that length: the same
+/// whatever mesh the pass is given (a mesh read back from a file is not
+/// coarsened again).
 class RemeshPass : public Pass {
 public:
   explicit RemeshPass(const ParamValues& p)
-      : params_{p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"), p.at("min_quality")},
-        last_(int(p.at("last"))) {}
+      : params_{p.at("length") > 0 ? 1.0 : p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"),
+                p.at("min_quality")},
+        length_(p.at("length")), last_(int(p.at("last"))) {}
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
     // Curvature comes from the phase functions: without them the target would
@@ -49,10 +53,12 @@ public:
       throw InvalidInput(located("pipeline", "remesh.tolerance needs the phase functions: give the input the mesh was "
                                              "made from (--field)"));
     if (reference_ == 0) {
-      reference_ = rms_edge_length(c.mesh);
-      // Uniform refinement to `size` multiplies the triangles by 1/size^2; four
-      // times that (at least 4x) is the most a run may make.
-      max_triangles_ = c.mesh.num_triangles() * size_t(std::ceil(4 / std::min(1.0, params_.size * params_.size)));
+      const double rms = rms_edge_length(c.mesh);
+      reference_ = length_ > 0 ? length_ : rms;
+      // Uniform refinement to a target `ratio` times the edges multiplies the
+      // triangles by 1/ratio^2; four times that (at least 4x) is the most a run may make.
+      const double ratio = std::min(1.0, params_.size * reference_ / rms);
+      max_triangles_ = c.mesh.num_triangles() * size_t(std::ceil(4 / (ratio * ratio)));
     }
     RemeshParams params = params_;
     params.max_triangles = max_triangles_;
@@ -62,6 +68,7 @@ public:
 
 private:
   RemeshParams params_;
+  double length_;
   int last_;
   double reference_ = 0;
   size_t max_triangles_ = 0;
@@ -119,6 +126,8 @@ void register_builtin_passes(PassRegistry& registry) {
       "split long and collapse short edges toward a target length, junctions kept (not in the paper)",
       {{"size", remesh.size, 0.25, 8.0, false,
         "target edge length, x the RMS edge length when the run began (with tolerance: the largest)"},
+       {"length", 0, 0, 1e12, false,
+        "target edge length in world units instead (0: size decides); tolerance and min_size are then x it"},
        {"tolerance", remesh.tolerance, 0.0, 1.0, false,
         "largest distance from a curved surface, same unit: shorter edges where surfaces curve (0: uniform)"},
        {"min_size", remesh.min_size, 0.1, 8.0, false, "shortest target edge length with tolerance, same unit"},

@@ -27,6 +27,11 @@ void check_options(const MeshOptions& o) {
   if (o.top_k < 1 || o.top_k > 16) throw InvalidOption("top_k", cat("must be between 1 and 16, got ", o.top_k));
   if (o.iterations < 0) throw InvalidOption("iterations", cat("must be 0 or more, got ", o.iterations));
   if (o.threads < 0) throw InvalidOption("threads", cat("must be 0 (all cores) or more, got ", o.threads));
+  if (!(o.size >= 0 && o.size < 1e12))
+    throw InvalidOption("size", cat("must be a length above 0 in world units (0: none), got ", o.size));
+  if (o.size > 0 && !o.pipeline.empty())
+    throw InvalidOption("size", "sets the default pipeline's remesh pass; with a pipeline of your own, give "
+                                "remesh:length=L in it");
 }
 
 std::optional<tbb::global_control> thread_limit(const MeshOptions& o) {

@@ -18,6 +18,8 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <chrono>
 
 namespace vm {
@@ -219,6 +221,11 @@ int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const 
 
 std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   if (!options.pipeline.empty()) return options.pipeline;
+  if (options.size > 0) {
+    std::array<char, 32> length{}; // shortest text that reads back as the same double
+    const auto end = std::to_chars(length.data(), length.data() + length.size(), options.size).ptr;
+    return "remesh:length=" + std::string(length.data(), end) + "," + kDefaultPipeline;
+  }
   return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
 }
 
@@ -226,6 +233,7 @@ NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options) {
   NodeMesh mesh = create_mesh(scene, options);
   MeshOptions improving = options;
   improving.pipeline = pipeline_for(options, &scene);
+  improving.size = 0; // in the pipeline now
   improve_mesh(mesh, scene.field, improving);
   return mesh;
 }
@@ -252,6 +260,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
                                  "less smoothing of labels, may resolve them)"));
     field = scene.field;
     resolved.options.pipeline = pipeline_for(job.options, &scene);
+    resolved.options.size = 0; // in the pipeline now
   } else {
     mesh = read_mesh(job.mesh, observer);
     if (!job.input.empty()) {

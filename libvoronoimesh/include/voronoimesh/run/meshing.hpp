@@ -61,6 +61,11 @@ struct MeshOptions {
   /// Empty: the input's default (pipeline_for()): the paper's smoothing,
   /// projection, clamping and flipping, after remeshing for label volumes.
   std::string pipeline;
+  /// Target edge length in world units, 0 for none: the default pipeline is
+  /// then remesh:length=<size>,smooth,project,clamp,flip for every input (the
+  /// same target for a mesh read back from a file). Not with `pipeline` (give
+  /// remesh:length=L there).
+  double size = 0;
   /// The passes `pipeline` may name (e.g. built-ins plus a plugin's); null:
   /// the built-in passes. Not owned; must outlive the call.
   const PassRegistry* passes = nullptr;
@@ -238,9 +243,10 @@ CreateParams create_params(const MeshOptions& options);
 NodeMesh create_mesh(const Scene& scene, const MeshOptions& options = {}, RunObserver* observer = nullptr);
 
 /// The pipeline a run of `options` improves with: options.pipeline, or if that
-/// is empty the default for the input: kLabelVolumePipeline when `scene` is a
-/// label volume (Scene::voxel_grid), else kDefaultPipeline (also without a scene:
-/// a mesh read from a file is not coarsened again).
+/// is empty and options.size is set, remesh:length=<size> before the paper's
+/// passes, else the default for the input: kLabelVolumePipeline when `scene` is
+/// a label volume (Scene::voxel_grid), otherwise kDefaultPipeline (also without
+/// a scene: a mesh read from a file is not coarsened again).
 /// @param options the options of the run
 /// @param scene   the scene the mesh is created from; null for none
 /// @return the pipeline, "name,name:key=value,..."
