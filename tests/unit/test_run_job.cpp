@@ -256,7 +256,7 @@ TEST_F(RunJob, a_size_in_world_units_remeshes_any_input_to_it_and_a_mesh_read_ba
   job.options.size = 0.06;
   PipelineRecorder seen;
   const NodeMesh sized = run_job(job, &seen);
-  ASSERT_EQ(seen.pipelines, std::vector<std::string>{"remesh:length=0.06,smooth,project,clamp,flip"});
+  ASSERT_EQ(seen.pipelines, std::vector<std::string>{std::string("remesh:length=0.06,") + kPassesAfterRemesh});
   const double rms = rms_edge_length(InterfaceMesh::from_node_mesh(sized));
   EXPECT_GT(rms, 0.06 * 0.85);
   EXPECT_LT(rms, 0.06 * 1.15);

@@ -84,11 +84,12 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                               "passes'). Default: ") +
                       vm::kDefaultPipeline + "; for label volumes " + vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
-                      "edges 1.4x the lattice's, about half the triangles, before the paper's passes)");
+                      "edges 1.4x the lattice's, about half the triangles, before the paper's passes, which then "
+                      "collapse junction slivers below q 0.15)");
   cmd->add_option("--size", o.size,
-                  "Target edge length in world units (the input's units): remesh to edges of about L first "
-                  "(remesh:length=L, junctions kept), for any input; not with --pipeline (put remesh:length=L in "
-                  "it)");
+                  std::string("Target edge length in world units (the input's units): remesh to edges of about L "
+                              "first, for any input (remesh:length=L,") +
+                      vm::kPassesAfterRemesh + "); not with --pipeline (put remesh:length=L in it)");
   add_plugin_option(cmd, o.plugins);
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");

@@ -224,7 +224,7 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   if (options.size > 0) {
     std::array<char, 32> length{}; // shortest text that reads back as the same double
     const auto end = std::to_chars(length.data(), length.data() + length.size(), options.size).ptr;
-    return "remesh:length=" + std::string(length.data(), end) + "," + kDefaultPipeline;
+    return "remesh:length=" + std::string(length.data(), end) + "," + kPassesAfterRemesh;
   }
   return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
 }

@@ -62,7 +62,7 @@ struct MeshOptions {
   /// projection, clamping and flipping, after remeshing for label volumes.
   std::string pipeline;
   /// Target edge length in world units, 0 for none: the default pipeline is
-  /// then remesh:length=<size>,smooth,project,clamp,flip for every input (the
+  /// then remesh:length=`size` and kPassesAfterRemesh for every input (the
   /// same target for a mesh read back from a file). Not with `pipeline` (give
   /// remesh:length=L there).
   double size = 0;
@@ -243,8 +243,8 @@ CreateParams create_params(const MeshOptions& options);
 NodeMesh create_mesh(const Scene& scene, const MeshOptions& options = {}, RunObserver* observer = nullptr);
 
 /// The pipeline a run of `options` improves with: options.pipeline, or if that
-/// is empty and options.size is set, remesh:length=<size> before the paper's
-/// passes, else the default for the input: kLabelVolumePipeline when `scene` is
+/// is empty and options.size is set, remesh:length=`size` before
+/// kPassesAfterRemesh, else the default for the input: kLabelVolumePipeline when `scene` is
 /// a label volume (Scene::voxel_grid), otherwise kDefaultPipeline (also without
 /// a scene: a mesh read from a file is not coarsened again).
 /// @param options the options of the run
