@@ -94,7 +94,7 @@ expect_error "parameter out of range" 2 "rest_factor = 9" -- "$vm" mesh --grid 8
 expect_error "bad history format" 2 "history" -- "$vm" mesh --grid 8 --history h.txt -o out.ply
 expect_error "size with a pipeline" 2 "--size: .*remesh:length=L" -- "$vm" mesh --grid 8 --size 0.1 --pipeline flip -o out.ply
 expect_error "negative size" 2 "--size: must be a length above 0" -- "$vm" mesh --grid 8 --size -1 -o out.ply
-if "$vm" mesh --grid 16 --iterations 2 --size 0.1 -o sized.ply 2>&1 | grep -q "iterations of remesh:length=0.1,smooth"; then pass
+if out=$("$vm" mesh --grid 16 --iterations 2 --size 0.1 -o sized.ply 2>&1) && grep -q "iterations of remesh:length=0.1,smooth" <<<"$out"; then pass
 else fail "--size does not remesh to the length given"; fi
 
 # Label volumes (NRRD written here): a 16^3 cube of label 1 inside label 3, and a cube of label 5 beside it.
@@ -116,10 +116,14 @@ if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | gr
 paper=smooth,project,clamp,flip
 if "$vm" smooth -q l.ply --field labels.nrrd --iterations 2 -o ls.ply && "$vm" mesh -q labels.nrrd --iterations 2 --pipeline $paper -o lm2.ply &&
   cmp -s ls.ply lm2.ply && ! cmp -s ls.ply l.ply; then pass; else fail "smooth --field on a label volume is not mesh's improvement"; fi
-if "$vm" mesh labels.nrrd --iterations 2 -o lr.ply 2>&1 | grep -q "iterations of remesh:size=1.4,$paper" &&
+if out=$("$vm" mesh labels.nrrd --iterations 2 -o lr.ply 2>&1) && grep -q "iterations of remesh:size=1.4,$paper" <<<"$out" &&
   [ "$("$vm" stats --json lr.ply | python3 -c 'import json,sys; print(json.load(sys.stdin)["triangles"])')" -lt \
     "$("$vm" stats --json lm2.ply | python3 -c 'import json,sys; print(json.load(sys.stdin)["triangles"])')" ]; then pass
 else fail "mesh on a label volume does not remesh by default"; fi
+# A label too small for the grid is named with its size, not dropped in silence (issue 19).
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n'; printf '\0\0\0\1\2\3\2\3'; } >two.nrrd
+if out=$("$vm" mesh two.nrrd -o two.ply 2>&1) && grep -q "^label 1: 1 voxel, no surface in the mesh" <<<"$out"; then pass
+else fail "a lost label is not reported"; fi
 if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&
   "$vm" stats sd.ply | grep -qE "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
 if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | grep -qE "^phases +2"; then pass; else fail "--merge-labels"; fi

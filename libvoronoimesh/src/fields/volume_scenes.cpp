@@ -111,13 +111,16 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
                                                            present.begin())]);
   }, 1 << 16);
   v.labels = {}; // the phases replace the labels: free them before the field grows
+  std::vector<int64_t> voxels(pv.labels.size(), 0);
+  for (int16_t p : pv.phase)
+    if (p >= 0) ++voxels[size_t(p)];
   LabelFieldParams params;
   params.signed_distance = o.label_function == LabelFunction::signed_distance;
   params.smoothing = o.smoothing;
   params.band = o.band;
   params.k = o.top_k;
   auto field = label_field(pv, params, path);
-  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true};
+  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels)};
 }
 
 Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,

@@ -54,6 +54,31 @@ void stop_if_asked(RunObserver* observer) {
   if (observer && observer->stop_requested()) throw Cancelled();
 }
 
+/// The phases of `scene` that no triangle of `mesh` bounds.
+std::vector<int32_t> lost_phases(const NodeMesh& mesh, const Scene& scene) {
+  std::vector<uint8_t> bounded(size_t(scene.field->num_phases()), 0);
+  for (const PhasePair& p : mesh.pairs)
+    for (int32_t phase : p)
+      if (size_t(phase) < bounded.size()) bounded[size_t(phase)] = 1;
+  std::vector<int32_t> lost;
+  for (size_t p = 0; p < bounded.size(); ++p)
+    if (!bounded[p]) lost.push_back(int32_t(p));
+  return lost;
+}
+
+/// One line naming a lost phase, with its size for a label volume.
+std::string lost_phase_line(const Scene& scene, int32_t p) {
+  const PhaseField& f = *scene.field;
+  if (size_t(p) < scene.phase_voxels.size()) {
+    const int64_t voxels = scene.phase_voxels[size_t(p)];
+    return cat("label ", f.phase_label(p), ": ", voxels, voxels == 1 ? " voxel" : " voxels",
+               ", no surface in the mesh: thinner than the grid resolves (--signed-distance or --smoothing 0.5 may "
+               "keep it)");
+  }
+  return cat("phase ", detail::quote(f.phase_name(p)),
+             ": no surface in the mesh: smaller or thinner than the grid resolves (a finer --grid may keep it)");
+}
+
 /// improve_mesh(), recording every iteration in `history` if given.
 int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& o, RunObserver* observer,
             QualityHistory* history) {
@@ -209,7 +234,10 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* obse
   if (o.validate && !report.stats.validated) require_valid(mesh, "the created mesh");
   report.nodes = mesh.num_nodes();
   report.triangles = mesh.num_triangles();
+  report.lost_phases = lost_phases(mesh, scene);
   if (observer) observer->created(report);
+  for (int32_t p : report.lost_phases)
+    if (observer) observer->note(lost_phase_line(scene, p));
   stop_if_asked(observer); // create itself runs to its end; nothing after it does
   return mesh;
 }

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace vm {
 
@@ -19,6 +20,9 @@ struct Scene {
   /// resolve its surfaces: a run's default pipeline then coarsens the mesh
   /// toward the size of its features (run/meshing.hpp, pipeline_for()).
   bool voxel_grid = false;
+  /// For a label volume, the voxels of each phase (by phase id), so that a phase
+  /// the mesh loses can be named with its size; empty otherwise.
+  std::vector<int64_t> phase_voxels = {};
 };
 
 /// Parses a scene from JSON text (format: docs/scenes.md).

@@ -96,6 +96,9 @@ struct CreateReport {
   size_t nodes = 0, triangles = 0; ///< triangles of the initial mesh
   double sampling_seconds = 0;     ///< sampling the phase functions on the grid
   CreateStats stats;               ///< create itself (create/create.hpp)
+  /// Phases of the input with no triangle in the mesh: smaller or thinner than
+  /// the lattice resolves (each is also told as a RunObserver::note()).
+  std::vector<int32_t> lost_phases;
 };
 
 /// What improve_mesh() did.
