@@ -258,9 +258,12 @@ namespace {
 
 uint64_t saturated(double bytes) { return bytes > 1.8e19 ? UINT64_MAX : uint64_t(bytes); }
 
+/// Bytes of one node's samples (SampledField): id (4 B) + value (8 B) per slot, floor 8 B.
+double bytes_per_sample(int k) { return 12.0 * k + 8; }
+
 double sample_bytes(const GridSpec& grid, int k, std::array<int32_t, 2> layers) {
   const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(layers[1] - layers[0] + 1);
-  return nodes * (12.0 * k + 8); // id (4 B) + value (8 B) per slot, floor 8 B
+  return nodes * bytes_per_sample(k);
 }
 
 } // namespace
@@ -272,10 +275,9 @@ uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t,
 uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
   const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
   const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
-  // Samples of the lattice's nodes only (SampledNodes::bcc): id (4 B) and value
-  // (8 B) per slot, floor 8 B; NodeValues: id and quantized value per slot (8 B),
-  // floor and label 8 B.
-  return saturated(lattice_nodes * (12.0 * k + 8) + lattice_nodes * (8.0 * k + 8));
+  // Samples of the lattice's nodes only (SampledNodes::bcc); NodeValues: id and
+  // quantized value per slot (8 B), floor and label 8 B.
+  return saturated(lattice_nodes * bytes_per_sample(k) + lattice_nodes * (8.0 * k + 8));
 }
 
 namespace {

@@ -66,7 +66,7 @@ double interface_curvature(const PhaseField& field, int i, int j, const Vec3& x,
 /// a surface meeting the box, a box edge), more at a corner.
 int constraint_order(const NodeRings& mesh, int32_t n) {
   const int outside = mesh.outside_phase();
-  return phase_count(mesh.phases()[size_t(n)]) + std::popcount(unsigned(mesh.box_faces()[size_t(n)])) -
+  return detail::junction_order(mesh.phases()[size_t(n)], mesh.box_faces()[size_t(n)]) -
          (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
 }
 

@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 #include "improve/field_checks.hpp"
 #include "improve/edge_lengths.hpp"
+#include "mesh/node_rings.hpp"
 
 #include <algorithm>
 #include <array>
@@ -47,7 +48,7 @@ bool keep_tangential(const PhaseField& field, std::span<const int16_t> phases, u
 } // namespace
 
 int junction_order(const InterfaceMesh& mesh, int32_t n) {
-  return phase_count(mesh.phases()[size_t(n)]) + std::popcount(unsigned(mesh.box_faces()[size_t(n)]));
+  return detail::junction_order(mesh.phases()[size_t(n)], mesh.box_faces()[size_t(n)]);
 }
 
 void constrain_to_box(Vec3& d, uint8_t box_faces) {

@@ -11,6 +11,7 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,6 +21,11 @@ namespace vm::detail {
 /// Faces of `domain` each point lies on, as InterfaceMesh::box_faces(): bit 2a
 /// for the min side of axis a, bit 2a+1 for the max (within 1e-9 of the box diagonal).
 std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain);
+
+/// The number of phases and box faces at a node (junction_order() of improve/smooth.hpp).
+inline int junction_order(const PhaseSet& phases, uint8_t box_faces) {
+  return phase_count(phases) + std::popcount(unsigned(box_faces));
+}
 
 /// True when the phases and box faces of a are all among b's (InterfaceMesh::constraints_within()).
 bool constraints_within(const PhaseSet& phases_a, uint8_t box_a, const PhaseSet& phases_b, uint8_t box_b);
