@@ -129,6 +129,24 @@ if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s 
 if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | grep -qE "^phases +2"; then pass; else fail "--merge-labels"; fi
 if "$vm" create -q labels.nrrd --drop-labels 5 --background 3 -o d.ply && "$vm" stats d.ply | grep -qE "^phases +2"; then pass; else fail "--drop-labels"; fi
 if "$vm" create --help | grep -q "Label volumes"; then pass; else fail "--help lacks the 'Label volumes' group"; fi
+# A 3D Slicer segmentation: the same voxels, named segments (liver 1, tumour 5, vessel 3), LPS.
+nrrd_labels organ.seg.nrrd 'space: left-posterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nSegment0_ID:=S1\nSegment0_Name:=liver\nSegment0_LabelValue:=1\nSegment1_ID:=S2\nSegment1_Name:=tumour\nSegment1_LabelValue:=5\nSegment2_ID:=S3\nSegment2_Name:=vessel\nSegment2_LabelValue:=3\n'
+if out=$("$vm" create organ.seg.nrrd --background 3 -o seg.msh 2>&1) && grep -q '"1-liver_5-tumour"' seg.msh &&
+  grep -q "world LPS (the file's)" <<<"$out"; then pass; else fail "segment names do not name the MSH physical groups"; fi
+if "$vm" create -q organ.seg.nrrd --background 3 --keep-labels tumour -o keep.ply && "$vm" stats keep.ply | grep -qE "^phases +2" &&
+  grep -aq "comment phase 5 tumour" keep.ply; then pass; else fail "--keep-labels by segment name"; fi
+if "$vm" create -q organ.seg.nrrd --background 3 --drop-labels tumour -o drop.ply && "$vm" stats drop.ply | grep -qE "^phases +2" &&
+  grep -aq "comment phase 1 liver" drop.ply; then pass; else fail "--drop-labels by segment name"; fi
+expect_error "unknown segment name" 2 "organ.seg.nrrd: --drop-labels: no segment is named 'kidney' \(its segments: 'liver', 'tumour', 'vessel'\)" -- \
+  "$vm" create organ.seg.nrrd --drop-labels kidney -o out.ply
+expect_error "segment names in a plain volume" 2 "labels.nrrd: --keep-labels: no segment is named 'liver' \(this volume names none" -- \
+  "$vm" create labels.nrrd --keep-labels liver -o out.ply
+# --world: the LPS file meshed in RAS is its mirror image in x and y.
+bounds() { grep -a -m1 "^comment domain" "$1" | cut -d' ' -f3-; }
+if out=$("$vm" create organ.seg.nrrd --world ras -o ras.ply 2>&1) && grep -q "world RAS (converted from the file's LPS)" <<<"$out" &&
+  [ "$(bounds ras.ply)" = "-15 -15 0 1 1 16" ]; then pass; else fail "--world ras does not mirror an LPS file: $(bounds ras.ply)"; fi
+expect_error "--world without a frame" 2 "labels.nrrd: --world lps: the file does not say" -- "$vm" create labels.nrrd --world lps -o out.ply
+expect_error "--world on a scene" 2 "--world applies only to volumes" -- "$vm" create --world ras -o out.ply
 printf '# x y z label\n0 0 0 1\n0 1 0 1\n1 0 0 2\n1 1 1 2\n0.5 0.5 1 3\n' >cloud.xyz
 if "$vm" create -q cloud.xyz -o c.ply && "$vm" stats c.ply | grep -qE "^phases +3"; then pass; else fail "create on a point cloud"; fi
 printf '0 0 0 1\n1 1 one 2\n' >badcloud.xyz
@@ -136,7 +154,7 @@ printf '0 0 0 1\n1 1 one 2\n' >badcloud.xyz
 expect_error "oblique direction" 2 "oblique.*--ignore-direction" -- "$vm" create oblique.nrrd -o out.ply
 expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$vm" create labels.nrrd --drop-labels 1,5 --background 3 -o out.ply
 expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
-expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1+x -o out.ply
+expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1++5 -o out.ply
 expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
 # Point clouds as PLY (any vertex element with x, y, z and label), and bad point input.
 # The four-region mesh must come out free of self-intersections (stats exits 4 otherwise):

@@ -3,6 +3,7 @@
 
 Usage: independent_readers.py READER VORONOIMESH WORK_DIR
   READER: meshio (MSH, VTU, MEDIT, STL, OBJ, ASCII PLY), vtk (VTU, VTP: what ParaView reads with),
+          each also on a 3D Slicer segmentation whose segment names must reach MSH and VTU,
           gmsh (loads the MSH, then tetrahedralises sphere volumes bounded by its physical surfaces),
           tetgen (tetrahedralises each closed per-phase ASCII STL and the MEDIT file, checking for
           self-intersections with -d).
@@ -146,8 +147,34 @@ def prepare(vm, work):
     for out in ["cells.ply", "cells.msh"]:
         run(vm, "create", "-q", "--ascii", "cells.json", "-o", out, cwd=work)
     cells = Reference(os.path.join(work, "cells.ply"))
+    write_segmentation(os.path.join(work, "organ.seg.nrrd"))
+    for out in ["seg.msh", "seg.vtu"]:
+        run(vm, "mesh", "-q", "--iterations", "2", "organ.seg.nrrd", "-o", out, cwd=work)
     check(cells.quadruple_points == 1 and cells.junction_edges > 10, "cells: 4 triple curves meeting inside the box")
     return ref, cells
+
+
+SEGMENT_NAMES = {0: "background", 1: "liver", 2: "tumour & cyst"}
+
+
+def write_segmentation(path):
+    """A 3D Slicer segmentation in two layers: an organ (a 10^3 cube, layer 0) and a tumour
+    (4^3) inside it (layer 1), both of label value 1, as Slicer stores overlapping segments."""
+    n = 16
+    inside = lambda i, j, k, lo, hi: lo <= i < hi and lo <= j < hi and lo <= k < hi
+    data = bytearray()
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                data += bytes([int(inside(i, j, k, 3, 13)), int(inside(i, j, k, 6, 10))])
+    header = ["NRRD0004", "type: uchar", "dimension: 4", "space: left-posterior-superior", f"sizes: 2 {n} {n} {n}",
+              "space directions: none (1,0,0) (0,1,0) (0,0,1)", "kinds: list domain domain domain",
+              "encoding: raw", "space origin: (0,0,0)"]
+    for s, name in [(0, "liver"), (1, "tumour & cyst")]:
+        header += [f"Segment{s}_ID:=Segment_{s + 1}", f"Segment{s}_Name:={name}", f"Segment{s}_LabelValue:=1",
+                   f"Segment{s}_Layer:={s}", f"Segment{s}_Color:=0.5 0.5 0.5"]
+    with open(path, "wb") as f:
+        f.write(("\n".join(header) + "\n\n").encode() + bytes(data))
 
 
 def triangles_of(mesh):
@@ -191,6 +218,13 @@ def meshio_checks(work, ref, cells):
     m = meshio.read(path("out.vtu"))
     compare_pairs("vtu", m, ref, lambda b, i: (int(m.cell_data["phase0"][b][i]), int(m.cell_data["phase1"][b][i])))
     check(list(m.point_data["junction_order"]) == ref.order, "vtu: junction_order differs")
+    # A Slicer segmentation's names: VTU field data (name -> label), MSH physical names.
+    m = meshio.read(path("seg.vtu"))
+    check({k: list(v) for k, v in m.field_data.items()} == {n: [l] for l, n in SEGMENT_NAMES.items()},
+          f"seg.vtu: field data {m.field_data} is not the segments' names and labels")
+    m = meshio.read(path("seg.msh"))
+    check(sorted(n for n, (t, d) in m.field_data.items() if d == 2) == ["0-background_1-liver", "1-liver_2-tumour---cyst"],
+          f"seg.msh: physical surfaces {sorted(m.field_data)} are not named after the segments")
     # MEDIT: references through the table in the comments.
     with open(path("out.mesh")) as f:
         table = dict(re.findall(r"#   triangle ref (\d+): (\S+)", f.read()))
@@ -263,6 +297,12 @@ def vtk_checks(work, ref, cells):
         check(data.GetNumberOfCells() == len(ref.triangles), f"{ext}: {data.GetNumberOfCells()} cells")
         check(got == want, f"{ext}: triangles, orientation or phase pairs differ from the reference")
         check(list(order) == ref.order, f"{ext}: junction_order differs")
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(os.path.join(work, "seg.vtu"))
+    reader.Update()
+    fields = reader.GetOutput().GetFieldData()
+    got = {fields.GetArrayName(i): fields.GetArray(i).GetValue(0) for i in range(fields.GetNumberOfArrays())}
+    check(got == {n: l for l, n in SEGMENT_NAMES.items()}, f"seg.vtu: VTK reads field data {got}")
 
 
 def gmsh_checks(work, ref, cells):
@@ -271,6 +311,11 @@ def gmsh_checks(work, ref, cells):
         log = run(gmsh, "-check", name, cwd=work)
         check(not re.search(r"^(Warning|Error)", log, re.M), f"gmsh -check {name}: warnings or errors:\n{log}")
         check(f"{len(mesh.points)} nodes" in log, f"gmsh read a different node count from {name}:\n{log}")
+    # A Slicer segmentation's physical names survive Gmsh reading and writing them.
+    run(gmsh, "seg.msh", "-0", "-o", "seg_again.msh", cwd=work)
+    with open(os.path.join(work, "seg_again.msh")) as f:
+        again = set(re.findall(r'^2 \d+ "([^"]+)"$', f.read(), re.M))
+    check(again == {"0-background_1-liver", "1-liver_2-tumour---cyst"}, f"gmsh: physical surfaces {again}")
     # Volumes bounded by the physical surfaces: Gmsh tetrahedralises each sphere
     # phase conformally with its neighbours, which needs watertight shared surfaces.
     with open(os.path.join(work, "out.msh")) as f:

@@ -72,7 +72,9 @@ void add_create_options(CLI::App* cmd, CreateOptions& o);
 /// own --help groups.
 struct InputCliOptions {
   vm::InputOptions input;
-  std::vector<std::string> merge; ///< "A+B" groups
+  std::vector<std::string> keep, drop; ///< labels by value or segment name
+  std::vector<std::string> merge;      ///< "A+B" groups
+  std::string world = "file";          ///< --world
   bool signed_distance = false;
 };
 /// Adds the options of label volumes to `cmd`.

@@ -50,9 +50,14 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
 
 void add_input_options(CLI::App* cmd, InputCliOptions& o) {
   const char* labels = "Label volumes";
-  cmd->add_option("--drop-labels", o.input.drop_labels, "Labels whose voxels become background, L,L,...")
+  cmd->add_option("--keep-labels", o.keep,
+                  "Only these labels (and the background) become phases, L,L,...: every other label's voxels become "
+                  "background. A label is its value or, in a 3D Slicer segmentation, its segment's name")
       ->delimiter(',')->group(labels);
-  cmd->add_option("--merge-labels", o.merge, "Label groups merged into their smallest label, A+B,C+D+E,...")
+  cmd->add_option("--drop-labels", o.drop, "Labels (values or segment names) whose voxels become background, L,L,...")
+      ->delimiter(',')->group(labels);
+  cmd->add_option("--merge-labels", o.merge,
+                  "Label groups (values or segment names) merged into their smallest label, A+B,C+D+E,...")
       ->delimiter(',')->group(labels);
   cmd->add_option("--background", o.input.background, "The background label (a phase named 'background')")
       ->capture_default_str()->group(labels);
@@ -73,6 +78,13 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->capture_default_str()->group(labels);
   cmd->add_flag("--ignore-direction", o.input.ignore_direction,
                 "Use the voxel axes as they are when the volume's direction matrix is oblique")
+      ->group(labels);
+  cmd->add_option("--world", o.world,
+                  "Coordinates of a volume's mesh: 'file' (the file's own: RAS for NIfTI, LPS for MetaImage, NRRD's "
+                  "'space'), 'lps' or 'ras' (converted from the frame the file states), so one segmentation saved as "
+                  "NIfTI and as NRRD gives one mesh")
+      ->check(CLI::IsMember({"file", "lps", "ras"}))
+      ->capture_default_str()
       ->group(labels);
 }
 
@@ -100,22 +112,37 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                   "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
 }
 
+namespace {
+
+/// A label as the command line gives it: a whole integer is a value, anything
+/// else a segment's name.
+vm::LabelRef label_ref(const std::string& text) {
+  int32_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec == std::errc() && end == text.data() + text.size() && !text.empty()) return value;
+  return text;
+}
+
+} // namespace
+
 vm::InputOptions input_options(const InputCliOptions& o) {
   vm::InputOptions input = o.input;
+  for (const std::string& l : o.keep) input.keep_labels.push_back(label_ref(l));
+  for (const std::string& l : o.drop) input.drop_labels.push_back(label_ref(l));
   for (const std::string& group : o.merge) {
-    std::vector<int32_t> labels;
+    std::vector<vm::LabelRef> labels;
     size_t start = 0;
     for (size_t plus = 0; plus != std::string::npos; start = plus + 1) {
       plus = group.find('+', start);
       const std::string part = group.substr(start, plus == std::string::npos ? std::string::npos : plus - start);
-      int32_t value = 0;
-      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-      if (ec != std::errc() || end != part.data() + part.size() || part.empty())
-        throw vm::InvalidInput("--merge-labels: expected groups of integer labels as A+B, got '" + group + "'");
-      labels.push_back(value);
+      if (part.empty())
+        throw vm::InvalidInput("--merge-labels: expected groups of labels (values or segment names) as A+B, got '" +
+                               group + "'");
+      labels.push_back(label_ref(part));
     }
     input.merge_labels.push_back(labels);
   }
+  input.world = o.world == "lps" ? vm::World::lps : o.world == "ras" ? vm::World::ras : vm::World::file;
   input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
   return input;
 }

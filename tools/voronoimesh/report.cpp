@@ -35,7 +35,7 @@ void Report::input_read(const std::string&, const vm::Scene& scene, double secon
   char line[160];
   std::snprintf(line, sizeof line, "input: %d phases, grid %dx%dx%d; read and phase functions %.3f s",
                 scene.field->num_phases(), scene.grid.cells[0], scene.grid.cells[1], scene.grid.cells[2], seconds);
-  say(line);
+  say(scene.world.empty() ? std::string(line) : std::string(line) + "; world " + scene.world);
 }
 
 void Report::created(const vm::CreateReport& r) {

@@ -16,6 +16,7 @@ namespace vm {
 namespace {
 
 using detail::cat;
+using detail::lower;
 
 /// A distance grid: one real component per phase per voxel.
 Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
@@ -41,6 +42,7 @@ std::vector<std::string> options_that_do_not_apply(const InputOptions& o, bool v
   if (!labels) {
     if (!o.drop_labels.empty()) given.push_back("--drop-labels");
     if (!o.merge_labels.empty()) given.push_back("--merge-labels");
+    if (!o.keep_labels.empty()) given.push_back("--keep-labels");
     if (o.background != defaults.background) given.push_back("--background");
     if (o.no_background) given.push_back("--no-background");
     if (o.label_function != defaults.label_function) given.push_back("--signed-distance");
@@ -50,8 +52,31 @@ std::vector<std::string> options_that_do_not_apply(const InputOptions& o, bool v
   if (!volume) {
     if (o.voxels_per_cell != defaults.voxels_per_cell) given.push_back("--voxels-per-cell");
     if (o.ignore_direction) given.push_back("--ignore-direction");
+    if (o.world != defaults.world) given.push_back("--world");
   }
   return given;
+}
+
+/// The frame's name in messages.
+const char* frame_name(io::WorldFrame f) { return f == io::WorldFrame::lps ? "LPS" : "RAS"; }
+
+/// Puts `v` in the frame `o.world` asks for (LPS and RAS differ in the signs of
+/// x and y), and says which frame its coordinates are in.
+std::string convert_world(io::Volume& v, World world, const std::string& path) {
+  if (world == World::file)
+    return v.world == io::WorldFrame::unknown ? std::string() : cat(frame_name(v.world), " (the file's)");
+  const io::WorldFrame want = world == World::lps ? io::WorldFrame::lps : io::WorldFrame::ras;
+  if (v.world == io::WorldFrame::unknown)
+    throw InvalidInput(located(path, cat("--world ", lower(frame_name(want)),
+                                         ": the file does not say which anatomical frame its coordinates are in (NIfTI "
+                                         "with a qform or sform, NRRD with space LPS or RAS, and MetaImage do)")));
+  if (v.world == want) return cat(frame_name(want), " (the file's)");
+  const Vec3 flip(-1, -1, 1);
+  v.origin = v.origin.cwiseProduct(flip);
+  v.direction = flip.asDiagonal() * v.direction;
+  const std::string said = cat(frame_name(want), " (converted from the file's ", frame_name(v.world), ")");
+  v.world = want;
+  return said;
 }
 
 } // namespace
@@ -77,8 +102,11 @@ Scene load_input(const std::string& path, const InputOptions& options) {
   if (io::is_volume_file(path)) {
     io::Volume v = io::read_volume(path);
     if (!v.integer) refuse_options_that_do_not_apply(options, true, false, "a distance grid (real values)", path);
+    const std::string world = convert_world(v, options.world, path);
     detail::axis_align(v, path, options.ignore_direction);
-    return v.integer ? detail::label_volume_scene(std::move(v), options, path) : distance_scene(v, options, path);
+    Scene scene = v.integer ? detail::label_volume_scene(std::move(v), options, path) : distance_scene(v, options, path);
+    scene.world = world;
+    return scene;
   }
   if (detail::is_point_file(path)) {
     refuse_options_that_do_not_apply(options, false, false, "a point cloud", path);

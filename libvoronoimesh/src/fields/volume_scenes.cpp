@@ -30,25 +30,62 @@ std::vector<int32_t> distinct(const std::vector<int32_t>& labels) {
   return out;
 }
 
-/// What each label present becomes after --drop-labels, --merge-labels and the
-/// background rule: a label value (any 32-bit integer), or none for no phase.
+/// The value `r` names in a volume with these segments: its value, or the
+/// label of the one segment of that name.
+int32_t label_value(const LabelRef& r, const std::vector<io::Segment>& segments, const char* option,
+                    const std::string& path) {
+  if (r.value) return *r.value;
+  const io::Segment* found = nullptr;
+  std::string names;
+  for (const io::Segment& s : segments) {
+    names += cat(names.empty() ? "" : ", ", quote(s.name));
+    if (s.name != r.name) continue;
+    if (found) throw InvalidInput(located(path, cat(option, ": two segments are named ", quote(r.name), "; give its label value")));
+    found = &s;
+  }
+  if (found) return found->label;
+  throw InvalidInput(located(path, cat(option, ": no segment is named ", quote(r.name),
+                                       segments.empty() ? std::string(" (this volume names none of its labels: give label values)")
+                                                        : cat(" (its segments: ", names, ")"))));
+}
+
+/// What each label present becomes after --keep-labels, --drop-labels,
+/// --merge-labels and the background rule: a label value (any 32-bit integer),
+/// or none for no phase.
 std::vector<std::optional<int32_t>> label_targets(const std::vector<int32_t>& present, const InputOptions& o,
-                                                  const std::string& path) {
-  auto require_present = [&](int32_t l, const char* option) {
-    if (!std::binary_search(present.begin(), present.end(), l))
-      throw InvalidInput(located(path, cat(option, ": label ", l, " is not in the volume")));
+                                                  const std::vector<io::Segment>& segments, const std::string& path) {
+  auto values = [&](const std::vector<LabelRef>& refs, const char* option) {
+    std::vector<int32_t> out;
+    for (const LabelRef& r : refs) {
+      const int32_t l = label_value(r, segments, option, path);
+      if (!std::binary_search(present.begin(), present.end(), l))
+        throw InvalidInput(located(path, cat(option, ": label ", l, r.value ? std::string() : cat(" (", quote(r.name), ")"),
+                                             " is not in the volume")));
+      out.push_back(l);
+    }
+    return out;
   };
-  for (int32_t l : o.drop_labels) require_present(l, "--drop-labels");
-  for (const auto& group : o.merge_labels) for (int32_t l : group) require_present(l, "--merge-labels");
+  const std::vector<int32_t> keep = values(o.keep_labels, "--keep-labels"), drop = values(o.drop_labels, "--drop-labels");
+  std::vector<std::vector<int32_t>> merges;
+  for (const auto& group : o.merge_labels) merges.push_back(values(group, "--merge-labels"));
+  auto listed = [](const std::vector<int32_t>& list, int32_t l) { return std::find(list.begin(), list.end(), l) != list.end(); };
   std::vector<std::optional<int32_t>> target(present.size());
   for (size_t i = 0; i < present.size(); ++i) {
     int32_t t = present[i];
-    if (std::find(o.drop_labels.begin(), o.drop_labels.end(), t) != o.drop_labels.end()) t = o.background;
-    for (const auto& group : o.merge_labels)
-      if (std::find(group.begin(), group.end(), t) != group.end()) t = *std::min_element(group.begin(), group.end());
+    if (listed(drop, t) || (!keep.empty() && !listed(keep, t))) t = o.background;
+    for (const auto& group : merges)
+      if (listed(group, t)) t = *std::min_element(group.begin(), group.end());
     if (!(o.no_background && t == o.background)) target[i] = t;
   }
   return target;
+}
+
+/// The name of label l's phase: "background", its segment's name, or "label<l>".
+std::string label_name(int32_t l, const InputOptions& o, const std::vector<io::Segment>& segments) {
+  if (l == o.background) return "background";
+  for (const io::Segment& s : segments)
+    if (s.label == l) return s.name;
+  return cat("label", l);
 }
 
 /// Refuses, before building them, phase functions that cannot fit in memory:
@@ -74,6 +111,11 @@ void check_input_options(const InputOptions& o) {
     throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
+  for (const auto* list : {&o.keep_labels, &o.drop_labels})
+    for (const LabelRef& r : *list)
+      if (!r.value && r.name.empty()) throw InvalidInput("a label is given by an empty name");
+  if (o.world != World::file && o.ignore_direction)
+    throw InvalidInput("--world: not with --ignore-direction (the mesh is then in the voxel axes, in no anatomical frame)");
   // An option of the other label function would change nothing: refused, not ignored.
   const InputOptions defaults;
   if (o.label_function == LabelFunction::signed_distance && o.smoothing != defaults.smoothing)
@@ -87,14 +129,18 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
     throw InvalidInput(located(path, cat("has ", v.components, " integer components per voxel; a label volume has one")));
   refuse_huge_field(v.voxel_count(), o.top_k, 6, path); // the labels and their phases
   const std::vector<int32_t> present = distinct(v.labels);
-  const std::vector<std::optional<int32_t>> target = label_targets(present, o, path);
+  const std::vector<std::optional<int32_t>> target = label_targets(present, o, v.segments, path);
   PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
   for (const auto& t : target)
     if (t) pv.labels.push_back(*t);
   std::sort(pv.labels.begin(), pv.labels.end());
   pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
   check_phase_count(pv.labels.size(), path, " after the label options");
-  for (int32_t l : pv.labels) pv.names.push_back(l == o.background ? std::string("background") : cat("label", l));
+  for (int32_t l : pv.labels) pv.names.push_back(label_name(l, o, v.segments));
+  std::vector<std::string> notes = std::move(v.notes);
+  for (const io::Segment& s : v.segments)
+    if (!std::binary_search(present.begin(), present.end(), s.label))
+      notes.push_back(cat("segment ", quote(s.name), " (label ", s.label, ") has no voxels: it is no phase"));
   // Label value -> phase id, through the position of the label among `present`.
   std::vector<int32_t> phase_of(present.size());
   for (size_t i = 0; i < present.size(); ++i)
@@ -120,7 +166,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   params.band = o.band;
   params.k = o.top_k;
   auto field = label_field(pv, params, path);
-  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels)};
+  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels), std::move(notes)};
 }
 
 Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,

@@ -225,6 +225,7 @@ Volume read_metaimage(const std::string& path) {
   const Fields f(path, h);
   Volume v;
   read_geometry(path, f, v);
+  v.world = WorldFrame::lps; // ITK's physical space, whatever AnatomicalOrientation says of the voxel order
   const detail::VoxelType type = element_type(path, f.required("ElementType"));
   if (!f.boolean("BinaryData", true))
     throw InvalidInput(located(path, "BinaryData = False (voxels as text) is not supported"));

@@ -144,7 +144,8 @@ private:
 };
 
 /// The index-to-space map: the sform when sform_code > 0, else the qform when
-/// qform_code > 0, else the voxel sizes alone (NIfTI's "method 1").
+/// qform_code > 0, else the voxel sizes alone (NIfTI's "method 1", which
+/// places the voxels in no anatomical frame).
 void read_geometry(const std::string& path, const RawHeader& raw, const nifti_image& nim, Volume& v) {
   if (nim.sform_code <= 0) raw.check_pixdim(path);
   Eigen::Matrix3d steps = Eigen::Matrix3d::Zero();
@@ -155,6 +156,7 @@ void read_geometry(const std::string& path, const RawHeader& raw, const nifti_im
       for (int c = 0; c < 3; ++c) steps(r, c) = m.m[r][c];
       origin[r] = m.m[r][3];
     }
+    v.world = WorldFrame::ras;
   } else {
     steps.diagonal() = Vec3(nim.pixdim[1], nim.pixdim[2], nim.pixdim[3]);
   }

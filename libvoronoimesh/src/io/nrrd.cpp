@@ -13,6 +13,7 @@
 #include "core/text.hpp"
 #include "io/nrrd_data_files.hpp"
 #include "io/nrrd_header_screen.hpp"
+#include "io/slicer_segments.hpp"
 
 #include <teem/nrrd.h>
 
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -133,6 +135,25 @@ void read_geometry(const std::string& path, const Nrrd& n, unsigned first, Volum
   }
 }
 
+/// The frame its `space` field names, if one voronoimesh can convert between.
+WorldFrame world_frame(const Nrrd& n) {
+  switch (n.space) {
+  case nrrdSpaceRightAnteriorSuperior: return WorldFrame::ras;
+  case nrrdSpaceLeftPosteriorSuperior:
+  case nrrdSpaceScannerXYZ: return WorldFrame::lps; // scanner-xyz is LPS, Teem's enum says
+  default: return WorldFrame::unknown;
+  }
+}
+
+/// The value of a key/value pair of the header ("key:=value"), if present.
+std::optional<std::string> header_value(const Nrrd& n, const std::string& key) {
+  char* value = nrrdKeyValueGet(&n, key.c_str()); // a copy, ours to free
+  if (!value) return std::nullopt;
+  std::string text = value;
+  free(value);
+  return text;
+}
+
 } // namespace
 
 Volume read_nrrd(const std::string& path) {
@@ -183,6 +204,8 @@ Volume read_nrrd(const std::string& path) {
     if (v.size[a] < 1) throw InvalidInput(located(path, cat("axis ", first + a, " is empty")));
   }
   read_geometry(path, *n, first, v);
+  v.world = world_frame(*n);
+  v.segments = slicer::read_segments([&](const std::string& key) { return header_value(*n, key); }, v.components, path);
 
   const size_t count = size_t(v.voxel_count()) * size_t(v.components);
   v.integer = is_integer_type(n->type);
@@ -190,6 +213,11 @@ Volume read_nrrd(const std::string& path) {
     copy_labels(path, *n, count, v.labels);
   else
     copy_values(path, *n, count, v.values);
+  if (!v.segments.empty()) {
+    if (!v.integer) throw InvalidInput(located(path, "is a segmentation (it lists segments) but holds reals, not labels"));
+    n.reset(); // Teem's copy of the data, before flattening makes another
+    slicer::flatten_segment_layers(v, path);
+  }
   return v;
 }
 

@@ -33,6 +33,21 @@ std::string xml_comment_safe(const std::string& text) {
   return s;
 }
 
+/// `text` made safe in an XML attribute value (in double quotes).
+std::string xml_attribute_safe(const std::string& text) {
+  std::string s;
+  for (char c : text) {
+    switch (c) {
+    case '&': s += "&amp;"; break;
+    case '<': s += "&lt;"; break;
+    case '>': s += "&gt;"; break;
+    case '"': s += "&quot;"; break;
+    default: s += c;
+    }
+  }
+  return s;
+}
+
 /// One ASCII DataArray of integers, `value(i)` for i in [0, n), 12 per line.
 template <class Value>
 void int_array(ChunkedOutput& out, const char* type, const char* name, size_t n, Value value) {
@@ -66,6 +81,16 @@ void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const s
     buf += " -->\n";
     buf += cat("<VTKFile type=\"", type, "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
     buf += cat("  <", type, ">\n");
+    // Named phases as field data, one array per phase named as it is and
+    // holding its label: what ParaView lists and meshio reads (field_data).
+    if (!m.phase_names.empty()) {
+      buf += "    <FieldData>\n";
+      for (size_t p = 0; p < phases; ++p)
+        if (const std::string name = phase_name(m, int32_t(p)); !name.empty())
+          buf += cat("      <DataArray type=\"Int32\" Name=\"", xml_attribute_safe(name),
+                     "\" NumberOfTuples=\"1\" format=\"ascii\">", phase_label(m, int32_t(p)), "</DataArray>\n");
+      buf += "    </FieldData>\n";
+    }
     buf += grid ? cat("    <Piece NumberOfPoints=\"", m.points.size(), "\" NumberOfCells=\"", nt, "\">\n")
                 : cat("    <Piece NumberOfPoints=\"", m.points.size(),
                       "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"", nt, "\">\n");

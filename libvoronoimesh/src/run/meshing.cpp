@@ -71,7 +71,9 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
   const PhaseField& f = *scene.field;
   if (size_t(p) < scene.phase_voxels.size()) {
     const int64_t voxels = scene.phase_voxels[size_t(p)];
-    return cat("label ", f.phase_label(p), ": ", voxels, voxels == 1 ? " voxel" : " voxels",
+    const int32_t label = f.phase_label(p);
+    const std::string name = f.phase_name(p) == cat("label", label) ? std::string() : cat(" (", detail::quote(f.phase_name(p)), ")");
+    return cat("label ", label, name, ": ", voxels, voxels == 1 ? " voxel" : " voxels",
                ", no surface in the mesh: thinner than the grid resolves (--signed-distance or --smoothing 0.5 may "
                "keep it)");
   }
@@ -189,6 +191,8 @@ Scene read_input(const std::string& path, const InputOptions& options, RunObserv
   const auto start = std::chrono::steady_clock::now();
   Scene scene = load_input(path, options);
   if (observer) observer->input_read(path, scene, seconds_since(start));
+  for (const std::string& line : scene.notes)
+    if (observer) observer->note(line);
   return scene;
 }
 

@@ -6,6 +6,7 @@
 #include "voronoimesh/fields/scene.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,17 +18,41 @@ enum class LabelFunction {
   signed_distance,    ///< exact Euclidean signed distance, clamped to a band
 };
 
+/// A label of a label volume, by value or, where the file names its labels (a
+/// 3D Slicer segmentation's segments), by name.
+struct LabelRef {
+  LabelRef(int32_t value) : value(value) {}                 ///< the label of this value
+  LabelRef(std::string name) : name(std::move(name)) {}     ///< the label of this segment name
+  LabelRef(const char* name) : name(name) {}                ///< the label of this segment name
+  std::optional<int32_t> value; ///< the label's value, when given by value
+  std::string name;             ///< the segment's name, when given by name
+  bool operator==(const LabelRef&) const = default; ///< the same value, or the same name
+};
+
+/// The world frame a volume's mesh is put in (--world), docs/inputs.md.
+enum class World {
+  file, ///< the file's own coordinates, as they are
+  lps,  ///< LPS+ (+x left, +y posterior: DICOM, ITK, 3D Slicer's files)
+  ras,  ///< RAS+ (+x right, +y anterior: NIfTI, 3D Slicer's views)
+};
+
 /// Options for reading inputs other than JSON scenes.
 struct InputOptions {
   // Label volumes.
-  std::vector<int32_t> drop_labels;               ///< these labels become background
-  std::vector<std::vector<int32_t>> merge_labels; ///< each group becomes its smallest label
+  std::vector<LabelRef> drop_labels;               ///< these labels become background
+  std::vector<std::vector<LabelRef>> merge_labels; ///< each group becomes its smallest label
+  /// When not empty, only these labels (and the background) become phases:
+  /// the voxels of every other label become background.
+  std::vector<LabelRef> keep_labels;
   int32_t background = 0;                         ///< the background label
   bool no_background = false;                     ///< background voxels are no phase: the labels around fill them
   LabelFunction label_function = LabelFunction::smoothed_indicator; ///< how each label's phase function is made
   double smoothing = 1.0;        ///< Gaussian sigma in voxels (smoothed indicator), in (0, 8]
   double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
   bool ignore_direction = false; ///< take an oblique direction matrix as the identity
+  /// The frame of the mesh's coordinates: the file's own, or LPS or RAS
+  /// converted from the frame the file states (refused where it states none).
+  World world = World::file;
   int top_k = 4;                 ///< phases kept per voxel, in [1, 16]
   // Volumes (labels and distance grids).
   /// The scene's grid: cells of about this many voxels (of the smallest

@@ -23,6 +23,12 @@ struct Scene {
   /// For a label volume, the voxels of each phase (by phase id), so that a phase
   /// the mesh loses can be named with its size; empty otherwise.
   std::vector<int64_t> phase_voxels = {};
+  /// What reading the input resolved that a user should hear of (segments
+  /// with no voxels, overlapping segments), one line each.
+  std::vector<std::string> notes = {};
+  /// For a volume, the frame of the coordinates: "LPS" or "RAS", and whether
+  /// the file's or converted (InputOptions::world); empty for other inputs.
+  std::string world = {};
 };
 
 /// Parses a scene from JSON text (format: docs/scenes.md).

@@ -15,6 +15,22 @@
 
 namespace vm::io {
 
+/// The anatomical frame of a file's world coordinates, where its format says
+/// one: NIfTI is RAS+ (+x right, +y anterior, +z superior), NRRD says it in its
+/// `space` field, MetaImage is ITK's physical space, LPS+ (+x left, +y
+/// posterior). INR and NRRD without (or with another) `space` are `unknown`.
+enum class WorldFrame { unknown, ras, lps };
+
+/// A segment of a 3D Slicer segmentation (`.seg.nrrd`): a named label value in
+/// one layer of the file.
+struct Segment {
+  std::string name;  ///< SegmentN_Name (SegmentN_ID when it has none)
+  int32_t label = 1; ///< its voxels' value in its layer (SegmentN_LabelValue; 1 in files older than Slicer 4.11)
+  int layer = 0;     ///< the layer holding it (SegmentN_Layer; N in files older than Slicer 4.11, one layer each)
+  /// Display colour, red, green, blue in [0, 1] (SegmentN_Color); negative when the file has none.
+  std::array<float, 3> color{-1.f, -1.f, -1.f};
+};
+
 /// A voxel volume in physical space. Voxel (i, j, k) has its centre at
 /// origin + direction * (spacing .* (i, j, k)); i runs fastest in memory.
 struct Volume {
@@ -30,6 +46,15 @@ struct Volume {
   bool integer = false;
   std::vector<int32_t> labels; ///< the data when `integer`: components x voxel_count() values, else empty
   std::vector<float> values;   ///< the data unless `integer`: components x voxel_count() values, else empty
+  WorldFrame world = WorldFrame::unknown; ///< the frame of `origin` and `direction`
+  /// A 3D Slicer segmentation's segments, in file order (empty for any other
+  /// file). Its layers are flattened into one label volume on reading
+  /// (`components` is then 1; flatten_segment_layers()), and each segment's
+  /// `label` is its value there.
+  std::vector<Segment> segments;
+  /// What reading resolved and a user should hear of, one line each (segments
+  /// overlapping in a layered segmentation).
+  std::vector<std::string> notes;
 
   /// Voxels in all, the product of `size`.
   int64_t voxel_count() const { return size[0] * size[1] * size[2]; }

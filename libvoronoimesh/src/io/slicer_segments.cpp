@@ -1,0 +1,115 @@
+/// @file io/slicer_segments.cpp
+/// Segments of 3D Slicer segmentations (io/slicer_segments.hpp).
+
+#include "io/slicer_segments.hpp"
+
+#include "voronoimesh/core/errors.hpp"
+
+#include "core/text.hpp"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace vm::io::slicer {
+
+namespace {
+
+using detail::cat;
+using detail::parse_number;
+
+/// The three numbers of a Segment<i>_Color value, or a failure.
+bool parse_color(const std::string& text, std::array<float, 3>& rgb) {
+  std::istringstream in(text);
+  for (float& c : rgb)
+    if (!(in >> c) || !(c >= 0 && c <= 1)) return false;
+  std::string rest;
+  return !(in >> rest);
+}
+
+} // namespace
+
+std::vector<Segment> read_segments(const HeaderValue& value_of, int layers, const std::string& path) {
+  std::vector<Segment> segments;
+  std::map<std::pair<int, int32_t>, size_t> owner; // (layer, label) -> segment
+  for (int i = 0;; ++i) {
+    const std::string key = cat("Segment", i, "_");
+    const auto id = value_of(key + "ID");
+    if (!id) break;
+    Segment s;
+    s.name = value_of(key + "Name").value_or(*id);
+    const auto label = value_of(key + "LabelValue"), layer = value_of(key + "Layer");
+    auto field_error = [&](const std::string& field, const std::string& text, const char* expected) {
+      return InvalidInput(located(path, cat("segment ", i, " (", detail::quote(s.name), "): ", key, field, " is ",
+                                            detail::quote(text), "; expected ", expected)));
+    };
+    if (label && !parse_number(*label, s.label)) throw field_error("LabelValue", *label, "an integer");
+    s.layer = label ? 0 : i; // before label values, each segment had a layer of its own
+    if (layer && !parse_number(*layer, s.layer)) throw field_error("Layer", *layer, "an integer");
+    if (const auto color = value_of(key + "Color"); color && !parse_color(*color, s.color))
+      throw field_error("Color", *color, "three numbers in [0, 1]");
+    if (s.layer < 0 || s.layer >= layers)
+      throw InvalidInput(located(path, cat("segment ", i, " (", detail::quote(s.name), ") is in layer ", s.layer,
+                                           ", but the file has ", layers, layers == 1 ? " layer" : " layers")));
+    if (s.label == 0)
+      throw InvalidInput(located(path, cat("segment ", i, " (", detail::quote(s.name),
+                                           ") has label value 0, which marks voxels in no segment")));
+    if (const auto [at, added] = owner.emplace(std::pair{s.layer, s.label}, segments.size()); !added)
+      throw InvalidInput(located(path, cat("segments ", at->second, " and ", i, " both have label value ", s.label,
+                                           " in layer ", s.layer)));
+    segments.push_back(std::move(s));
+  }
+  return segments;
+}
+
+void flatten_segment_layers(Volume& v, const std::string& path) {
+  if (v.segments.empty()) return;
+  const int layers = v.components;
+  std::map<std::pair<int, int32_t>, int32_t> segment_of; // (layer, value) -> segment
+  std::vector<int32_t> values;
+  for (size_t s = 0; s < v.segments.size(); ++s) {
+    segment_of[{v.segments[s].layer, v.segments[s].label}] = int32_t(s);
+    values.push_back(v.segments[s].label);
+  }
+  std::sort(values.begin(), values.end());
+  const bool distinct = std::adjacent_find(values.begin(), values.end()) == values.end();
+  if (layers == 1 && distinct) return; // the labels are the segments' values already
+  if (!distinct)
+    for (size_t s = 0; s < v.segments.size(); ++s) v.segments[s].label = int32_t(s) + 1;
+  // Each voxel's segments, one per layer at most; then the smallest of them.
+  const int64_t voxels = v.voxel_count();
+  auto segment_at = [&](int64_t n, int layer) -> int32_t {
+    const int32_t value = v.labels[size_t(n * layers + layer)];
+    if (value == 0) return -1;
+    const auto it = segment_of.find({layer, value});
+    if (it == segment_of.end())
+      throw InvalidInput(located(path, cat("layer ", layer, " holds value ", value, " at voxel ", n,
+                                           ", which no segment of the header has")));
+    return it->second;
+  };
+  std::vector<int64_t> size(v.segments.size(), 0);
+  for (int64_t n = 0; n < voxels; ++n)
+    for (int l = 0; l < layers; ++l)
+      if (const int32_t s = segment_at(n, l); s >= 0) ++size[size_t(s)];
+  std::vector<int32_t> flat(size_t(voxels), 0);
+  int64_t contested = 0;
+  for (int64_t n = 0; n < voxels; ++n) {
+    int32_t best = -1;
+    int found = 0;
+    for (int l = 0; l < layers; ++l)
+      if (const int32_t s = segment_at(n, l); s >= 0) {
+        ++found;
+        if (best < 0 || std::pair{size[size_t(s)], s} < std::pair{size[size_t(best)], best}) best = s;
+      }
+    contested += found > 1;
+    if (best >= 0) flat[size_t(n)] = v.segments[size_t(best)].label;
+  }
+  v.labels = std::move(flat);
+  v.components = 1;
+  if (contested > 0)
+    v.notes.push_back(cat(contested, contested == 1 ? " voxel lies" : " voxels lie",
+                          " in more than one segment: each went to the smallest segment holding it"));
+}
+
+} // namespace vm::io::slicer
