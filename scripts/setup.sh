@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything voronoimesh needs to build, from Debian 12 packages; with
 # --test-readers also the independent readers the tests check every output format
-# with (meshio, VTK, Gmsh, TetGen: large, and only the tests need them) and doxygen,
+# with (meshio, VTK, Gmsh, TetGen, and h5py to write DREAM.3D files: large, and only the
+# tests need them) and doxygen,
 # which the api_docs test builds the API reference with; with
 # --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi).
 # Safe to run again: apt-get skips what is already there. Needs root (or sudo).
@@ -12,11 +13,11 @@ packages=(
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
-  zlib1g-dev libbz2-dev libnifti2-dev
+  zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev
 )
 for arg in "$@"; do
   case "$arg" in
-    --test-readers) packages+=(python3-meshio python3-vtk9 gmsh tetgen doxygen) ;;
+    --test-readers) packages+=(python3-meshio python3-vtk9 python3-h5py gmsh tetgen doxygen) ;;
     --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
     *) echo "usage: scripts/setup.sh [--test-readers] [--mpi]" >&2; exit 2 ;;
   esac

@@ -3,7 +3,8 @@
 
 Usage: independent_readers.py READER VORONOIMESH WORK_DIR
   READER: meshio (MSH, VTU, MEDIT, STL, OBJ, ASCII PLY), vtk (VTU, VTP: what ParaView reads with),
-          each also on a 3D Slicer segmentation whose segment names must reach MSH and VTU,
+          each also on a 3D Slicer segmentation and a DREAM.3D grain map (written with h5py)
+          whose names must reach MSH and VTU,
           gmsh (loads the MSH, then tetrahedralises sphere volumes bounded by its physical surfaces),
           tetgen (tetrahedralises each closed per-phase ASCII STL and the MEDIT file, checking for
           self-intersections with -d).
@@ -150,6 +151,9 @@ def prepare(vm, work):
     write_segmentation(os.path.join(work, "organ.seg.nrrd"))
     for out in ["seg.msh", "seg.vtu"]:
         run(vm, "mesh", "-q", "--iterations", "2", "organ.seg.nrrd", "-o", out, cwd=work)
+    write_grains(os.path.join(work, "grains.dream3d"))
+    for out in ["grains.msh", "grains.vtu"]:
+        run(vm, "mesh", "-q", "--iterations", "2", "grains.dream3d", "-o", out, cwd=work)
     check(cells.quadruple_points == 1 and cells.junction_edges > 10, "cells: 4 triple curves meeting inside the box")
     return ref, cells
 
@@ -175,6 +179,25 @@ def write_segmentation(path):
                    f"Segment{s}_Layer:={s}", f"Segment{s}_Color:=0.5 0.5 0.5"]
     with open(path, "wb") as f:
         f.write(("\n".join(header) + "\n\n").encode() + bytes(data))
+
+
+GRAIN_NAMES = {1: "grain1-phase1", 2: "grain2-phase2", 3: "grain3-phase1"}
+
+
+def write_grains(path):
+    """A DREAM3D-NX grain map written with h5py: three grains in slabs along x, with the
+    grains' phases in a feature-level Phases array."""
+    import h5py
+    import numpy as np
+    ids = np.empty((8, 10, 12, 1), dtype=np.int32)  # z, y, x, components
+    ids[:, :, :4], ids[:, :, 4:8], ids[:, :, 8:] = 1, 2, 3
+    with h5py.File(path, "w") as f:
+        geometry = f.create_group("DataStructure/Image Geometry")
+        geometry.attrs["_DIMENSIONS"] = np.array([12, 10, 8], dtype=np.uint64)
+        geometry.attrs["_ORIGIN"] = np.zeros(3, dtype=np.float32)
+        geometry.attrs["_SPACING"] = np.ones(3, dtype=np.float32)
+        geometry.create_dataset("Cell Data/FeatureIds", data=ids)
+        geometry.create_dataset("Cell Feature Data/Phases", data=np.array([[0], [1], [2], [1]], dtype=np.int32))
 
 
 def triangles_of(mesh):
@@ -225,6 +248,14 @@ def meshio_checks(work, ref, cells):
     m = meshio.read(path("seg.msh"))
     check(sorted(n for n, (t, d) in m.field_data.items() if d == 2) == ["0-background_1-liver", "1-liver_2-tumour---cyst"],
           f"seg.msh: physical surfaces {sorted(m.field_data)} are not named after the segments")
+    # A DREAM.3D grain map's grain names, likewise.
+    m = meshio.read(path("grains.vtu"))
+    check({k: list(v) for k, v in m.field_data.items()} == {n: [l] for l, n in GRAIN_NAMES.items()},
+          f"grains.vtu: field data {m.field_data} is not the grains' names and ids")
+    m = meshio.read(path("grains.msh"))
+    check(sorted(n for n, (t, d) in m.field_data.items() if d == 2) ==
+          ["1-grain1-phase1_2-grain2-phase2", "2-grain2-phase2_3-grain3-phase1"],
+          f"grains.msh: physical surfaces {sorted(m.field_data)} are not named after the grains")
     # MEDIT: references through the table in the comments.
     with open(path("out.mesh")) as f:
         table = dict(re.findall(r"#   triangle ref (\d+): (\S+)", f.read()))
@@ -311,11 +342,13 @@ def gmsh_checks(work, ref, cells):
         log = run(gmsh, "-check", name, cwd=work)
         check(not re.search(r"^(Warning|Error)", log, re.M), f"gmsh -check {name}: warnings or errors:\n{log}")
         check(f"{len(mesh.points)} nodes" in log, f"gmsh read a different node count from {name}:\n{log}")
-    # A Slicer segmentation's physical names survive Gmsh reading and writing them.
-    run(gmsh, "seg.msh", "-0", "-o", "seg_again.msh", cwd=work)
-    with open(os.path.join(work, "seg_again.msh")) as f:
-        again = set(re.findall(r'^2 \d+ "([^"]+)"$', f.read(), re.M))
-    check(again == {"0-background_1-liver", "1-liver_2-tumour---cyst"}, f"gmsh: physical surfaces {again}")
+    # A Slicer segmentation's and a grain map's physical names survive Gmsh reading and writing them.
+    for name, want in [("seg", {"0-background_1-liver", "1-liver_2-tumour---cyst"}),
+                       ("grains", {"1-grain1-phase1_2-grain2-phase2", "2-grain2-phase2_3-grain3-phase1"})]:
+        run(gmsh, name + ".msh", "-0", "-o", name + "_again.msh", cwd=work)
+        with open(os.path.join(work, name + "_again.msh")) as f:
+            again = set(re.findall(r'^2 \d+ "([^"]+)"$', f.read(), re.M))
+        check(again == want, f"gmsh: physical surfaces of {name}.msh {again}")
     # Volumes bounded by the physical surfaces: Gmsh tetrahedralises each sphere
     # phase conformally with its neighbours, which needs watertight shared surfaces.
     with open(os.path.join(work, "out.msh")) as f:
@@ -388,13 +421,15 @@ def tetgen_checks(work, ref, cells):
 
 def missing(reader):
     """Why `reader` cannot run here, or None."""
-    if reader in ("gmsh", "tetgen"):
-        return None if shutil.which(reader) else f"{reader} is not installed (Debian: {reader})"
-    module, package = {"meshio": ("meshio", "python3-meshio"), "vtk": ("vtk", "python3-vtk9")}[reader]
-    try:
-        __import__(module)
-    except ImportError:
-        return f"{sys.executable} has no {module} module (Debian: {package})"
+    if reader in ("gmsh", "tetgen") and not shutil.which(reader):
+        return f"{reader} is not installed (Debian: {reader})"
+    # Every reader's checks include a DREAM.3D file written with h5py.
+    needed = {"meshio": [("meshio", "python3-meshio")], "vtk": [("vtk", "python3-vtk9")]}.get(reader, [])
+    for module, package in needed + [("h5py", "python3-h5py")]:
+        try:
+            __import__(module)
+        except ImportError:
+            return f"{sys.executable} has no {module} module (Debian: {package})"
     return None
 
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace vm::detail {
@@ -80,12 +81,12 @@ std::vector<std::optional<int32_t>> label_targets(const std::vector<int32_t>& pr
   return target;
 }
 
-/// The name of label l's phase: "background", its segment's name, or "label<l>".
-std::string label_name(int32_t l, const InputOptions& o, const std::vector<io::Segment>& segments) {
+/// The name of label l's phase: "background", its segment's name (from
+/// `named`, label -> name), or "label<l>".
+std::string label_name(int32_t l, const InputOptions& o, const std::unordered_map<int32_t, std::string>& named) {
   if (l == o.background) return "background";
-  for (const io::Segment& s : segments)
-    if (s.label == l) return s.name;
-  return cat("label", l);
+  const auto it = named.find(l);
+  return it != named.end() ? it->second : cat("label", l);
 }
 
 /// Refuses, before building them, phase functions that cannot fit in memory:
@@ -136,7 +137,9 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   std::sort(pv.labels.begin(), pv.labels.end());
   pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
   check_phase_count(pv.labels.size(), path, " after the label options");
-  for (int32_t l : pv.labels) pv.names.push_back(label_name(l, o, v.segments));
+  std::unordered_map<int32_t, std::string> named;
+  for (const io::Segment& s : v.segments) named.emplace(s.label, s.name);
+  for (int32_t l : pv.labels) pv.names.push_back(label_name(l, o, named));
   std::vector<std::string> notes = std::move(v.notes);
   for (const io::Segment& s : v.segments)
     if (!std::binary_search(present.begin(), present.end(), s.label))

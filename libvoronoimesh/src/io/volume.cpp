@@ -23,7 +23,7 @@ struct Format {
 };
 
 /// Every extension read_volume() knows (.hdr: the header of a NIfTI .hdr/.img pair).
-constexpr std::array<Format, 9> formats{{{".nrrd", read_nrrd},
+constexpr std::array<Format, 10> formats{{{".nrrd", read_nrrd},
                                          {".nhdr", read_nrrd},
                                          {".nii", read_nifti},
                                          {".nii.gz", read_nifti},
@@ -31,7 +31,8 @@ constexpr std::array<Format, 9> formats{{{".nrrd", read_nrrd},
                                          {".mha", read_metaimage},
                                          {".mhd", read_metaimage},
                                          {".inr", read_inr},
-                                         {".inr.gz", read_inr}}};
+                                         {".inr.gz", read_inr},
+                                         {".dream3d", read_dream3d}}};
 
 /// The format whose extension ends `path` (longest match, so ".nii.gz" wins over ".gz").
 const Format* format_of(const std::string& path) {
@@ -50,7 +51,7 @@ Volume read_volume(const std::string& path) {
   const Format* f = format_of(path);
   if (!f)
     throw InvalidInput(
-        located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr or .inr.gz)"));
+        located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr, .inr.gz or .dream3d)"));
   detail::require_regular_file(path); // the files it names are checked by its reader
   return f->read(path);
 }

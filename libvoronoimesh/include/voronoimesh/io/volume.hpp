@@ -1,8 +1,9 @@
 #pragma once
 /// @file io/volume.hpp
-/// Voxel volumes as scanners, segmenters and level-set codes write them: NRRD
-/// (.nrrd/.nhdr), NIfTI-1 (.nii/.nii.gz), MetaImage (.mha/.mhd) and INR
-/// (.inr/.inr.gz). One reader per format; read_volume() picks by extension.
+/// Voxel volumes as scanners, segmenters, grain-map and level-set codes write
+/// them: NRRD (.nrrd/.nhdr, 3D Slicer's .seg.nrrd), NIfTI-1 (.nii/.nii.gz),
+/// MetaImage (.mha/.mhd), INR (.inr/.inr.gz) and DREAM.3D (.dream3d). One
+/// reader per format; read_volume() picks by extension.
 
 #include "voronoimesh/core/types.hpp"
 
@@ -21,8 +22,8 @@ namespace vm::io {
 /// posterior). INR and NRRD without (or with another) `space` are `unknown`.
 enum class WorldFrame { unknown, ras, lps };
 
-/// A segment of a 3D Slicer segmentation (`.seg.nrrd`): a named label value in
-/// one layer of the file.
+/// A named label: a segment of a 3D Slicer segmentation (`.seg.nrrd`), a label
+/// value in one layer of the file; or a grain of a DREAM.3D file.
 struct Segment {
   std::string name;  ///< SegmentN_Name (SegmentN_ID when it has none)
   int32_t label = 1; ///< its voxels' value in its layer (SegmentN_LabelValue; 1 in files older than Slicer 4.11)
@@ -47,8 +48,8 @@ struct Volume {
   std::vector<int32_t> labels; ///< the data when `integer`: components x voxel_count() values, else empty
   std::vector<float> values;   ///< the data unless `integer`: components x voxel_count() values, else empty
   WorldFrame world = WorldFrame::unknown; ///< the frame of `origin` and `direction`
-  /// A 3D Slicer segmentation's segments, in file order (empty for any other
-  /// file). Its layers are flattened into one label volume on reading
+  /// The named labels: a 3D Slicer segmentation's segments, in file order, or
+  /// a DREAM.3D file's grains (empty for any other file). Its layers are flattened into one label volume on reading
   /// (`components` is then 1; flatten_segment_layers()), and each segment's
   /// `label` is its value there.
   std::vector<Segment> segments;
@@ -97,6 +98,15 @@ Volume read_metaimage(const std::string& path);
 /// @throws InvalidInput for a malformed, truncated or unsupported file
 /// @throws IoError      if it cannot be read
 Volume read_inr(const std::string& path);
+/// Reads the grain map (FeatureIds) of a DREAM.3D file (.dream3d: DREAM.3D 6's
+/// SIMPL layout or DREAM3D-NX 7's) as a label volume of grain ids, each grain a
+/// segment named grain<id>, or grain<id>-phase<p> where the file gives the
+/// grains' phases (docs/inputs.md).
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a file that is not HDF5, has no grain map or several, or malformed geometry
+/// @throws IoError      if it cannot be read
+Volume read_dream3d(const std::string& path);
 
 /// @}
 
