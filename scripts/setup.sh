@@ -14,6 +14,7 @@ packages=(
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
   zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 for arg in "$@"; do
   case "$arg" in

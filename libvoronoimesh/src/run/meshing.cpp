@@ -261,12 +261,12 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
 }
 
-NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options) {
-  NodeMesh mesh = create_mesh(scene, options);
+NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options, RunObserver* observer) {
+  NodeMesh mesh = create_mesh(scene, options, observer);
   MeshOptions improving = options;
   improving.pipeline = pipeline_for(options, &scene);
   improving.size = 0; // in the pipeline now
-  improve_mesh(mesh, scene.field, improving);
+  improve_mesh(mesh, scene.field, improving, observer);
   return mesh;
 }
 

@@ -274,12 +274,13 @@ int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const 
 
 /// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
 /// `voronoimesh mesh` without the files. It never exits.
-/// @param scene   the scene to mesh; its field must not be null
-/// @param options the options of the run
+/// @param scene    the scene to mesh; its field must not be null
+/// @param options  the options of the run
+/// @param observer watches the run (progress, and whether to stop); null for none. Not owned.
 /// @return the improved mesh
 /// @throws Error everything it throws is a vm::Error (core/errors.hpp), as create_mesh() and
-///               improve_mesh() throw
-NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options = {});
+///               improve_mesh() throw (Cancelled when the observer asked to stop)
+NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options = {}, RunObserver* observer = nullptr);
 
 /// The write stage: `mesh` to outputs.mesh and outputs.per_phase (the history,
 /// which needs the iterations, run_job() writes).

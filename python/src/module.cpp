@@ -1,0 +1,180 @@
+// python/src/module.cpp: the voronoimesh Python module (pybind11), a front end
+// over the library's one run path (run/meshing.hpp): a scene from a label
+// array or any input file, create_mesh(), improve_mesh() with the input's
+// default pipeline, and the mesh as numpy arrays. Options are the CLI's, as
+// keywords (options.cpp); the GIL is released while meshing and Ctrl-C stops a
+// run between its steps (observer.hpp).
+
+#include "observer.hpp"
+#include "options.hpp"
+
+#include <voronoimesh/voronoimesh.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace {
+
+/// A mesh held for Python: the arrays it hands out are views of it.
+struct Mesh {
+  vm::NodeMesh mesh;
+};
+
+/// The label each phase shows in files (its id when the mesh has no labels).
+int32_t label_of(const vm::NodeMesh& m, int32_t phase) {
+  return size_t(phase) < m.phase_labels.size() ? m.phase_labels[size_t(phase)] : phase;
+}
+
+/// A read-only (rows x cols) view of `data`, kept alive by `owner`.
+template <class T>
+py::array view(const T* data, size_t rows, size_t cols, py::handle owner) {
+  py::array a(py::dtype::of<T>(), {rows, cols}, {cols * sizeof(T), sizeof(T)}, data, owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+/// create_mesh() and improve_mesh() on `scene` (mesh_scene() watched by `observer`), the GIL released.
+std::unique_ptr<Mesh> mesh_scene(const vm::Scene& scene, const vm::MeshOptions& options, vmpy::Observer& observer) {
+  auto out = std::make_unique<Mesh>();
+  try {
+    py::gil_scoped_release released;
+    out->mesh = vm::mesh_scene(scene, options, &observer);
+  } catch (const vm::Cancelled&) {
+    observer.rethrow(); // the KeyboardInterrupt, or what the progress callback raised
+    throw;
+  }
+  observer.rethrow();
+  return out;
+}
+
+std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<double, 3>& spacing,
+                                  const std::array<double, 3>& origin, const py::kwargs& kwargs) {
+  if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
+                                                std::to_string(labels.ndim()) + " dimensions");
+  if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
+    throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
+  // x fastest in memory, as the library takes it: an int32 Fortran-ordered
+  // array (nibabel's) is read where it lies; anything else is converted once.
+  const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
+  if (!fortran) throw py::error_already_set();
+  vm::GridSpec grid;
+  for (int a = 0; a < 3; ++a) {
+    const auto n = fortran.shape(a);
+    if (n < 2) throw py::value_error("labels: at least 2 voxels along every axis, got " + std::to_string(n) +
+                                     " along axis " + std::to_string(a));
+    if (!(spacing[size_t(a)] > 0)) throw py::value_error("spacing: every voxel size must be above 0");
+    grid.cells[size_t(a)] = int(n - 1);
+    grid.domain.min[a] = origin[size_t(a)];
+    grid.domain.max[a] = origin[size_t(a)] + spacing[size_t(a)] * double(n - 1);
+  }
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::array);
+  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  vm::Scene scene;
+  {
+    py::gil_scoped_release released;
+    scene = vm::scene_from_labels(grid, {fortran.data(), size_t(fortran.size())}, o.input, "labels");
+  }
+  return mesh_scene(scene, o.mesh, observer);
+}
+
+std::unique_ptr<Mesh> mesh_file(const std::string& path, const py::kwargs& kwargs) {
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
+  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  vm::Scene scene;
+  try {
+    py::gil_scoped_release released;
+    scene = vm::read_input(path, o.input, &observer);
+  } catch (const vm::Cancelled&) {
+    observer.rethrow();
+    throw;
+  }
+  observer.rethrow();
+  return mesh_scene(scene, o.mesh, observer);
+}
+
+py::list junctions(const Mesh& self) {
+  const vm::Junctions j = vm::find_junctions(self.mesh);
+  py::list curves;
+  for (const vm::TripleCurve& c : j.curves) {
+    py::list phases;
+    for (int32_t p : c.phases) phases.append(label_of(self.mesh, p));
+    py::dict curve;
+    curve["phases"] = py::tuple(phases);
+    curve["nodes"] = py::array_t<int32_t>(py::ssize_t(c.nodes.size()), c.nodes.data());
+    curve["closed"] = c.closed();
+    curves.append(curve);
+  }
+  return curves;
+}
+
+} // namespace
+
+PYBIND11_MODULE(_voronoimesh, m) {
+  m.doc() = "Meshes of interconnected surfaces (Saye's Voronoi implicit interface method).";
+  vmpy::register_exceptions(m);
+
+  py::class_<Mesh>(m, "Mesh", "An interface mesh: triangles of every surface between phases, sharing nodes at junctions.")
+      .def_property_readonly(
+          "points", [](py::object self) {
+            const auto& m = self.cast<const Mesh&>().mesh;
+            return view(m.points.empty() ? nullptr : m.points[0].data(), m.points.size(), 3, self);
+          },
+          "Node positions, N x 3 float64 (a read-only view)")
+      .def_property_readonly(
+          "triangles", [](py::object self) {
+            const auto& m = self.cast<const Mesh&>().mesh;
+            return view(m.triangles.empty() ? nullptr : m.triangles[0].data(), m.triangles.size(), 3, self);
+          },
+          "Node ids of each triangle, M x 3 int32 (a read-only view); the normal points from phases[t, 0] into phases[t, 1]")
+      .def_property_readonly(
+          "phases", [](const Mesh& self) {
+            py::array_t<int32_t> out({py::ssize_t(self.mesh.pairs.size()), py::ssize_t(2)});
+            auto w = out.mutable_unchecked<2>();
+            for (size_t t = 0; t < self.mesh.pairs.size(); ++t)
+              for (int k = 0; k < 2; ++k) w(py::ssize_t(t), k) = label_of(self.mesh, self.mesh.pairs[t][size_t(k)]);
+            return out;
+          },
+          "The phase labels on either side of each triangle, M x 2 int32 (label values, as in every output file)")
+      .def_property_readonly(
+          "phase_names", [](const Mesh& self) { return self.mesh.phase_names; }, "Each phase's name, by phase id")
+      .def_property_readonly(
+          "phase_labels", [](const Mesh& self) {
+            std::vector<int32_t> labels;
+            for (size_t p = 0; p < self.mesh.phase_names.size(); ++p) labels.push_back(label_of(self.mesh, int32_t(p)));
+            return labels;
+          },
+          "The label each phase shows, by phase id")
+      .def("junctions", &junctions,
+           "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
+      .def(
+          "stats_json", [](const Mesh& self) { return vm::to_json(vm::compute_stats(self.mesh)); },
+          "Counts and quality, as 'voronoimesh stats --json' prints them")
+      .def(
+          "write", [](const Mesh& self, const std::string& path, bool ascii) {
+            vm::RunOutputs outputs;
+            outputs.mesh = path;
+            outputs.ascii = ascii;
+            py::gil_scoped_release released;
+            vm::write_outputs(self.mesh, outputs);
+          },
+          py::arg("path"), py::arg("ascii") = false,
+          "Writes the mesh; the extension picks the format (.ply .obj .stl .msh .vtu .vtp .mesh)")
+      .def_property_readonly(
+          "num_triangles", [](const Mesh& self) { return self.mesh.num_triangles(); }, "Number of triangles");
+
+  m.def("mesh_labels", &mesh_labels, py::arg("labels"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
+        py::arg("origin") = std::array<double, 3>{0, 0, 0},
+        "Meshes a label volume given as a 3-D integer array indexed [x, y, z] (voxel centres at origin + spacing * "
+        "index), with the options of 'voronoimesh mesh' as keywords.");
+  m.def("mesh_file", &mesh_file, py::arg("path"),
+        "Meshes any input 'voronoimesh mesh' reads (a scene, volume, segmentation, grain map or point cloud), "
+        "with its options as keywords.");
+  m.def("output_extensions", &vm::io::output_extensions, "The extensions Mesh.write() knows");
+}

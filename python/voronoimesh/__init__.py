@@ -1,0 +1,38 @@
+"""voronoimesh: meshes of interconnected surfaces (Saye's Voronoi implicit interface method).
+
+    import voronoimesh
+    mesh = voronoimesh.mesh_labels(labels, spacing=(0.5, 0.5, 1.0), iterations=20)
+    mesh.points, mesh.triangles, mesh.phases      # numpy arrays
+    mesh.write("organs.vtu"); mesh.to_meshio()
+
+Options are the command line's, as keywords (iterations=, pipeline=, size=, close=,
+threads=, drop_labels=, keep_labels=, merge_labels=, background=, smoothing=, ...); see
+docs/python.md. Errors: ValueError (bad input or option), OSError (files),
+KeyboardInterrupt (Ctrl-C, which stops a run), voronoimesh.Error (anything else).
+"""
+import json as _json
+
+from ._voronoimesh import Error, Mesh, mesh_file, mesh_labels, output_extensions
+
+__all__ = ["Error", "Mesh", "mesh_file", "mesh_labels", "output_extensions"]
+
+
+def _stats(self):
+    """Counts and quality as a dict, the keys of 'voronoimesh stats --json'."""
+    return _json.loads(self.stats_json())
+
+
+def _to_meshio(self):
+    """The mesh as a meshio.Mesh: triangles, cell data phase0/phase1 (labels), and the
+    phase names as field data (name -> [label]), as the VTU writer stores them."""
+    import meshio
+    import numpy
+
+    phases = self.phases
+    field_data = {name: numpy.array([label]) for name, label in zip(self.phase_names, self.phase_labels) if name}
+    return meshio.Mesh(self.points.copy(), [("triangle", self.triangles.copy())],
+                       cell_data={"phase0": [phases[:, 0]], "phase1": [phases[:, 1]]}, field_data=field_data)
+
+
+Mesh.stats = _stats
+Mesh.to_meshio = _to_meshio
