@@ -8,5 +8,9 @@ scripts/setup.sh
 scripts/build.sh
 mkdir -p out
 build/tools/voronoimesh/voronoimesh mesh -o out/demo.ply --history out/demo_history.svg
+# The same run again (meshes do not depend on the run) for ParaView, whose PLY reader
+# drops the phases (docs/formats.md, "Which viewer shows what").
+build/tools/voronoimesh/voronoimesh mesh -q -o out/demo.vtu
 build/tools/voronoimesh/voronoimesh stats out/demo.ply
-echo "wrote out/demo.ply (open it in ParaView or MeshLab) and out/demo_history.svg (open it in a browser)"
+echo "wrote out/demo.vtu (ParaView: colour by phase1 or junction_order), out/demo.ply (voronoimesh stats/smooth,"
+echo "meshio; MeshLab and Blender show its geometry) and out/demo_history.svg (open it in a browser)"

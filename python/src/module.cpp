@@ -151,6 +151,10 @@ PYBIND11_MODULE(_voronoimesh, m) {
             return labels;
           },
           "The label each phase shows, by phase id")
+      .def(
+          "validate", [](const Mesh& self) { return vm::validate(self.mesh).problems; },
+          "The problems the validator finds (every phase closed and 2-manifold, junctions consistent, no duplicate "
+          "or zero-area triangles; at most 20, one line each): an empty list for a valid mesh")
       .def("junctions", &junctions,
            "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
       .def(

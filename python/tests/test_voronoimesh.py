@@ -42,7 +42,7 @@ def test_label_arrays_give_numpy_meshes_in_labels_and_world_units():
     assert mesh.phase_names == ["background", "label3", "label7"]
     assert set(map(tuple, mesh.phases)) == {(0, 3), (0, 7), (3, 7)}
     assert not mesh.points.flags.writeable  # a view of the mesh, not a copy to edit
-    assert closed_and_consistent(mesh)
+    assert mesh.validate() == [] and closed_and_consistent(mesh)
     # [x, y, z] indexing: the 3|7 surface lies halfway between x indices 7 and 8.
     between = mesh.triangles[(mesh.phases[:, 0] == 3) & (mesh.phases[:, 1] == 7)]
     xs = mesh.points[between.ravel(), 0]

@@ -328,6 +328,14 @@ def vtk_checks(work, ref, cells):
         check(data.GetNumberOfCells() == len(ref.triangles), f"{ext}: {data.GetNumberOfCells()} cells")
         check(got == want, f"{ext}: triangles, orientation or phase pairs differ from the reference")
         check(list(order) == ref.order, f"{ext}: junction_order differs")
+    # What docs/formats.md tells viewers: ParaView's PLY reader (VTK's) keeps no phases.
+    ply = vtk.vtkPLYReader()
+    ply.SetFileName(os.path.join(work, "out.ply"))
+    ply.Update()
+    arrays = [ply.GetOutput().GetCellData().GetArrayName(i) for i in range(ply.GetOutput().GetCellData().GetNumberOfArrays())]
+    check(ply.GetOutput().GetNumberOfCells() == len(ref.triangles) and "phase1" not in arrays,
+          f"ply in VTK: {ply.GetOutput().GetNumberOfCells()} cells, cell arrays {arrays}: docs/formats.md says "
+          "ParaView opens a .ply without its phases")
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(os.path.join(work, "seg.vtu"))
     reader.Update()
