@@ -97,6 +97,18 @@ expect_error "negative size" 2 "--size: must be a length above 0" -- "$vm" mesh 
 if out=$("$vm" mesh --grid 16 --iterations 2 --size 0.1 -o sized.ply 2>&1) && grep -q "iterations of remesh:length=0.1,smooth" <<<"$out"; then pass
 else fail "--size does not remesh to the length given"; fi
 
+# Sequences (issue 20): a numbered pattern, one mesh per step and a ParaView collection.
+mkdir -p seq seq_out
+for i in 0 1 2; do
+  printf '{"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 12, "phases": [{"name": "o", "kind": "constant", "value": 0}, {"name": "s", "kind": "sphere", "center": [0.%d, 0.5, 0.5], "radius": 0.25}]}\n' $((4 + i)) >seq/step_00$i.json
+done
+if out=$("$vm" mesh 'seq/step_%03d.json' -o 'seq_out/m_%02d.vtu' --iterations 2 2>&1) && grep -q "^step 3 of 3: seq/step_002.json -> seq_out/m_02.vtu" <<<"$out" &&
+  [ "$(grep -c '<DataSet timestep="[0-2]" group="" part="0" file="m_0[0-2].vtu"/>' seq_out/m.pvd)" = 3 ] &&
+  "$vm" mesh -q seq/step_001.json -o seq_alone.vtu --iterations 2 && cmp -s seq_alone.vtu seq_out/m_01.vtu; then pass
+else fail "a numbered sequence is not meshed step by step as lone runs mesh each step, with a .pvd"; fi
+expect_error "sequence without a numbered output" 2 "-o: a sequence needs a numbered output" -- "$vm" mesh seq/step_000.json seq/step_001.json -o out.ply
+expect_error "pattern without files" 2 "nothing_%03d.json: no file matches this numbered pattern" -- "$vm" mesh 'nothing_%03d.json' -o 'out_%d.ply'
+
 # Label volumes (NRRD written here): a 16^3 cube of label 1 inside label 3, and a cube of label 5 beside it.
 nrrd_labels() { # FILE [extra header lines]: 16x16x16 uchar
   { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 16 16\n%bencoding: raw\n\n' "${2:-}"

@@ -3,9 +3,13 @@
 
 #include "commands.hpp"
 #include "report.hpp"
+#include "sequence.hpp"
 
 #include "voronoimesh/core/errors.hpp"
 
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 
 namespace vmcli {
@@ -18,13 +22,60 @@ int mesh_with_mpi(const MeshCommandOptions&) {
 }
 #endif
 
+namespace {
+
+/// One run per step of the sequence o.inputs names, each written to the step's
+/// number in -o; then the .pvd of VTK outputs.
+int mesh_sequence(const MeshCommandOptions& o) {
+  return run_guarded([&] {
+    if (o.mpi) throw vm::InvalidInput("--mpi: meshes one input; a sequence runs in one process");
+    if (!o.output.per_phase.empty()) throw vm::InvalidInput("--per-phase: not with a sequence of inputs");
+    if (!o.improve.history.empty()) throw vm::InvalidInput("--history: not with a sequence of inputs");
+    if (!is_numbered(o.output.path))
+      throw vm::InvalidInput("-o: a sequence needs a numbered output such as out/step_%04d.vtu, got '" +
+                             o.output.path + "'");
+    const std::vector<Step> steps = sequence_steps(o.inputs);
+    const vm::PassRegistry registry = pass_registry(o.improve.plugins, o.common.quiet);
+    std::vector<std::string> written;
+    std::vector<double> times;
+    for (size_t i = 0; i < steps.size(); ++i) {
+      MeshCommandOptions step = o;
+      step.input = steps[i].input;
+      step.output.path = numbered(o.output.path, steps[i].number);
+      Report report(o.common.quiet, o.improve.iterations, step.output.path);
+      report.note("step " + std::to_string(i + 1) + " of " + std::to_string(steps.size()) + ": " + step.input +
+                  " -> " + step.output.path);
+      const auto start = std::chrono::steady_clock::now();
+      vm::run_job(creating_job(step, registry), &report);
+      report.note("step " + std::to_string(i + 1) + " done in " +
+                  std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
+                  " s");
+      written.push_back(step.output.path);
+      times.push_back(double(steps[i].number));
+    }
+    const std::string ext = std::filesystem::path(o.output.path).extension().string();
+    if (ext == ".vtu" || ext == ".vtp") {
+      const std::string pvd = pvd_name(o.output.path);
+      write_pvd(pvd, written, times);
+      if (!o.common.quiet) std::fprintf(stderr, "wrote %s: %zu steps\n", pvd.c_str(), written.size());
+    }
+    return kOk;
+  });
+}
+
+} // namespace
+
 void add_mesh_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<MeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "mesh", "The main job: create the initial mesh, then improve it (paper Algorithm 1), and write it (PLY, OBJ, "
               "STL, MSH, VTU, VTP or MEDIT).");
-  cmd->add_option("input", o->input,
-                  std::string(kInputHelp) + " Without it, the built-in demo: four overlapping spheres.");
+  cmd->add_option("input", o->inputs,
+                  std::string(kInputHelp) +
+                      " Without it, the built-in demo: four overlapping spheres. Several inputs, or one numbered "
+                      "pattern such as step_%04d.nrrd (every file it matches, in number order), are a sequence: one "
+                      "mesh per step, -o numbered likewise (out/step_%04d.vtu), and for .vtu/.vtp a ParaView "
+                      "collection out/step.pvd with each step's number as its time");
   add_output_options(cmd, o->output, true);
   add_create_options(cmd, o->create);
   add_input_options(cmd, o->input_options);
@@ -38,6 +89,11 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                 "passes that do not run distributed (plugins, stats), --stop-when-converged and --history improve "
                 "on rank 0 alone");
   cmd->callback([o, &exit_code] {
+    if (o->inputs.size() > 1 || (o->inputs.size() == 1 && is_numbered(o->inputs[0]))) {
+      exit_code = mesh_sequence(*o);
+      return;
+    }
+    o->input = o->inputs.empty() ? std::string() : o->inputs[0];
     if (o->mpi) {
       exit_code = mesh_with_mpi(*o);
       return;

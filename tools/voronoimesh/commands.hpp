@@ -106,6 +106,7 @@ vm::PassRegistry pass_registry(const std::vector<std::string>& files, bool quiet
 /// Everything `mesh` (and `create`, with no iterations) is told.
 struct MeshCommandOptions {
   std::string input;
+  std::vector<std::string> inputs; ///< as given; several (or a numbered pattern) make a sequence (sequence.hpp)
   OutputOptions output;
   CreateOptions create;
   InputCliOptions input_options;
