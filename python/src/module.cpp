@@ -14,7 +14,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,21 @@ std::unique_ptr<Mesh> mesh_scene(const vm::Scene& scene, const vm::MeshOptions& 
   return out;
 }
 
+/// The grid of arrays shaped `shape` ([x, y, z] nodes) at `spacing` from `origin`.
+vm::GridSpec node_grid(const py::ssize_t* shape, const std::array<double, 3>& spacing,
+                       const std::array<double, 3>& origin, const char* what) {
+  vm::GridSpec grid;
+  for (int a = 0; a < 3; ++a) {
+    if (shape[a] < 2) throw py::value_error(std::string(what) + ": at least 2 values along every axis, got " +
+                                            std::to_string(shape[a]) + " along axis " + std::to_string(a));
+    if (!(spacing[size_t(a)] > 0)) throw py::value_error("spacing: every voxel size must be above 0");
+    grid.cells[size_t(a)] = int(shape[a] - 1);
+    grid.domain.min[a] = origin[size_t(a)];
+    grid.domain.max[a] = origin[size_t(a)] + spacing[size_t(a)] * double(shape[a] - 1);
+  }
+  return grid;
+}
+
 std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<double, 3>& spacing,
                                   const std::array<double, 3>& origin, const py::kwargs& kwargs) {
   if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
@@ -64,22 +81,46 @@ std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<doub
   // array (nibabel's) is read where it lies; anything else is converted once.
   const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
   if (!fortran) throw py::error_already_set();
-  vm::GridSpec grid;
-  for (int a = 0; a < 3; ++a) {
-    const auto n = fortran.shape(a);
-    if (n < 2) throw py::value_error("labels: at least 2 voxels along every axis, got " + std::to_string(n) +
-                                     " along axis " + std::to_string(a));
-    if (!(spacing[size_t(a)] > 0)) throw py::value_error("spacing: every voxel size must be above 0");
-    grid.cells[size_t(a)] = int(n - 1);
-    grid.domain.min[a] = origin[size_t(a)];
-    grid.domain.max[a] = origin[size_t(a)] + spacing[size_t(a)] * double(n - 1);
-  }
-  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::array);
+  const vm::GridSpec grid = node_grid(fortran.shape(), spacing, origin, "labels");
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels);
   vmpy::Observer observer(o.progress, o.mesh.iterations);
   vm::Scene scene;
   {
     py::gil_scoped_release released;
     scene = vm::scene_from_labels(grid, {fortran.data(), size_t(fortran.size())}, o.input, "labels");
+  }
+  return mesh_scene(scene, o.mesh, observer);
+}
+
+std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<double, 3>& spacing,
+                                  const std::array<double, 3>& origin, std::vector<std::string> names,
+                                  std::vector<int32_t> labels, const py::kwargs& kwargs) {
+  // One array per phase, each indexed [x, y, z] and read where it lies when it
+  // is float64 in Fortran order (x fastest), else converted once.
+  std::vector<py::array_t<double, py::array::f_style | py::array::forcecast>> phases;
+  for (const py::handle& item : values) {
+    auto a = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(item);
+    if (!a) throw py::error_already_set();
+    if (a.ndim() != 3) throw py::value_error("values: one 3-D array per phase, indexed [x, y, z]");
+    if (!phases.empty() && !std::equal(a.shape(), a.shape() + 3, phases.front().shape()))
+      throw py::value_error("values: every phase's array must have the same shape");
+    phases.push_back(std::move(a));
+  }
+  if (phases.empty()) throw py::value_error("values: one 3-D array per phase expected, got none");
+  const vm::GridSpec grid = node_grid(phases.front().shape(), spacing, origin, "values");
+  vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values);
+  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  std::vector<std::span<const double>> spans;
+  for (const auto& a : phases) spans.emplace_back(a.data(), size_t(a.size()));
+  vm::PhaseValuesOptions options;
+  options.names = std::move(names);
+  options.labels = std::move(labels);
+  options.top_k = o.mesh.top_k;
+  options.source = "values";
+  vm::Scene scene;
+  {
+    py::gil_scoped_release released;
+    scene = vm::scene_from_phase_values(grid, spans, options);
   }
   return mesh_scene(scene, o.mesh, observer);
 }
@@ -177,6 +218,12 @@ PYBIND11_MODULE(_voronoimesh, m) {
         py::arg("origin") = std::array<double, 3>{0, 0, 0},
         "Meshes a label volume given as a 3-D integer array indexed [x, y, z] (voxel centres at origin + spacing * "
         "index), with the options of 'voronoimesh mesh' as keywords.");
+  m.def("mesh_values", &mesh_values, py::arg("values"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
+        py::arg("origin") = std::array<double, 3>{0, 0, 0}, py::arg("names") = std::vector<std::string>{},
+        py::arg("labels") = std::vector<int32_t>{},
+        "Meshes phase functions given by their values on a grid (a level-set or phase-field simulation's): one "
+        "3-D float array per phase indexed [x, y, z] (or a 4-D array [phase, x, y, z]), larger = more inside, "
+        "interpolated trilinearly; names and labels optional, labels strictly increasing.");
   m.def("mesh_file", &mesh_file, py::arg("path"),
         "Meshes any input 'voronoimesh mesh' reads (a scene, volume, segmentation, grain map or point cloud), "
         "with its options as keywords.");

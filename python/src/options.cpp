@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace py = pybind11;
 
@@ -35,7 +36,7 @@ Options options_from(const py::kwargs& kwargs, Input input) {
   auto& m = o.mesh;
   auto& in = o.input;
   using Set = std::function<void(const py::handle&)>;
-  const std::map<std::string, Set> common{
+  const std::map<std::string, Set> meshing{
       {"iterations", [&](const py::handle& v) { m.iterations = v.cast<int>(); }},
       {"pipeline", [&](const py::handle& v) { m.pipeline = v.cast<std::string>(); }},
       {"size", [&](const py::handle& v) { m.size = v.cast<double>(); }},
@@ -57,6 +58,12 @@ Options options_from(const py::kwargs& kwargs, Input input) {
          else cells = v.cast<std::array<int, 3>>();
          m.grid = cells;
        }},
+      {"progress", [&](const py::handle& v) {
+         if (!v.is_none() && !PyCallable_Check(v.ptr())) throw py::type_error("progress: a callable (stage, message) or None");
+         o.progress = py::reinterpret_borrow<py::object>(v);
+       }},
+  };
+  const std::map<std::string, Set> labels{
       {"drop_labels", [&](const py::handle& v) { in.drop_labels = label_refs(v, "drop_labels"); }},
       {"keep_labels", [&](const py::handle& v) { in.keep_labels = label_refs(v, "keep_labels"); }},
       {"merge_labels", [&](const py::handle& v) {
@@ -69,10 +76,6 @@ Options options_from(const py::kwargs& kwargs, Input input) {
        }},
       {"smoothing", [&](const py::handle& v) { in.smoothing = v.cast<double>(); }},
       {"band", [&](const py::handle& v) { in.band = v.cast<double>(); }},
-      {"progress", [&](const py::handle& v) {
-         if (!v.is_none() && !PyCallable_Check(v.ptr())) throw py::type_error("progress: a callable (stage, message) or None");
-         o.progress = py::reinterpret_borrow<py::object>(v);
-       }},
   };
   const std::map<std::string, Set> files_only{
       {"voxels_per_cell", [&](const py::handle& v) { in.voxels_per_cell = v.cast<double>(); }},
@@ -86,14 +89,18 @@ Options options_from(const py::kwargs& kwargs, Input input) {
   };
   for (const auto& [key, value] : kwargs) {
     const auto name = key.cast<std::string>();
+    // The tables this input takes: meshing options always, label options for
+    // labels and files, volume-file options for files.
+    std::vector<const std::map<std::string, Set>*> tables{&meshing};
+    if (input != Input::values) tables.push_back(&labels);
+    if (input == Input::file) tables.push_back(&files_only);
     const Set* set = nullptr;
-    if (const auto it = common.find(name); it != common.end()) set = &it->second;
-    else if (const auto f = files_only.find(name); f != files_only.end() && input == Input::file) set = &f->second;
+    for (const auto* table : tables)
+      if (const auto it = table->find(name); it != table->end()) set = &it->second;
     if (!set) {
       std::string known;
-      for (const auto* table : {&common, &files_only})
-        if (table == &common || input == Input::file)
-          for (const auto& entry : *table) known += (known.empty() ? "" : ", ") + entry.first;
+      for (const auto* table : tables)
+        for (const auto& entry : *table) known += (known.empty() ? "" : ", ") + entry.first;
       throw py::type_error("unknown option '" + name + "' (options: " + known + ")");
     }
     try {

@@ -9,9 +9,10 @@
 
 namespace vmpy {
 
-/// Where the data comes from: an array in memory or a file (only files take
-/// the options of volumes read from disk: voxels_per_cell, world, ignore_direction).
-enum class Input { array, file };
+/// Where the data comes from: a label array, phase values (no label options
+/// apply) or a file (which alone takes the options of volumes read from disk:
+/// voxels_per_cell, world, ignore_direction).
+enum class Input { labels, values, file };
 
 struct Options {
   vm::MeshOptions mesh;

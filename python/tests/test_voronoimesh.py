@@ -175,3 +175,28 @@ def test_the_gil_is_released_while_meshing():
     # With the GIL held for the run the counter would stand still; released, it ticks
     # about once a millisecond (at least a tenth of that on a loaded machine).
     assert ticks[0] > 0.1 * elapsed * 1000, (ticks[0], elapsed)
+
+
+def test_phase_values_from_a_simulation_mesh_as_a_scene_would():
+    # Two spheres as signed distances on a 25^3 grid of the unit cube, plus the outside.
+    n = 25
+    x, y, z = np.meshgrid(*[np.linspace(0, 1, n)] * 3, indexing="ij")
+    left = 0.25 - np.sqrt((x - 0.35) ** 2 + (y - 0.5) ** 2 + (z - 0.5) ** 2)
+    right = 0.25 - np.sqrt((x - 0.65) ** 2 + (y - 0.5) ** 2 + (z - 0.5) ** 2)
+    outside = np.zeros_like(left)
+    mesh = vm.mesh_values([outside, left, right], spacing=(1 / (n - 1),) * 3, names=["outside", "left", "right"],
+                          iterations=10)
+    assert mesh.phase_names == ["outside", "left", "right"] and mesh.validate() == []
+    assert set(map(tuple, mesh.phases)) == {(0, 1), (0, 2), (1, 2)}
+    # The left|right surface is the plane x = 0.5, to well within a grid cell.
+    between = mesh.triangles[(mesh.phases[:, 0] == 1) & (mesh.phases[:, 1] == 2)]
+    assert np.abs(mesh.points[between.ravel(), 0] - 0.5).max() < 0.25 / (n - 1)
+    # A 4-D array [phase, x, y, z] is the same phases.
+    stacked = vm.mesh_values(np.stack([outside, left, right]), spacing=(1 / (n - 1),) * 3, iterations=10)
+    assert np.array_equal(stacked.points, mesh.points)
+    with pytest.raises(TypeError, match="unknown option 'drop_labels'"):
+        vm.mesh_values([outside, left], drop_labels=[1])
+    with pytest.raises(ValueError, match="same shape"):
+        vm.mesh_values([outside, left[:-1]])
+    with pytest.raises(ValueError, match="labels must be strictly increasing"):
+        vm.mesh_values([outside, left, right], labels=[5, 5, 7])
