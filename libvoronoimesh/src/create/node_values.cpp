@@ -24,7 +24,6 @@ uint64_t mix_bits(uint64_t x) {
 
 std::array<double, 2> lattice_value_range(const SampledField& field, const TetLattice& lattice,
                                           std::array<int32_t, 2> layers) {
-  const GridSpec& grid = field.grid();
   using Range = std::array<double, 2>;
   const Range none{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   return detail::parallel_reduce(
@@ -34,9 +33,9 @@ std::array<double, 2> lattice_value_range(const SampledField& field, const TetLa
           const TetLattice::NodeRow row = lattice.node_row(r);
           if (row.z < layers[0] || row.z > layers[1]) continue;
           for (int32_t x = 0; x < row.count; ++x) {
-            const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
+            const SampledField::NodeSamples at = field.at(row.x0 + int64_t(row.step) * x, row.y, row.z);
             // The floor is below every stored value of its node, and slot 0 is the node's largest.
-            range = {std::min(range[0], field.floor_value(g)), std::max(range[1], field.values(g)[0])};
+            range = {std::min(range[0], at.floor), std::max(range[1], at.values[0])};
           }
         }
         return range;
@@ -75,8 +74,8 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
           if (row.z < window_.z0 || row.z > window_.z1) continue;
           for (int32_t x = 0; x < row.count; ++x) {
             const int64_t id = row.first_id + x, n = window_.local(id);
-            const int64_t g = grid.node_index(row.x0 + int64_t(row.step) * x, row.y, row.z);
-            snapped += fill(field, id, n, g, repair ? (*repair)[size_t(n)] : kSnap);
+            snapped += fill(field.at(row.x0 + int64_t(row.step) * x, row.y, row.z), id, n,
+                            repair ? (*repair)[size_t(n)] : kSnap);
           }
         }
         return snapped;
@@ -86,7 +85,6 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
 
 void NodeValues::redo(const SampledField& field, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
                       std::span<const int64_t> nodes) {
-  const GridSpec& grid = field.grid();
   // Snapped nodes gained minus those lost: each node is counted once before and once after.
   const int64_t gained = detail::parallel_reduce(
       tbb::blocked_range<size_t>(0, nodes.size(), 256), int64_t(0),
@@ -95,7 +93,7 @@ void NodeValues::redo(const SampledField& field, const TetLattice& lattice, cons
           const int64_t id = nodes[i], n = window_.local(id);
           const GridPoint p = lattice.grid_point(id);
           sum -= snapped_[n];
-          sum += fill(field, id, n, grid.node_index(p[0], p[1], p[2]), repair[size_t(n)]);
+          sum += fill(field.at(p[0], p[1], p[2]), id, n, repair[size_t(n)]);
         }
         return sum;
       },
@@ -103,14 +101,14 @@ void NodeValues::redo(const SampledField& field, const TetLattice& lattice, cons
   snapped_nodes_ = uint64_t(int64_t(snapped_nodes_) + gained);
 }
 
-bool NodeValues::fill(const SampledField& field, int64_t id, int64_t n, int64_t g, RepairLevel level) {
+bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t n, RepairLevel level) {
   auto quantize = [&](double v) { return int32_t((v - lo_) * scale_ + 0.5); }; // v >= lo_: rounds to nearest
-  auto ids = field.ids(g);
-  auto vals = field.values(g);
+  const auto ids = at.ids;
+  const auto vals = at.values;
   std::copy(ids.begin(), ids.end(), ids_.get() + n * k_);
   int32_t* q = values_.get() + n * k_;
   for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
-  floor_[n] = quantize(field.floor_value(g));
+  floor_[n] = quantize(at.floor);
   // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
   // phase takes the earlier phase's value, so earlier snaps are not undone.
   int32_t by_id[16];

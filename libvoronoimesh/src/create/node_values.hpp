@@ -98,9 +98,9 @@ public:
   bool snapped(int64_t n) const { return snapped_[window_.local(n)] != 0; }
 
 private:
-  /// Fills node `id` (local index n, grid node g) at repair level `level`;
-  /// returns whether snapping changed its values.
-  bool fill(const SampledField& field, int64_t id, int64_t n, int64_t g, RepairLevel level);
+  /// Fills node `id` (local index n) from what is sampled there, `at`, at
+  /// repair level `level`; returns whether snapping changed its values.
+  bool fill(const SampledField::NodeSamples& at, int64_t id, int64_t n, RepairLevel level);
 
   NodeWindow window_;
   int k_;

@@ -116,7 +116,7 @@ SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec&
       for (int64_t i = bcc ? (j & 1) : 0; i < nodes[0]; i += step) {
         const int64_t n = grid.node_index(i, j, kz);
         if (n - s.first_node_ > first_bad.load(std::memory_order_relaxed)) return;
-        const int64_t at = s.slot(n);
+        const int64_t at = s.slot(i, j, kz);
         const std::span<int32_t> ids{&s.ids_[size_t(at) * kk], kk};
         const std::span<double> vals{&s.values_[size_t(at) * kk], kk};
         field.top_values(grid.node_position(i, j, kz), ids, vals);
@@ -144,11 +144,7 @@ int64_t SampledField::count_nodes(const GridSpec& grid, SampledNodes nodes) {
 
 int64_t SampledField::bcc_slot(int64_t n) const {
   const auto nodes = grid_.nodes();
-  const int64_t i = n % nodes[0], j = n / nodes[0] % nodes[1], k = n / (nodes[0] * nodes[1]);
-  if (i & 1) // odd: after all (cells/2 + 1)^3 even nodes
-    return (nodes[0] / 2 + 1) * (nodes[1] / 2 + 1) * (nodes[2] / 2 + 1) + (i >> 1) +
-           nodes[0] / 2 * ((j >> 1) + nodes[1] / 2 * (k >> 1));
-  return (i >> 1) + (nodes[0] / 2 + 1) * ((j >> 1) + (nodes[1] / 2 + 1) * (k >> 1));
+  return slot(n % nodes[0], n / nodes[0] % nodes[1], n / (nodes[0] * nodes[1]));
 }
 
 SampledField SampledField::from_samples(const GridSpec& grid, int num_phases, int k, std::array<int32_t, 2> layers,

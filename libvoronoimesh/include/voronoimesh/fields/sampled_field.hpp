@@ -94,6 +94,21 @@ public:
   std::span<const double> values(int64_t n) const {
     return {values_.data() + slot(n) * k_, size_t(k_)};
   }
+  /// What is held at one node: its ids(), values() and floor_value().
+  struct NodeSamples {
+    std::span<const int32_t> ids; ///< phase ids, by decreasing value (k() entries)
+    std::span<const double> values; ///< the values matching ids
+    double floor = 0;               ///< the value of every phase not stored there
+  };
+  /// What is held at grid node (i, j, k), found once and without dividing:
+  /// for loops that walk the nodes by their grid coordinates (create's lattice).
+  /// @param i node along x
+  /// @param j node along y
+  /// @param k node along z, among the layers held
+  NodeSamples at(int64_t i, int64_t j, int64_t k) const {
+    const int64_t s = slot(i, j, k);
+    return {{ids_.data() + s * k_, size_t(k_)}, {values_.data() + s * k_, size_t(k_)}, floor_[size_t(s)]};
+  }
   /// The value every phase not stored at node n takes there: below all stored
   /// values by a margin, and a function of the node alone, so the piecewise-linear
   /// field stays one consistent field (DESIGN.md, "Field").
@@ -122,6 +137,15 @@ private:
   /// Where node n's entries are in the arrays.
   int64_t slot(int64_t n) const { return nodes_ == SampledNodes::all ? n - first_node_ : bcc_slot(n); }
   int64_t bcc_slot(int64_t n) const;
+  /// Where node (i, j, k)'s entries are: with SampledNodes::bcc, the even
+  /// nodes first (all of i, j, k even), then the odd ones, each in node order.
+  int64_t slot(int64_t i, int64_t j, int64_t k) const {
+    if (nodes_ == SampledNodes::all) return grid_.node_index(i, j, k) - first_node_;
+    const auto n = grid_.nodes();
+    if (i & 1) // odd: after all (cells/2 + 1)^3 even nodes
+      return (n[0] / 2 + 1) * (n[1] / 2 + 1) * (n[2] / 2 + 1) + (i >> 1) + n[0] / 2 * ((j >> 1) + n[1] / 2 * (k >> 1));
+    return (i >> 1) + (n[0] / 2 + 1) * ((j >> 1) + (n[1] / 2 + 1) * (k >> 1));
+  }
 
   GridSpec grid_;
   int num_phases_ = 0;
