@@ -72,10 +72,13 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
   if (size_t(p) < scene.phase_voxels.size()) {
     const int64_t voxels = scene.phase_voxels[size_t(p)];
     const int32_t label = f.phase_label(p);
-    const std::string name = f.phase_name(p) == cat("label", label) ? std::string() : cat(" (", detail::quote(f.phase_name(p)), ")");
+    const std::string name =
+        f.phase_name(p) == cat("label", label) ? std::string() : cat(" (", detail::quote(f.phase_name(p)), ")");
+    // Smoothing can outweigh a thin region at its own voxel centres; where it
+    // still leads there, by less than the snapping threshold, snapping removes it.
     return cat("label ", label, name, ": ", voxels, voxels == 1 ? " voxel" : " voxels",
-               ", no surface in the mesh: thinner than the grid resolves (--signed-distance or --smoothing 0.5 may "
-               "keep it)");
+               ", no surface in the mesh: thinner than the grid resolves (--smoothing 0.5, --snap 0.1 or "
+               "--signed-distance may keep it)");
   }
   return cat("phase ", detail::quote(f.phase_name(p)),
              ": no surface in the mesh: smaller or thinner than the grid resolves (a finer --grid may keep it)");
