@@ -77,12 +77,12 @@ std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<doub
                                                 std::to_string(labels.ndim()) + " dimensions");
   if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
     throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels); // before copying anything
   // x fastest in memory, as the library takes it: an int32 Fortran-ordered
   // array (nibabel's) is read where it lies; anything else is converted once.
   const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
   if (!fortran) throw py::error_already_set();
   const vm::GridSpec grid = node_grid(fortran.shape(), spacing, origin, "labels");
-  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels);
   vmpy::Observer observer(o.progress, o.mesh.iterations);
   vm::Scene scene;
   {
@@ -95,6 +95,7 @@ std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<doub
 std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<double, 3>& spacing,
                                   const std::array<double, 3>& origin, std::vector<std::string> names,
                                   std::vector<int32_t> labels, const py::kwargs& kwargs) {
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values); // before copying anything
   // One array per phase, each indexed [x, y, z] and read where it lies when it
   // is float64 in Fortran order (x fastest), else converted once.
   std::vector<py::array_t<double, py::array::f_style | py::array::forcecast>> phases;
@@ -108,7 +109,6 @@ std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<dou
   }
   if (phases.empty()) throw py::value_error("values: one 3-D array per phase expected, got none");
   const vm::GridSpec grid = node_grid(phases.front().shape(), spacing, origin, "values");
-  vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values);
   vmpy::Observer observer(o.progress, o.mesh.iterations);
   std::vector<std::span<const double>> spans;
   for (const auto& a : phases) spans.emplace_back(a.data(), size_t(a.size()));

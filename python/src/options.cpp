@@ -87,13 +87,13 @@ Options options_from(const py::kwargs& kwargs, Input input) {
          in.world = name == "lps" ? vm::World::lps : name == "ras" ? vm::World::ras : vm::World::file;
        }},
   };
+  // The tables this input takes: meshing options always, label options for
+  // labels and files, volume-file options for files.
+  std::vector<const std::map<std::string, Set>*> tables{&meshing};
+  if (input != Input::values) tables.push_back(&labels);
+  if (input == Input::file) tables.push_back(&files_only);
   for (const auto& [key, value] : kwargs) {
     const auto name = key.cast<std::string>();
-    // The tables this input takes: meshing options always, label options for
-    // labels and files, volume-file options for files.
-    std::vector<const std::map<std::string, Set>*> tables{&meshing};
-    if (input != Input::values) tables.push_back(&labels);
-    if (input == Input::file) tables.push_back(&files_only);
     const Set* set = nullptr;
     for (const auto* table : tables)
       if (const auto it = table->find(name); it != table->end()) set = &it->second;

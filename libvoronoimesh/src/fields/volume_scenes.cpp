@@ -2,6 +2,7 @@
 
 #include "voronoimesh/core/errors.hpp"
 
+#include "core/distinct.hpp"
 #include "core/memory.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
@@ -13,23 +14,10 @@
 #include <cmath>
 #include <optional>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace vm::detail {
 
 namespace {
-
-/// The distinct values of `labels`, sorted (runs of equal labels cost one lookup).
-std::vector<int32_t> distinct(const std::vector<int32_t>& labels) {
-  std::unordered_set<int32_t> seen;
-  int32_t last = 0;
-  bool any = false;
-  for (int32_t l : labels)
-    if (!any || l != last) seen.insert(l), last = l, any = true;
-  std::vector<int32_t> out(seen.begin(), seen.end());
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 /// The value `r` names in a volume with these segments: its value, or the
 /// label of the one segment of that name.
@@ -112,9 +100,6 @@ void check_input_options(const InputOptions& o) {
     throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
-  for (const auto* list : {&o.keep_labels, &o.drop_labels})
-    for (const LabelRef& r : *list)
-      if (!r.value && r.name.empty()) throw InvalidInput("a label is given by an empty name");
   if (o.world != World::file && o.ignore_direction)
     throw InvalidInput("--world: not with --ignore-direction (the mesh is then in the voxel axes, in no anatomical frame)");
   // An option of the other label function would change nothing: refused, not ignored.

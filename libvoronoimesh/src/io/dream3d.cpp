@@ -16,12 +16,12 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/io/volume.hpp"
 
+#include "core/distinct.hpp"
 #include "core/memory.hpp"
 #include "core/text.hpp"
 
 #include <hdf5.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -244,9 +244,7 @@ Volume read_dream3d(const std::string& path) {
   v.integer = true;
   v.labels = read_ids(ids.get(), v.voxel_count(), path, g.where);
   // Names: grain<id>, and its phase when the file has the grains' phases.
-  std::vector<int32_t> present = v.labels;
-  std::sort(present.begin(), present.end());
-  present.erase(std::unique(present.begin(), present.end()), present.end());
+  const std::vector<int32_t> present = detail::distinct(v.labels);
   const std::vector<int32_t> phase = phases_of_grains(parent.get(), g, present.back(), path);
   for (int32_t id : present)
     if (id > 0) {
