@@ -60,18 +60,7 @@ if [ ${#need[@]} -gt 0 ]; then
 fi
 
 # ---- the liver: data/images/liver.inr.gz of libcgal-demo ------------------------
-liver=$OUT/liver.inr.gz
-if [ ! -s "$liver" ]; then
-  mkdir -p "$OUT/deb"
-  (cd "$OUT/deb" && apt-get download libcgal-demo >&2)
-  # The package's data.tar.* (xz in Debian 12) holds CGAL's data.tar.gz, which holds the image.
-  dpkg-deb --fsys-tarfile "$OUT"/deb/libcgal-demo_*.deb | tar -xO ./usr/share/doc/libcgal-dev/data.tar.gz |
-    tar -xzO data/images/liver.inr.gz >"$liver.part"
-  mv "$liver.part" "$liver"
-fi
-# (gzip dies of SIGPIPE when head has read enough: not a failure here.)
-magic=$(gzip -dc "$liver" 2>/dev/null | head -c 13 || true)
-[ "$magic" = '#INRIMAGE-4#{' ] || { echo "race.sh: $liver is not an INR image" >&2 && exit 3; }
+liver=$(bench/get_liver.sh "$OUT")
 
 # ---- builds -------------------------------------------------------------------
 if [ ! -f "$BUILD/CMakeCache.txt" ]; then
