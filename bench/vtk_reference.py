@@ -5,7 +5,7 @@ voronoimesh.
 
     bench/vtk_reference.py VOLUME.nrrd [--iterations 20] [--threads N] [-o OUT.vtp]
 
-Needs python3-vtk9 and numpy (scripts/setup.sh --test-readers; Debian's
+Needs VTK's Python (python3-vtk9, or ParaView's python3-paraview) and numpy (scripts/setup.sh --test-readers; Debian's
 /usr/bin/python3, not a virtualenv's). Prints one line per stage with its time,
 then the triangles, min and mean q (q = 4 sqrt(3) area / sum of squared edges,
 as vm::triangle_quality) and how the surfaces meet at junctions:

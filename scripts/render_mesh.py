@@ -4,7 +4,7 @@ in its own colour, the outside phase's surfaces see-through, triple curves drawn
 README's picture of the demo.
 
 Usage: xvfb-run -a scripts/render_mesh.py MESH.vtu OUT.png [--size 900x700]
-Needs python3-vtk9 and, without a display, xvfb (Debian: xvfb): VTK renders through X.
+Needs VTK's Python (python3-vtk9, or ParaView's python3-paraview) and, without a display, xvfb (Debian: xvfb): VTK renders through X.
 """
 import argparse
 import sys

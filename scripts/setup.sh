@@ -4,9 +4,14 @@
 # with (meshio, VTK, Gmsh, TetGen, and h5py to write DREAM.3D files: large, and only the
 # tests need them) and doxygen,
 # which the api_docs test builds the API reference with; with
-# --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi).
+# --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi); with
+# --paraview ParaView's development files and pvpython, for the ParaView plugin
+# (scripts/build.sh --paraview; about 850 MB).
+# ParaView's python3-paraview conflicts with python3-vtk9 (one removes the
+# other): where ParaView is (or is to be) installed, the VTK tests use its VTK
+# and python3-vtk9 is not installed.
 # Safe to run again: apt-get skips what is already there. Needs root (or sudo).
-# Usage: scripts/setup.sh [--test-readers] [--mpi]
+# Usage: scripts/setup.sh [--test-readers] [--mpi] [--paraview]
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
@@ -16,16 +21,22 @@ packages=(
   zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
 )
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+readers=0 paraview=0
 for arg in "$@"; do
   case "$arg" in
-    --test-readers) packages+=(python3-meshio python3-vtk9 python3-h5py gmsh tetgen doxygen) ;;
+    --test-readers) readers=1; packages+=(python3-meshio python3-h5py gmsh tetgen doxygen) ;;
     --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
-    *) echo "usage: scripts/setup.sh [--test-readers] [--mpi]" >&2; exit 2 ;;
+    --paraview) paraview=1; packages+=(paraview-dev paraview python3-paraview) ;;
+    *) echo "usage: scripts/setup.sh [--test-readers] [--mpi] [--paraview]" >&2; exit 2 ;;
   esac
 done
+if [ $readers = 1 ] && [ $paraview = 0 ] && ! installed python3-paraview; then
+  packages+=(python3-vtk9)
+fi
 missing=()
 for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  installed "$p" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"

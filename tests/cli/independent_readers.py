@@ -432,7 +432,7 @@ def missing(reader):
     if reader in ("gmsh", "tetgen") and not shutil.which(reader):
         return f"{reader} is not installed (Debian: {reader})"
     # Every reader's checks include a DREAM.3D file written with h5py.
-    needed = {"meshio": [("meshio", "python3-meshio")], "vtk": [("vtk", "python3-vtk9")]}.get(reader, [])
+    needed = {"meshio": [("meshio", "python3-meshio")], "vtk": [("vtk", "python3-vtk9 or python3-paraview")]}.get(reader, [])
     for module, package in needed + [("h5py", "python3-h5py")]:
         try:
             __import__(module)

@@ -37,7 +37,7 @@ STAGES = {
     "mpi": 8,      # distributed create and improvement (voronoimesh_mpi)
 }
 MAX_LINES = 600
-SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".c", ".in")
+SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".c", ".cxx", ".in")
 GENERATED = {"voronoimesh/core/version.hpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 
@@ -97,14 +97,14 @@ def check(root):
                     problems.append(f'{path}: stage {stage} (level {STAGES[stage]}) includes "{target}" of stage '
                                     f'{to} (level {STAGES[to]}): includes run down the levels only')
 
-    for folder in ("tools", "plugins", "python"):
+    for folder in ("tools", "plugins", "python", "paraview"):
         for path in source_files(root, folder):
             for target in INCLUDE.findall(open(os.path.join(root, path), encoding="utf-8").read()):
                 found = stage_of_include(target)
                 if found and not found[1]:
                     problems.append(f'{path}: includes the library\'s private "{target}"')
 
-    for folder in (lib, "tools", "plugins", "python", "tests", "bench", "fuzz", "examples"):
+    for folder in (lib, "tools", "plugins", "python", "paraview", "tests", "bench", "fuzz", "examples"):
         for path in source_files(root, folder):
             with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
                 lines = sum(1 for _ in f)
