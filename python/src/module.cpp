@@ -42,12 +42,14 @@ py::array view(const T* data, size_t rows, size_t cols, py::handle owner) {
   return a;
 }
 
-/// create_mesh() and improve_mesh() on `scene` (mesh_scene() watched by `observer`), the GIL released.
-std::unique_ptr<Mesh> mesh_scene(const vm::Scene& scene, const vm::MeshOptions& options, vmpy::Observer& observer) {
+/// Runs `make` (which meshes, returning a NodeMesh) with the GIL released,
+/// raising the Python error that stopped it (Ctrl-C, or the progress callback's).
+template <class Make>
+std::unique_ptr<Mesh> run(vmpy::Observer& observer, Make&& make) {
   auto out = std::make_unique<Mesh>();
   try {
     py::gil_scoped_release released;
-    out->mesh = vm::mesh_scene(scene, options, &observer);
+    out->mesh = make();
   } catch (const vm::Cancelled&) {
     observer.rethrow(); // the KeyboardInterrupt, or what the progress callback raised
     throw;
@@ -71,31 +73,26 @@ vm::GridSpec node_grid(const py::ssize_t* shape, const std::array<double, 3>& sp
   return grid;
 }
 
-std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<double, 3>& spacing,
-                                  const std::array<double, 3>& origin, const py::kwargs& kwargs) {
+/// The scene of a label array, made as options.input says.
+vm::Scene labels_scene(const py::array& labels, const std::array<double, 3>& spacing,
+                       const std::array<double, 3>& origin, const vmpy::Options& o) {
   if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
                                                 std::to_string(labels.ndim()) + " dimensions");
   if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
     throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
-  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels); // before copying anything
   // x fastest in memory, as the library takes it: an int32 Fortran-ordered
   // array (nibabel's) is read where it lies; anything else is converted once.
   const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
   if (!fortran) throw py::error_already_set();
   const vm::GridSpec grid = node_grid(fortran.shape(), spacing, origin, "labels");
-  vmpy::Observer observer(o.progress, o.mesh.iterations);
-  vm::Scene scene;
-  {
-    py::gil_scoped_release released;
-    scene = vm::scene_from_labels(grid, {fortran.data(), size_t(fortran.size())}, o.input, "labels");
-  }
-  return mesh_scene(scene, o.mesh, observer);
+  py::gil_scoped_release released;
+  return vm::scene_from_labels(grid, {fortran.data(), size_t(fortran.size())}, o.input, "labels");
 }
 
-std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<double, 3>& spacing,
-                                  const std::array<double, 3>& origin, std::vector<std::string> names,
-                                  std::vector<int32_t> labels, const py::kwargs& kwargs) {
-  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values); // before copying anything
+/// The scene of phase values on a grid, one array per phase.
+vm::Scene values_scene(const py::object& values, const std::array<double, 3>& spacing,
+                       const std::array<double, 3>& origin, std::vector<std::string> names,
+                       std::vector<int32_t> labels, const vmpy::Options& o) {
   // One array per phase, each indexed [x, y, z] and read where it lies when it
   // is float64 in Fortran order (x fastest), else converted once.
   std::vector<py::array_t<double, py::array::f_style | py::array::forcecast>> phases;
@@ -109,7 +106,6 @@ std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<dou
   }
   if (phases.empty()) throw py::value_error("values: one 3-D array per phase expected, got none");
   const vm::GridSpec grid = node_grid(phases.front().shape(), spacing, origin, "values");
-  vmpy::Observer observer(o.progress, o.mesh.iterations);
   std::vector<std::span<const double>> spans;
   for (const auto& a : phases) spans.emplace_back(a.data(), size_t(a.size()));
   vm::PhaseValuesOptions options;
@@ -117,28 +113,64 @@ std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<dou
   options.labels = std::move(labels);
   options.top_k = o.mesh.top_k;
   options.source = "values";
-  vm::Scene scene;
-  {
-    py::gil_scoped_release released;
-    scene = vm::scene_from_phase_values(grid, spans, options);
-  }
-  return mesh_scene(scene, o.mesh, observer);
+  py::gil_scoped_release released;
+  return vm::scene_from_phase_values(grid, spans, options);
+}
+
+std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<double, 3>& spacing,
+                                  const std::array<double, 3>& origin, const py::kwargs& kwargs) {
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels); // before copying anything
+  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  const vm::Scene scene = labels_scene(labels, spacing, origin, o);
+  return run(observer, [&] { return vm::mesh_scene(scene, o.mesh, &observer); });
+}
+
+std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<double, 3>& spacing,
+                                  const std::array<double, 3>& origin, std::vector<std::string> names,
+                                  std::vector<int32_t> labels, const py::kwargs& kwargs) {
+  const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values); // before copying anything
+  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  const vm::Scene scene = values_scene(values, spacing, origin, std::move(names), std::move(labels), o);
+  return run(observer, [&] { return vm::mesh_scene(scene, o.mesh, &observer); });
 }
 
 std::unique_ptr<Mesh> mesh_file(const std::string& path, const py::kwargs& kwargs) {
   const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
   vmpy::Observer observer(o.progress, o.mesh.iterations);
-  vm::Scene scene;
-  try {
-    py::gil_scoped_release released;
-    scene = vm::read_input(path, o.input, &observer);
-  } catch (const vm::Cancelled&) {
-    observer.rethrow();
-    throw;
-  }
-  observer.rethrow();
-  return mesh_scene(scene, o.mesh, observer);
+  return run(observer, [&] { return vm::mesh_scene(vm::read_input(path, o.input, &observer), o.mesh, &observer); });
 }
+
+/// voronoimesh.Mesher: one set of options for mesh after mesh (vm::Mesher),
+/// checked when it is made; the input options among them apply per input kind.
+class Mesher {
+public:
+  explicit Mesher(const py::kwargs& kwargs)
+      : kwargs_(kwargs), options_(vmpy::options_from(kwargs, vmpy::Input::file)),
+        observer_(options_.progress, options_.mesh.iterations), mesher_(options_.mesh, &observer_) {}
+
+  std::unique_ptr<Mesh> labels(const py::array& labels, const std::array<double, 3>& spacing,
+                               const std::array<double, 3>& origin) {
+    const vm::Scene scene = labels_scene(labels, spacing, origin, vmpy::options_from(kwargs_, vmpy::Input::labels));
+    return run(observer_, [&] { return mesher_.mesh(scene); });
+  }
+  std::unique_ptr<Mesh> values(const py::object& values, const std::array<double, 3>& spacing,
+                               const std::array<double, 3>& origin, std::vector<std::string> names,
+                               std::vector<int32_t> labels) {
+    const vm::Scene scene = values_scene(values, spacing, origin, std::move(names), std::move(labels),
+                                         vmpy::options_from(kwargs_, vmpy::Input::values));
+    return run(observer_, [&] { return mesher_.mesh(scene); });
+  }
+  std::unique_ptr<Mesh> file(const std::string& path) {
+    return run(observer_, [&] { return mesher_.mesh(mesher_.read(path, options_.input)); });
+  }
+  size_t meshes_made() const { return mesher_.meshes_made(); }
+
+private:
+  py::kwargs kwargs_;
+  vmpy::Options options_;
+  vmpy::Observer observer_;
+  vm::Mesher mesher_;
+};
 
 py::list junctions(const Mesh& self) {
   const vm::Junctions j = vm::find_junctions(self.mesh);
@@ -228,4 +260,16 @@ PYBIND11_MODULE(_voronoimesh, m) {
         "Meshes any input 'voronoimesh mesh' reads (a scene, volume, segmentation, grain map or point cloud), "
         "with its options as keywords.");
   m.def("output_extensions", &vm::io::output_extensions, "The extensions Mesh.write() knows");
+
+  py::class_<Mesher>(m, "Mesher",
+                     "Meshes input after input with one set of options (a simulation's steps, a series of volumes): "
+                     "the options are those of mesh_labels() and mesh_file(), checked once, here")
+      .def(py::init<const py::kwargs&>())
+      .def("mesh_labels", &Mesher::labels, py::arg("labels"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
+           py::arg("origin") = std::array<double, 3>{0, 0, 0}, "As voronoimesh.mesh_labels(), with the Mesher's options")
+      .def("mesh_values", &Mesher::values, py::arg("values"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
+           py::arg("origin") = std::array<double, 3>{0, 0, 0}, py::arg("names") = std::vector<std::string>{},
+           py::arg("labels") = std::vector<int32_t>{}, "As voronoimesh.mesh_values(), with the Mesher's options")
+      .def("mesh_file", &Mesher::file, py::arg("path"), "As voronoimesh.mesh_file(), with the Mesher's options")
+      .def_property_readonly("meshes_made", &Mesher::meshes_made, "Meshes made so far");
 }

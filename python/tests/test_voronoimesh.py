@@ -200,3 +200,28 @@ def test_phase_values_from_a_simulation_mesh_as_a_scene_would():
         vm.mesh_values([outside, left[:-1]])
     with pytest.raises(ValueError, match="labels must be strictly increasing"):
         vm.mesh_values([outside, left, right], labels=[5, 5, 7])
+
+
+def test_a_mesher_meshes_step_after_step_as_the_functions_do(tmp_path):
+    # A simulation's steps: a block that grows, meshed with one Mesher.
+    mesher = vm.Mesher(iterations=3, smoothing=0.8)
+    for step, width in enumerate([4, 6, 8]):
+        labels = two_blocks()
+        labels[3:3 + width, 3:13, 3:13] = 3
+        ours = mesher.mesh_labels(labels, spacing=(0.5, 0.5, 0.5))
+        alone = vm.mesh_labels(labels, spacing=(0.5, 0.5, 0.5), iterations=3, smoothing=0.8)
+        assert np.array_equal(ours.points, alone.points) and np.array_equal(ours.triangles, alone.triangles)
+        assert ours.validate() == [] and mesher.meshes_made == step + 1
+    # Its options are checked when it is made, not at the first step.
+    with pytest.raises(ValueError, match="unknown pass 'smoth'"):
+        vm.Mesher(pipeline="smoth,flip")
+    with pytest.raises(ValueError, match="iterations"):
+        vm.Mesher(iterations=-1)
+    with pytest.raises(TypeError, match="unknown option 'colour'"):
+        vm.Mesher(colour=1)
+    # Label options do not apply to phase values: said at the call that gives values.
+    x = np.linspace(-1, 1, 12)[:, None, None] * np.ones((12, 12, 12))
+    with pytest.raises(TypeError, match="unknown option 'smoothing'"):
+        mesher.mesh_values([x, -x])
+    plain = vm.Mesher(iterations=2)
+    assert plain.mesh_values([x, -x], names=["a", "b"]).phase_names == ["a", "b"]

@@ -12,9 +12,9 @@ KeyboardInterrupt (Ctrl-C, which stops a run), voronoimesh.Error (anything else)
 """
 import json as _json
 
-from ._voronoimesh import Error, Mesh, mesh_file, mesh_labels, mesh_values, output_extensions
+from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_values, output_extensions
 
-__all__ = ["Error", "Mesh", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
+__all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
 
 
 def _stats(self):

@@ -154,6 +154,22 @@ TEST(Meshing, closed_mesh_phases_fill_the_box) {
   EXPECT_FALSE(volumes[3]);       // the exterior: all space outside the box
 }
 
+TEST(Meshing, a_mesher_makes_mesh_scenes_meshes_step_after_step_and_checks_its_options_first) {
+  Mesher mesher(quick(3));
+  for (int cells : {12, 16, 20}) { // a series of scenes, as a simulation's steps
+    const TwoSpheres s(cells);
+    const NodeMesh ours = mesher.mesh(s.scene());
+    expect_same_mesh(ours, mesh_scene(s.scene(), quick(3)));
+    EXPECT_TRUE(validate(ours).ok());
+  }
+  EXPECT_EQ(mesher.meshes_made(), 3u);
+  MeshOptions typo = quick(3);
+  typo.pipeline = "smooth,flp";
+  expect_invalid([&] { Mesher bad(typo); }, "unknown pass 'flp'");
+  MeshOptions negative = quick(-1);
+  expect_invalid([&] { Mesher bad(negative); }, "iterations");
+}
+
 TEST(Meshing, options_reach_create_and_improve) {
   const TwoSpheres s(16);
   MeshOptions o = quick(0);

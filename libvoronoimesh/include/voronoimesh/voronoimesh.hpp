@@ -25,3 +25,4 @@
 #include "voronoimesh/mesh/node_mesh.hpp"
 #include "voronoimesh/mesh/queries.hpp"
 #include "voronoimesh/run/meshing.hpp"
+#include "voronoimesh/run/mesher.hpp"
