@@ -29,11 +29,6 @@ struct Mesh {
   vm::NodeMesh mesh;
 };
 
-/// The label each phase shows in files (its id when the mesh has no labels).
-int32_t label_of(const vm::NodeMesh& m, int32_t phase) {
-  return size_t(phase) < m.phase_labels.size() ? m.phase_labels[size_t(phase)] : phase;
-}
-
 /// A read-only (rows x cols) view of `data`, kept alive by `owner`.
 template <class T>
 py::array view(const T* data, size_t rows, size_t cols, py::handle owner) {
@@ -177,7 +172,7 @@ py::list junctions(const Mesh& self) {
   py::list curves;
   for (const vm::TripleCurve& c : j.curves) {
     py::list phases;
-    for (int32_t p : c.phases) phases.append(label_of(self.mesh, p));
+    for (int32_t p : c.phases) phases.append(self.mesh.label_of(p));
     py::dict curve;
     curve["phases"] = py::tuple(phases);
     curve["nodes"] = py::array_t<int32_t>(py::ssize_t(c.nodes.size()), c.nodes.data());
@@ -211,7 +206,7 @@ PYBIND11_MODULE(_voronoimesh, m) {
             py::array_t<int32_t> out({py::ssize_t(self.mesh.pairs.size()), py::ssize_t(2)});
             auto w = out.mutable_unchecked<2>();
             for (size_t t = 0; t < self.mesh.pairs.size(); ++t)
-              for (int k = 0; k < 2; ++k) w(py::ssize_t(t), k) = label_of(self.mesh, self.mesh.pairs[t][size_t(k)]);
+              for (int k = 0; k < 2; ++k) w(py::ssize_t(t), k) = self.mesh.label_of(self.mesh.pairs[t][size_t(k)]);
             return out;
           },
           "The phase labels on either side of each triangle, M x 2 int32 (label values, as in every output file)")
@@ -220,7 +215,7 @@ PYBIND11_MODULE(_voronoimesh, m) {
       .def_property_readonly(
           "phase_labels", [](const Mesh& self) {
             std::vector<int32_t> labels;
-            for (size_t p = 0; p < self.mesh.phase_names.size(); ++p) labels.push_back(label_of(self.mesh, int32_t(p)));
+            for (size_t p = 0; p < self.mesh.phase_names.size(); ++p) labels.push_back(self.mesh.label_of(int32_t(p)));
             return labels;
           },
           "The label each phase shows, by phase id")

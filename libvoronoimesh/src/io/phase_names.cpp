@@ -13,16 +13,12 @@ size_t phase_count(const NodeMesh& m) {
   return n;
 }
 
-int32_t phase_label(const NodeMesh& m, int32_t p) {
-  return size_t(p) < m.phase_labels.size() ? m.phase_labels[size_t(p)] : p;
-}
-
 std::string phase_name(const NodeMesh& m, int32_t p) {
   return size_t(p) < m.phase_names.size() ? m.phase_names[size_t(p)] : std::string();
 }
 
 std::string phase_token(const NodeMesh& m, int32_t p) {
-  std::string token = std::to_string(phase_label(m, p));
+  std::string token = std::to_string(m.label_of(p));
   const std::string name = phase_name(m, p);
   if (name.empty()) return token;
   token += '-';

@@ -1,7 +1,7 @@
 #pragma once
 /// @file io/phase_names.hpp
 /// How the writers name phases, phase pairs and junctions, the same in every
-/// format: a phase is its label (NodeMesh::phase_labels), followed by "-" and
+/// format: a phase is its label (NodeMesh::label_of()), followed by "-" and
 /// its name when it has one ("1-sphere1"); the characters of a name other than
 /// letters, digits, '.', '+' and '-' become '-', so a token is safe in a file
 /// name or an OBJ group name. Several phases are joined by '_'
@@ -18,9 +18,6 @@ namespace vm::io::detail {
 
 /// The number of phases of `m`: enough for every pair, name and label.
 size_t phase_count(const NodeMesh& m);
-
-/// The label phase `p` shows in files (p itself when `m` has no labels).
-int32_t phase_label(const NodeMesh& m, int32_t p);
 
 /// The name of phase `p`, "" when it has none.
 std::string phase_name(const NodeMesh& m, int32_t p);

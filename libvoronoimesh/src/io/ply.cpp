@@ -41,7 +41,7 @@ std::string header(const NodeMesh& m, bool ascii) {
   // (phase_count scans every triangle: once, not once per phase.)
   const size_t phases = detail::phase_count(m);
   for (size_t p = 0; p < phases; ++p)
-    h += cat("comment phase ", detail::phase_label(m, int32_t(p)), " ", header_safe(detail::phase_name(m, int32_t(p))),
+    h += cat("comment phase ", m.label_of(int32_t(p)), " ", header_safe(detail::phase_name(m, int32_t(p))),
              "\n");
   h += cat("element vertex ", m.points.size(), "\n");
   h += "property double x\nproperty double y\nproperty double z\n";
@@ -64,7 +64,7 @@ void write_body(vm::detail::ChunkedOutput& out, const NodeMesh& m, bool ascii) {
   }
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
-    const int32_t p0 = detail::phase_label(m, m.pairs[t][0]), p1 = detail::phase_label(m, m.pairs[t][1]);
+    const int32_t p0 = m.label_of(m.pairs[t][0]), p1 = m.label_of(m.pairs[t][1]);
     if (ascii) {
       buf += cat("3 ", tri[0], " ", tri[1], " ", tri[2], " ", p0, " ", p1, "\n");
     } else {

@@ -88,7 +88,7 @@ void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const s
       for (size_t p = 0; p < phases; ++p)
         if (const std::string name = phase_name(m, int32_t(p)); !name.empty())
           buf += cat("      <DataArray type=\"Int32\" Name=\"", xml_attribute_safe(name),
-                     "\" NumberOfTuples=\"1\" format=\"ascii\">", phase_label(m, int32_t(p)), "</DataArray>\n");
+                     "\" NumberOfTuples=\"1\" format=\"ascii\">", m.label_of(int32_t(p)), "</DataArray>\n");
       buf += "    </FieldData>\n";
     }
     buf += grid ? cat("    <Piece NumberOfPoints=\"", m.points.size(), "\" NumberOfCells=\"", nt, "\">\n")
@@ -98,7 +98,7 @@ void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const s
     int_array(out, "Int32", kNodeArray, m.points.size(), [&](size_t n) { return junctions.order(n); });
     buf += cat("      </PointData>\n      <CellData Scalars=\"", kPhaseArrays[0], "\">\n");
     for (size_t k = 0; k < 2; ++k)
-      int_array(out, "Int32", kPhaseArrays[k], nt, [&](size_t t) { return phase_label(m, m.pairs[t][k]); });
+      int_array(out, "Int32", kPhaseArrays[k], nt, [&](size_t t) { return m.label_of(m.pairs[t][k]); });
     buf += "      </CellData>\n      <Points>\n"
            "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const Vec3& p : m.points) {

@@ -138,7 +138,7 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
                                             detail::quote(mesh.phase_names[size_t(p)]),
                                             ": give the input the mesh was made from")));
   for (int p = 0; p <= top; ++p) {
-    const int32_t label = mesh.phase_labels.empty() ? p : mesh.phase_labels[size_t(p)];
+    const int32_t label = mesh.label_of(p);
     if (label != field->phase_label(p))
       throw InvalidInput(located(input, cat("its phase ", p, " has the label ", field->phase_label(p), ", but ",
                                             mesh_path, " gives it ", label, ": give the input the mesh was made from")));

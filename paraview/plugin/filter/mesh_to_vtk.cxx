@@ -18,11 +18,6 @@ namespace vmpv {
 
 namespace {
 
-/// The label phase `p` shows in files: its label, or its id when the mesh has none.
-int label_of(const vm::NodeMesh& mesh, int32_t p) {
-  return size_t(p) < mesh.phase_labels.size() ? mesh.phase_labels[size_t(p)] : p;
-}
-
 vtkNew<vtkIntArray> int_array(const char* name, vtkIdType count) {
   vtkNew<vtkIntArray> a;
   a->SetName(name);
@@ -53,8 +48,8 @@ void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtk
   for (vtkIdType t = 0; t < count; ++t) {
     offsets->SetValue(t, 3 * t);
     for (int k = 0; k < 3; ++k) connectivity->SetValue(3 * t + k, mesh.triangles[size_t(t)][size_t(k)]);
-    phase0->SetValue(t, label_of(mesh, mesh.pairs[size_t(t)][0]));
-    phase1->SetValue(t, label_of(mesh, mesh.pairs[size_t(t)][1]));
+    phase0->SetValue(t, mesh.label_of(mesh.pairs[size_t(t)][0]));
+    phase1->SetValue(t, mesh.label_of(mesh.pairs[size_t(t)][1]));
   }
   offsets->SetValue(count, 3 * count);
   vtkNew<vtkCellArray> triangles;
@@ -65,7 +60,7 @@ void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtk
   out.GetCellData()->SetActiveScalars("phase1");
   for (size_t p = 0; p < mesh.phase_names.size(); ++p) {
     auto label = int_array(mesh.phase_names[p].c_str(), 1);
-    label->SetValue(0, label_of(mesh, int32_t(p)));
+    label->SetValue(0, mesh.label_of(int32_t(p)));
     out.GetFieldData()->AddArray(label);
   }
 }
@@ -90,7 +85,7 @@ void junctions_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vt
     for (int32_t n : curve.nodes) lines->InsertCellPoint(n);
     std::string all;
     for (size_t k = 0; k < curve.phases.size(); ++k) {
-      const int label = label_of(mesh, curve.phases[k]);
+      const int label = mesh.label_of(curve.phases[k]);
       if (k < 3) phase[k]->SetValue(c, label);
       all += (k ? " " : "") + std::to_string(label);
     }

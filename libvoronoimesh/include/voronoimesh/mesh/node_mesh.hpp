@@ -50,6 +50,13 @@ struct NodeMesh {
     return m;
   }
 
+  /// The label phase `phase` shows in files: phase_labels[phase], or the id
+  /// itself when the mesh has no labels.
+  /// @param phase a phase id of the mesh
+  int32_t label_of(int32_t phase) const {
+    return size_t(phase) < phase_labels.size() ? phase_labels[size_t(phase)] : phase;
+  }
+
   size_t num_nodes() const { return points.size(); }         ///< points.size()
   size_t num_triangles() const { return triangles.size(); } ///< triangles.size()
 };
