@@ -25,7 +25,9 @@ vtkNew<vtkIntArray> int_array(const char* name, vtkIdType count) {
   return a;
 }
 
-void set_points(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out) {
+} // namespace
+
+void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(vtkIdType(mesh.points.size()));
@@ -34,12 +36,6 @@ void set_points(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& 
     points->SetPoint(vtkIdType(n), p[0], p[1], p[2]);
   }
   out.SetPoints(points);
-}
-
-} // namespace
-
-void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out) {
-  set_points(mesh, frame, out);
   const vtkIdType count = vtkIdType(mesh.triangles.size());
   vtkNew<vtkIdTypeArray> offsets, connectivity;
   offsets->SetNumberOfTuples(count + 1);
@@ -65,8 +61,8 @@ void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtk
   }
 }
 
-void junctions_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out) {
-  set_points(mesh, frame, out);
+void junctions_to_polydata(const vm::NodeMesh& mesh, vtkPolyData& surfaces, vtkPolyData& out) {
+  out.SetPoints(surfaces.GetPoints());
   const vm::Junctions junctions = vm::find_junctions(mesh);
   const vtkIdType count = vtkIdType(junctions.curves.size());
   vtkNew<vtkCellArray> lines;

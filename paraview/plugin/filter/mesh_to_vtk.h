@@ -19,10 +19,11 @@ namespace vmpv {
 /// its label (as the VTU writer stores them).
 void surfaces_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out);
 
-/// One polyline per triple curve of `mesh`, sharing the surfaces' point ids,
-/// with cell arrays phase0, phase1, phase2 (the labels of its first three
-/// phases), phases (all of them, "0 3 7") and closed (1 for a loop).
-void junctions_to_polydata(const vm::NodeMesh& mesh, const ImageFrame& frame, vtkPolyData& out);
+/// One polyline per triple curve of `mesh` on the points of `surfaces` (made
+/// by surfaces_to_polydata(), shared, not copied), with cell arrays phase0,
+/// phase1, phase2 (the labels of its first three phases), phases (all of
+/// them, "0 3 7") and closed (1 for a loop).
+void junctions_to_polydata(const vm::NodeMesh& mesh, vtkPolyData& surfaces, vtkPolyData& out);
 
 /// One row per improvement iteration (0: the initial mesh): iteration,
 /// min_quality, mean_quality, flips, undone_moves, seconds.

@@ -139,10 +139,9 @@ int vtkVoronoiMeshFilter::RequestData(vtkInformation*, vtkInformationVector** in
       frame = vmpv::image_frame(*image, vmpv::Association::points);
       scene = vmpv::phase_values_scene(frame, phases, options.top_k);
     }
-    for (const std::string& note : scene.notes) observer.note(note);
     const vm::NodeMesh mesh = vm::mesh_scene(scene, options, &observer);
     vmpv::surfaces_to_polydata(mesh, frame, *surfaces);
-    vmpv::junctions_to_polydata(mesh, frame, *junctions);
+    vmpv::junctions_to_polydata(mesh, *surfaces, *junctions);
     vmpv::history_to_table(observer.history, *history);
   } catch (const vm::Cancelled&) {
     return 1; // aborted from ParaView: empty outputs, no error
