@@ -25,14 +25,14 @@ int32_t label_value(const LabelRef& r, const std::vector<io::Segment>& segments,
                     const std::string& path) {
   if (r.value) return *r.value;
   const io::Segment* found = nullptr;
-  std::string names;
   for (const io::Segment& s : segments) {
-    names += cat(names.empty() ? "" : ", ", quote(s.name));
     if (s.name != r.name) continue;
     if (found) throw InvalidInput(located(path, cat(option, ": two segments are named ", quote(r.name), "; give its label value")));
     found = &s;
   }
   if (found) return found->label;
+  std::string names;
+  for (const io::Segment& s : segments) names += cat(names.empty() ? "" : ", ", quote(s.name));
   throw InvalidInput(located(path, cat(option, ": no segment is named ", quote(r.name),
                                        segments.empty() ? std::string(" (this volume names none of its labels: give label values)")
                                                         : cat(" (its segments: ", names, ")"))));

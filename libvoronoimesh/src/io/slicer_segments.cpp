@@ -77,28 +77,28 @@ void flatten_segment_layers(Volume& v, const std::string& path) {
   if (layers == 1 && distinct) return; // the labels are the segments' values already
   if (!distinct)
     for (size_t s = 0; s < v.segments.size(); ++s) v.segments[s].label = int32_t(s) + 1;
-  // Each voxel's segments, one per layer at most; then the smallest of them.
+  // Each voxel's segments, one per layer at most, looked up once: the layer
+  // values become segment index + 1 in place (0: none). Then the smallest.
   const int64_t voxels = v.voxel_count();
-  auto segment_at = [&](int64_t n, int layer) -> int32_t {
-    const int32_t value = v.labels[size_t(n * layers + layer)];
-    if (value == 0) return -1;
-    const auto it = segment_of.find({layer, value});
-    if (it == segment_of.end())
-      throw InvalidInput(located(path, cat("layer ", layer, " holds value ", value, " at voxel ", n,
-                                           ", which no segment of the header has")));
-    return it->second;
-  };
   std::vector<int64_t> size(v.segments.size(), 0);
   for (int64_t n = 0; n < voxels; ++n)
-    for (int l = 0; l < layers; ++l)
-      if (const int32_t s = segment_at(n, l); s >= 0) ++size[size_t(s)];
+    for (int l = 0; l < layers; ++l) {
+      int32_t& value = v.labels[size_t(n * layers + l)];
+      if (value == 0) continue;
+      const auto it = segment_of.find({l, value});
+      if (it == segment_of.end())
+        throw InvalidInput(located(path, cat("layer ", l, " holds value ", value, " at voxel ", n,
+                                             ", which no segment of the header has")));
+      ++size[size_t(it->second)];
+      value = it->second + 1;
+    }
   std::vector<int32_t> flat(size_t(voxels), 0);
   int64_t contested = 0;
   for (int64_t n = 0; n < voxels; ++n) {
     int32_t best = -1;
     int found = 0;
     for (int l = 0; l < layers; ++l)
-      if (const int32_t s = segment_at(n, l); s >= 0) {
+      if (const int32_t s = v.labels[size_t(n * layers + l)] - 1; s >= 0) {
         ++found;
         if (best < 0 || std::pair{size[size_t(s)], s} < std::pair{size[size_t(best)], best}) best = s;
       }
