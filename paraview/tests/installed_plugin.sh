@@ -10,11 +10,14 @@ rm -rf "$work" && mkdir -p "$work"
 cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
 plugin=$(find "$work/prefix" -path "*/paraview-5.11/plugins/VoronoiMesh/VoronoiMesh.so")
 [ -n "$plugin" ] || { echo "FAIL: no paraview-5.11/plugins/VoronoiMesh/VoronoiMesh.so under the prefix"; exit 1; }
-if ldd "$plugin" | grep -q "not found"; then
-  echo "FAIL: the installed plugin misses libraries:"; ldd "$plugin" | grep "not found"; exit 1
+# ldd's output is kept, not piped into `grep -q`: grep stops at the first match,
+# ldd then dies of SIGPIPE and pipefail would report the match as a failure.
+libraries=$(ldd "$plugin")
+if grep -q "not found" <<<"$libraries"; then
+  echo "FAIL: the installed plugin misses libraries:"; grep "not found" <<<"$libraries"; exit 1
 fi
-ldd "$plugin" | grep -q "$work/prefix/.*libvoronoimesh" ||
-  { echo "FAIL: the installed plugin does not load the installed libvoronoimesh"; ldd "$plugin"; exit 1; }
+grep -q "$work/prefix/.*libvoronoimesh" <<<"$libraries" ||
+  { echo "FAIL: the installed plugin does not load the installed libvoronoimesh"; echo "$libraries"; exit 1; }
 cat >"$work/run.py" <<'PY'
 from paraview.simple import Wavelet, PointDatatoCellData, Calculator, servermanager
 import paraview.simple as pv

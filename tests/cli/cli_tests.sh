@@ -12,8 +12,8 @@ if "$vm" create -q -o demo.ply && "$vm" stats demo.ply >stats.txt; then pass; el
 for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology +valid"; do
   if grep -qE "^$want" stats.txt; then pass; else fail "demo stats lack '$want': $(cat stats.txt)"; fi
 done
-if "$vm" stats --json demo.ply | grep -q '"surfaces": *10'; then pass; else fail "stats --json"; fi
-if "$vm" stats --json demo.ply | grep -q '"self_intersections": *0'; then pass; else fail "stats self-intersections"; fi
+if "$vm" stats --json demo.ply | contains '"surfaces": *10'; then pass; else fail "stats --json"; fi
+if "$vm" stats --json demo.ply | contains '"self_intersections": *0'; then pass; else fail "stats self-intersections"; fi
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do
@@ -22,14 +22,14 @@ for scene in "$examples"/*.json; do
     else fail "$(basename "$scene") --lattice $lattice"; fi
   done
 done
-if "$vm" create -q --grid 16 --ascii -o a.ply && head -2 a.ply | grep -q "format ascii"; then pass; else fail "--ascii"; fi
+if "$vm" create -q --grid 16 --ascii -o a.ply && head -2 a.ply | contains "format ascii"; then pass; else fail "--ascii"; fi
 
 # Closed domains: an extra phase 'exterior', a valid mesh that smooth can improve again.
 if "$vm" mesh -q "$examples/voronoi7.json" --grid 24 --close --iterations 5 -o closed.ply &&
   "$vm" stats closed.ply >closed.txt && grep -qE "^phases +8" closed.txt && grep -q "topology *valid" closed.txt &&
   grep -q "comment phase 7 exterior" closed.ply; then pass; else fail "mesh --close: $(cat closed.txt)"; fi
 if "$vm" smooth -q closed.ply --field "$examples/voronoi7.json" --iterations 3 -o closed2.ply &&
-  "$vm" stats closed2.ply | grep -q "topology *valid"; then pass; else fail "smooth of a closed mesh"; fi
+  "$vm" stats closed2.ply | contains "topology *valid"; then pass; else fail "smooth of a closed mesh"; fi
 
 # Identical files for any thread count.
 "$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 1 -o t1.ply
@@ -71,7 +71,7 @@ else fail "smooth"; fi
 "$vm" improve -q demo.ply --field "$examples/four_spheres.json" --iterations 3 -o im.ply
 if cmp -s sm.ply im.ply; then pass; else fail "improve is not smooth's synonym"; fi
 if "$vm" flip -q demo.ply -o fl.ply && "$vm" stats fl.ply >/dev/null; then pass; else fail "flip"; fi
-if "$vm" passes | grep -q "rest_factor" && "$vm" passes | grep -q "^flip"; then pass; else fail "passes listing"; fi
+if "$vm" passes | contains "rest_factor" && "$vm" passes | contains "^flip"; then pass; else fail "passes listing"; fi
 # --stop-when-converged stops early, and where it stops is the mesh of that many iterations.
 "$vm" mesh --grid 24 --iterations 50 --stop-when-converged -o conv.ply 2>conv.txt
 done_its=$(sed -n 's/^improve: \([0-9]*\) iterations.*/\1/p' conv.txt)
@@ -119,9 +119,9 @@ nrrd_labels() { # FILE [extra header lines]: 16x16x16 uchar
 }
 nrrd_labels labels.nrrd
 nrrd_labels oblique.nrrd 'space dimension: 3\nspace directions: (1,0.2,0) (0,1,0) (0,0,1)\n'
-if "$vm" create -q labels.nrrd -o l.ply && "$vm" stats l.ply | grep -qE "^phases +3" ; then pass; else fail "create on a label volume"; fi
-if "$vm" stats l.ply | grep -qE "^topology +valid"; then pass; else fail "label volume mesh is not valid"; fi
-if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | grep -qE "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
+if "$vm" create -q labels.nrrd -o l.ply && "$vm" stats l.ply | contains -E "^phases +3" ; then pass; else fail "create on a label volume"; fi
+if "$vm" stats l.ply | contains -E "^topology +valid"; then pass; else fail "label volume mesh is not valid"; fi
+if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | contains -E "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
 # smooth --field improves a created mesh as mesh does with the same pipeline: the same file,
 # byte for byte. Its default is the paper's (a mesh from a file is not coarsened again);
 # mesh's default for a label volume remeshes first, to fewer triangles.
@@ -137,17 +137,17 @@ else fail "mesh on a label volume does not remesh by default"; fi
 if out=$("$vm" mesh two.nrrd -o two.ply 2>&1) && grep -q "^label 1: 1 voxel, no surface in the mesh" <<<"$out"; then pass
 else fail "a lost label is not reported"; fi
 if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&
-  "$vm" stats sd.ply | grep -qE "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
-if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | grep -qE "^phases +2"; then pass; else fail "--merge-labels"; fi
-if "$vm" create -q labels.nrrd --drop-labels 5 --background 3 -o d.ply && "$vm" stats d.ply | grep -qE "^phases +2"; then pass; else fail "--drop-labels"; fi
-if "$vm" create --help | grep -q "Label volumes"; then pass; else fail "--help lacks the 'Label volumes' group"; fi
+  "$vm" stats sd.ply | contains -E "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
+if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | contains -E "^phases +2"; then pass; else fail "--merge-labels"; fi
+if "$vm" create -q labels.nrrd --drop-labels 5 --background 3 -o d.ply && "$vm" stats d.ply | contains -E "^phases +2"; then pass; else fail "--drop-labels"; fi
+if "$vm" create --help | contains "Label volumes"; then pass; else fail "--help lacks the 'Label volumes' group"; fi
 # A 3D Slicer segmentation: the same voxels, named segments (liver 1, tumour 5, vessel 3), LPS.
 nrrd_labels organ.seg.nrrd 'space: left-posterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nSegment0_ID:=S1\nSegment0_Name:=liver\nSegment0_LabelValue:=1\nSegment1_ID:=S2\nSegment1_Name:=tumour\nSegment1_LabelValue:=5\nSegment2_ID:=S3\nSegment2_Name:=vessel\nSegment2_LabelValue:=3\n'
 if out=$("$vm" create organ.seg.nrrd --background 3 -o seg.msh 2>&1) && grep -q '"1-liver_5-tumour"' seg.msh &&
   grep -q "world LPS (the file's)" <<<"$out"; then pass; else fail "segment names do not name the MSH physical groups"; fi
-if "$vm" create -q organ.seg.nrrd --background 3 --keep-labels tumour -o keep.ply && "$vm" stats keep.ply | grep -qE "^phases +2" &&
+if "$vm" create -q organ.seg.nrrd --background 3 --keep-labels tumour -o keep.ply && "$vm" stats keep.ply | contains -E "^phases +2" &&
   grep -aq "comment phase 5 tumour" keep.ply; then pass; else fail "--keep-labels by segment name"; fi
-if "$vm" create -q organ.seg.nrrd --background 3 --drop-labels tumour -o drop.ply && "$vm" stats drop.ply | grep -qE "^phases +2" &&
+if "$vm" create -q organ.seg.nrrd --background 3 --drop-labels tumour -o drop.ply && "$vm" stats drop.ply | contains -E "^phases +2" &&
   grep -aq "comment phase 1 liver" drop.ply; then pass; else fail "--drop-labels by segment name"; fi
 expect_error "unknown segment name" 2 "organ.seg.nrrd: --drop-labels: no segment is named 'kidney' \(its segments: 'liver', 'tumour', 'vessel'\)" -- \
   "$vm" create organ.seg.nrrd --drop-labels kidney -o out.ply
@@ -160,7 +160,7 @@ if out=$("$vm" create organ.seg.nrrd --world ras -o ras.ply 2>&1) && grep -q "wo
 expect_error "--world without a frame" 2 "labels.nrrd: --world lps: the file does not say" -- "$vm" create labels.nrrd --world lps -o out.ply
 expect_error "--world on a scene" 2 "--world applies only to volumes" -- "$vm" create --world ras -o out.ply
 printf '# x y z label\n0 0 0 1\n0 1 0 1\n1 0 0 2\n1 1 1 2\n0.5 0.5 1 3\n' >cloud.xyz
-if "$vm" create -q cloud.xyz -o c.ply && "$vm" stats c.ply | grep -qE "^phases +3"; then pass; else fail "create on a point cloud"; fi
+if "$vm" create -q cloud.xyz -o c.ply && "$vm" stats c.ply | contains -E "^phases +3"; then pass; else fail "create on a point cloud"; fi
 printf '0 0 0 1\n1 1 one 2\n' >badcloud.xyz
 : >later.nii.gz
 expect_error "oblique direction" 2 "oblique.*--ignore-direction" -- "$vm" create oblique.nrrd -o out.ply
@@ -173,7 +173,7 @@ expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud
 # its interfaces are jagged, and without the crossing guard surfaces fold onto themselves.
 { printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nproperty int label\nend_header\n'
   grep -v '^#' cloud.xyz; } >cloud.ply
-if "$vm" create -q cloud.ply -o cp.ply && "$vm" stats cp.ply | grep -qE "^phases +3" && cmp -s c.ply cp.ply; then pass; else fail "create on a PLY point cloud (same mesh as its .xyz)"; fi
+if "$vm" create -q cloud.ply -o cp.ply && "$vm" stats cp.ply | contains -E "^phases +3" && cmp -s c.ply cp.ply; then pass; else fail "create on a PLY point cloud (same mesh as its .xyz)"; fi
 if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply && "$vm" mesh -q cloud.ply --iterations 2 -o cpm.ply &&
   cmp -s cps.ply cpm.ply && ! cmp -s cps.ply cp.ply; then pass; else fail "smooth --field on a PLY point cloud is not mesh's improvement"; fi
 if python3 "$examples/../scripts/make_point_cloud.py" --count 2000 four.ply 2>/dev/null \
@@ -262,7 +262,7 @@ expect_error "label options on the demo" 2 "the built-in demo: --drop-labels, --
 expect_error "volume option on a point cloud" 2 "cloud\.xyz: --ignore-direction applies only to volumes, and this is a point cloud" -- "$vm" create cloud.xyz --ignore-direction -o out.ply
 if "$vm" create -q grids/scene.json -o gs.ply && "$vm" create -q all.nrrd -o ga.ply && cmp -s gs.ply ga.ply; then pass
 else fail "grid phases do not mesh as the multi-component file"; fi
-if "$vm" stats gs.ply | grep -qE "^phases +3" && "$vm" stats gs.ply | grep -qE "^topology +valid"; then pass; else fail "grid phase mesh is not valid"; fi
+if "$vm" stats gs.ply | contains -E "^phases +3" && "$vm" stats gs.ply | contains -E "^topology +valid"; then pass; else fail "grid phase mesh is not valid"; fi
 if "$vm" mesh -q grids/scene.json --iterations 3 -o gm.ply && "$vm" stats gm.ply >/dev/null; then pass; else fail "mesh on grid phases"; fi
 expect_error "grid file missing" 3 "grids/missing\.json: phase 1: .*gone\.nrrd: cannot open" -- "$vm" create grids/missing.json -o out.ply
 expect_error "grid component" 2 "grids/component\.json: phase 1: 'component' 2 is out of range" -- "$vm" create grids/component.json -o out.ply
@@ -276,8 +276,8 @@ done
 if "$vm" create -q --grid 12 -o surf.stl --per-phase phases && [ ! -e surf.stl ] && [ "$(ls surf_*.stl | wc -l)" -eq 10 ] &&
   [ -s surf_0-outside_1-sphere1.stl ] && [ "$(ls phases/phase_*.stl | wc -l)" -eq 5 ]; then pass
 else fail "-o surf.stl: one file per phase pair, --per-phase: one per phase"; fi
-if "$vm" create --grid 12 -o surf2.stl 2>&1 | grep -q "10 STL files, one per phase pair"; then pass; else fail "STL files reported"; fi
-if "$vm" create --help | grep -q "\.vtp" && "$vm" create --help | grep -q "per-phase"; then pass; else fail "--help lists the formats"; fi
+if "$vm" create --grid 12 -o surf2.stl 2>&1 | contains "10 STL files, one per phase pair"; then pass; else fail "STL files reported"; fi
+if "$vm" create --help | contains "\.vtp" && "$vm" create --help | contains "per-phase"; then pass; else fail "--help lists the formats"; fi
 if "$vm" flip -q demo.ply -o fl.msh && grep -q '^\$PhysicalNames' fl.msh; then pass; else fail "flip -o .msh"; fi
 : >blocker
 expect_error "unknown extension" 2 "out\.xyz: unknown output format '\.xyz' \(known: \.ply, \.obj, \.stl, \.msh, \.vtu, \.vtp, \.mesh\)" \
@@ -298,7 +298,7 @@ kill -INT "$pid"
 wait "$pid"
 got=$?
 if [ "$got" -ne 130 ]; then fail "Ctrl-C: exit $got, expected 130 ($(tail -1 stderr.txt))"
-elif ! tail -1 stderr.txt | grep -q "voronoimesh: interrupted; nothing was written"; then fail "Ctrl-C: $(tail -1 stderr.txt)"
+elif ! tail -1 stderr.txt | contains "voronoimesh: interrupted; nothing was written"; then fail "Ctrl-C: $(tail -1 stderr.txt)"
 elif [ -e out.ply ] || ls out.ply.tmp-* >/dev/null 2>&1; then fail "Ctrl-C: left an output file behind"
 else pass; fi
 

@@ -5,6 +5,11 @@ passed=0 failed=0
 pass() { passed=$((passed + 1)); }
 fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
 
+# `command | contains PATTERN`: grep that reads all its input. `grep -q` stops at
+# the first match; a command still writing then dies of SIGPIPE, which pipefail
+# reports as a failed check.
+contains() { grep "$@" >/dev/null; }
+
 # expect_error NAME EXIT_CODE PATTERN -- command...: the command fails with that
 # exit code, prints exactly one line on stderr matching PATTERN, and leaves no out.ply.
 expect_error() {

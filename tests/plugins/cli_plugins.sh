@@ -77,13 +77,13 @@ then pass; else fail "a shadowed plugin is not named: $(cat stderr.txt)"; fi
 mkdir -p open && cp "$plugins/cvt.so" open/cvt.so && chmod 777 open
 VORONOIMESH_PLUGIN_PATH=open "$vm" passes >passes.txt 2>stderr.txt
 if grep -qF "warning: plugin open/cvt.so: loaded, but anyone may write its folder open" stderr.txt &&
-   VORONOIMESH_PLUGIN_PATH=open "$vm" plugins | grep -qF "warning: open/cvt.so: loaded, but anyone may write its folder open"
+   VORONOIMESH_PLUGIN_PATH=open "$vm" plugins | grep -F "warning: open/cvt.so: loaded, but anyone may write its folder open" >/dev/null
 then pass; else fail "a plugin in a world-writable folder loads silently: $(cat stderr.txt)"; fi
 
 # The example host loads a plugin and runs a pipeline through the library.
 if "$host" "$plugins/relax.so" relax,project,clamp,flip host.ply >host.txt 2>&1 &&
    grep -q "loaded plugin relax 1.0 with 1 pass" host.txt && grep -q "valid, no intersections" host.txt &&
-   "$vm" stats host.ply | grep -qE "^topology +valid"; then pass; else fail "host: $(cat host.txt)"; fi
+   "$vm" stats host.ply | grep -E "^topology +valid" >/dev/null; then pass; else fail "host: $(cat host.txt)"; fi
 if ! "$host" "$fakes/fake_wrong_abi.so" relax host2.ply >host.txt 2>&1 && grep -q "plugin ABI version 2" host.txt &&
    [ ! -e host2.ply ]; then pass; else fail "host with a wrong ABI: $(cat host.txt)"; fi
 
