@@ -187,11 +187,14 @@ TEST(Improve, fifty_iterations_leave_the_worst_triangle_no_worse_than_twenty) {
   }
 }
 
-// flip:ear_below limits the flips of ears into worse pairs to bad ears: on the
-// 30-seed scene that keeps good triangles good (min q 0.237 after 20
-// iterations, against 0.064 when every ear flips; docs/algorithm.md "Known
-// gaps" for what it costs elsewhere).
-TEST(Improve, ear_below_keeps_fat_ears_from_flipping_into_worse_pairs) {
+// A triangle at a quadruple point with its two edges on two curves is a
+// corner triangle, not an ear (whose three corners lie on one curve): flipping
+// it only moved it beside the next corner node, where it was an "ear" again
+// and flipped back, every round of every iteration. On the 30-seed scene such
+// pairs kept min q at 0.064 after 20 iterations (0.237 with ear flips limited
+// to ears below q 0.05, which was then the better choice); with corner
+// triangles left alone, flipping every ear is the better one.
+TEST(Improve, corner_triangles_are_no_ears_and_do_not_flip_back_and_forth) {
   const Scene scene = example("voronoi30.json", 64);
   const PassRegistry registry = builtin_registry();
   double worst[2];
@@ -202,8 +205,8 @@ TEST(Improve, ear_below_keeps_fat_ears_from_flipping_into_worse_pairs) {
     worst[limited] = quality_summary(mesh).first;
   }
   std::printf("voronoi30, 20 iterations: min q %.3f (every ear flips), %.3f (ears below 0.05)\n", worst[0], worst[1]);
-  EXPECT_GT(worst[1], 0.2);
-  EXPECT_GT(worst[1], 2 * worst[0]);
+  EXPECT_GT(worst[0], 0.25);
+  EXPECT_GE(worst[0], worst[1]);
 }
 
 // Quadruple points are not moved by forces, only projected onto the exact point

@@ -154,10 +154,13 @@ TEST(Remesh, close_corners_merge_into_one_point_instead_of_leaving_slivers) {
   const size_t higher = std::count_if(j.quadruple_points.begin(), j.quadruple_points.end(),
                                       [&](int32_t q) { return j.order(size_t(q)) > 4; });
   EXPECT_GE(higher, 1u);
-  // The worst triangle, a sliver at the two points without the merge (q
-  // 0.057), is almost three times better (0.156). (Grid 32 showed it, 0.013 ->
-  // 0.069, until create quantized over the lattice's nodes alone: 0.052 -> 0.069.)
-  EXPECT_LT(compute_stats(kept).min_quality, 0.07);
+  std::printf("min q %.3f without merging corners, %.3f with\n", compute_stats(kept).min_quality,
+              compute_stats(merged).min_quality);
+  // The worst triangle, a sliver at the two points without the merge (q 0.109;
+  // 0.057 while corner triangles flipped back and forth), is better with it
+  // (0.156). (Grid 32 showed it, 0.013 -> 0.069, until create quantized over
+  // the lattice's nodes alone: 0.052 -> 0.069.)
+  EXPECT_LT(compute_stats(kept).min_quality, 0.12);
   EXPECT_GT(compute_stats(merged).min_quality, 0.14);
 }
 

@@ -10,6 +10,7 @@
 #include "improve/flip_log.hpp"
 #include "improve/flip_recheck.hpp"
 #include "improve/part_agreement.hpp"
+#include "mesh/node_rings.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -49,12 +50,19 @@ private:
 };
 
 /// True when the face of halfedge h has boundary edges on both sides of h's
-/// opposite corner: an "ear" whose three corners lie on one junction curve (or
-/// the box). Projection pulls such corners onto the curve, so an ear can only
-/// degenerate; flipping h away is the only cure.
-bool is_ear_across(const OMesh& om, OMesh::HalfedgeHandle h) {
+/// opposite corner and that corner lies on one curve: an "ear" whose three
+/// corners lie on one junction curve (or the box). Projection pulls such
+/// corners onto the curve, so an ear can only degenerate; flipping h away is
+/// the only cure. Where the opposite corner is a corner of the patch (a
+/// quadruple point, a box corner), its two boundary edges lie on two curves: a
+/// corner triangle, which a flip only moves to the other side of the corner's
+/// neighbour, where it was an "ear" again and flipped back, round after round
+/// (on 30 Voronoi cells such a pair ended every iteration as min q 0.17).
+bool is_ear_across(const InterfaceMesh& mesh, OMesh::HalfedgeHandle h) {
+  const OMesh& om = mesh.omesh();
   const auto n = om.next_halfedge_handle(h);
-  return om.is_boundary(om.edge_handle(n)) && om.is_boundary(om.edge_handle(om.next_halfedge_handle(n)));
+  return om.is_boundary(om.edge_handle(n)) && om.is_boundary(om.edge_handle(om.next_halfedge_handle(n))) &&
+         detail::constraint_order(mesh, mesh.node(om.to_vertex_handle(n))) <= 3;
 }
 
 /// Algorithm 5 for one edge, read-only. Returns the quality gain of flipping it,
@@ -71,7 +79,7 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   auto h0 = om.halfedge_handle(eh, 0), h1 = om.halfedge_handle(eh, 1);
   if (mesh.node(om.from_vertex_handle(h0)) > mesh.node(om.to_vertex_handle(h0))) std::swap(h0, h1);
   const double before = std::min(quality[om.face_handle(h0)], quality[om.face_handle(h1)]);
-  const bool ear = before < p.ear_below && (is_ear_across(om, h0) || is_ear_across(om, h1));
+  const bool ear = before < p.ear_below && (is_ear_across(mesh, h0) || is_ear_across(mesh, h1));
   if (before >= p.skip_quality && !ear) return -1;
   // Triangles (i, j, k) and (i, l, j) as in the paper's Fig. 5.
   nodes = {mesh.node(om.from_vertex_handle(h0)), mesh.node(om.to_vertex_handle(h0)),

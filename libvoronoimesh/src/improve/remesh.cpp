@@ -21,6 +21,7 @@
 namespace vm {
 namespace {
 
+using detail::constraint_order;
 using detail::NodeRings;
 
 /// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
@@ -58,16 +59,6 @@ double interface_curvature(const PhaseField& field, int i, int j, const Vec3& x,
     sum += ((a - b) / (2 * delta)).squaredNorm();
   }
   return std::sqrt(sum);
-}
-
-/// The number of independent constraints on node n: its phases less one, plus
-/// its box faces, less one for the outside phase of a closed mesh (whose
-/// surfaces are the box faces). 2 on a surface, 3 on a curve (a triple curve,
-/// a surface meeting the box, a box edge), more at a corner.
-int constraint_order(const NodeRings& mesh, int32_t n) {
-  const int outside = mesh.outside_phase();
-  return detail::junction_order(mesh.phases()[size_t(n)], mesh.box_faces()[size_t(n)]) -
-         (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
 }
 
 /// True when the edge a-b runs along a curve: its triangles are not exactly two

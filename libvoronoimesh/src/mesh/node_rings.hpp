@@ -27,6 +27,16 @@ inline int junction_order(const PhaseSet& phases, uint8_t box_faces) {
   return phase_count(phases) + std::popcount(unsigned(box_faces));
 }
 
+/// The number of independent constraints on node n of `mesh` (an InterfaceMesh
+/// or a NodeRings): its junction order less one for the outside phase of a
+/// closed mesh (whose surfaces are the box faces). 2 on a surface, 3 on a curve
+/// (a triple curve, a surface meeting the box, a box edge), more at a corner.
+template <class Mesh> int constraint_order(const Mesh& mesh, int32_t n) {
+  const int32_t outside = mesh.outside_phase();
+  return junction_order(mesh.phases()[size_t(n)], mesh.box_faces()[size_t(n)]) -
+         (outside >= 0 && mesh.has_phase(n, outside) ? 1 : 0);
+}
+
 /// True when the phases and box faces of a are all among b's (InterfaceMesh::constraints_within()).
 bool constraints_within(const PhaseSet& phases_a, uint8_t box_a, const PhaseSet& phases_b, uint8_t box_b);
 
