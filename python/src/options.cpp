@@ -40,6 +40,8 @@ Options options_from(const py::kwargs& kwargs, Input input) {
       {"iterations", [&](const py::handle& v) { m.iterations = v.cast<int>(); }},
       {"pipeline", [&](const py::handle& v) { m.pipeline = v.cast<std::string>(); }},
       {"size", [&](const py::handle& v) { m.size = v.cast<double>(); }},
+      {"tolerance", [&](const py::handle& v) { m.tolerance = v.cast<double>(); }},
+      {"min_size", [&](const py::handle& v) { m.min_size = v.cast<double>(); }},
       {"threads", [&](const py::handle& v) { m.threads = v.cast<int>(); }},
       {"close", [&](const py::handle& v) { m.close = v.cast<bool>(); }},
       {"snap", [&](const py::handle& v) { m.snap = v.cast<double>(); }},

@@ -74,6 +74,10 @@ def test_options_are_the_command_lines_and_bad_ones_raise():
         vm.mesh_labels(two_blocks(), iterations=-1)
     with pytest.raises(ValueError, match="--drop-labels: label 5 is not in the volume"):
         vm.mesh_labels(two_blocks(), drop_labels=[5])
+    with pytest.raises(ValueError, match="tolerance: needs --size"):
+        vm.mesh_labels(two_blocks(), tolerance=0.5)
+    sized = vm.mesh_labels(two_blocks(), iterations=2, size=3.0, tolerance=0.3, min_size=1.5)
+    assert sized.validate() == []
     with pytest.raises(TypeError, match="unknown option 'iteratons'"):
         vm.mesh_labels(two_blocks(), iteratons=3)
     with pytest.raises(TypeError, match="unknown option 'world'"):  # a file's option, not an array's

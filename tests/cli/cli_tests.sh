@@ -96,6 +96,14 @@ expect_error "size with a pipeline" 2 "--size: .*remesh:length=L" -- "$vm" mesh 
 expect_error "negative size" 2 "--size: must be a length above 0" -- "$vm" mesh --grid 8 --size -1 -o out.ply
 if out=$("$vm" mesh --grid 16 --iterations 2 --size 0.1 -o sized.ply 2>&1) && grep -q "iterations of remesh:length=0.1,smooth" <<<"$out"; then pass
 else fail "--size does not remesh to the length given"; fi
+# --tolerance and --min-size are world units; the pass takes them as multiples of the length.
+if out=$("$vm" mesh --grid 16 --iterations 2 --max-size 0.1 --tolerance 0.002 --min-size 0.05 -o tol.ply 2>&1) &&
+   grep -q "iterations of remesh:length=0.1:tolerance=0.02:min_size=0.5,smooth" <<<"$out"; then pass
+else fail "--tolerance/--min-size do not reach the remesh pass: $out"; fi
+expect_error "tolerance without size" 2 "--tolerance: needs --size" -- "$vm" mesh --grid 8 --tolerance 0.01 -o out.ply
+expect_error "tolerance above size" 2 "--tolerance: must not exceed --size" -- "$vm" mesh --grid 8 --size 0.1 --tolerance 0.2 -o out.ply
+expect_error "min size without tolerance" 2 "--min-size: needs --tolerance" -- "$vm" mesh --grid 8 --size 0.1 --min-size 0.05 -o out.ply
+expect_error "min size below a tenth" 2 "--min-size: must lie between a tenth of --size and --size" -- "$vm" mesh --grid 8 --size 0.1 --tolerance 0.01 --min-size 0.001 -o out.ply
 
 # Sequences (issue 20): a numbered pattern, one mesh per step and a ParaView collection.
 mkdir -p seq seq_out

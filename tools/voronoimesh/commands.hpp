@@ -85,7 +85,9 @@ struct ImproveOptions {
   int iterations = 20;
   std::vector<std::string> plugins; ///< --plugin files
   std::string pipeline; ///< empty: the input's default (vm::pipeline_for())
-  double size = 0;      ///< --size: target edge length in world units (0: none)
+  double size = 0;      ///< --size (--max-size): target edge length in world units (0: none)
+  double tolerance = 0; ///< --tolerance: largest distance off a curved surface, world units (0: none)
+  double min_size = 0;  ///< --min-size: shortest target edge with --tolerance (0: half of --size)
   bool stop_when_converged = false;
   bool unguarded = false; ///< skip the crossing guard (improve/guard.hpp)
   std::string history;    ///< where to write per-iteration histograms (.csv, .json, .svg)

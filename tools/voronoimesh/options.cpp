@@ -98,10 +98,17 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
                       "edges 1.4x the lattice's, about half the triangles, before the paper's passes, which then "
                       "collapse junction slivers below q 0.15)");
-  cmd->add_option("--size", o.size,
+  cmd->add_option("--size,--max-size", o.size,
                   std::string("Target edge length in world units (the input's units): remesh to edges of about L "
                               "first, for any input (remesh:length=L,") +
-                      vm::kPassesAfterRemesh + "); not with --pipeline (put remesh:length=L in it)");
+                      vm::kPassesAfterRemesh + "); not with --pipeline (put remesh:length=L in it). With "
+                                               "--tolerance, the longest edge, where surfaces are flat");
+  cmd->add_option("--tolerance", o.tolerance,
+                  "With --size: how far, in world units, a triangle may stand off a curved surface (like CGAL's facet "
+                  "distance); edges shorten where surfaces curve, down to --min-size (remesh:tolerance)");
+  cmd->add_option("--min-size", o.min_size,
+                  "With --tolerance: the shortest target edge in world units, between a tenth of --size and --size "
+                  "(default: half of --size)");
   add_plugin_option(cmd, o.plugins);
   cmd->add_flag("--stop-when-converged", o.stop_when_converged,
                 "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
@@ -165,6 +172,8 @@ void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
   job.options.iterations = improve.iterations;
   job.options.pipeline = improve.pipeline;
   job.options.size = improve.size;
+  job.options.tolerance = improve.tolerance;
+  job.options.min_size = improve.min_size;
   job.options.stop_when_converged = improve.stop_when_converged;
   job.options.guard_crossings = !improve.unguarded;
   job.outputs.history = improve.history;

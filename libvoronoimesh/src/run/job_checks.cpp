@@ -32,6 +32,19 @@ void check_options(const MeshOptions& o) {
   if (o.size > 0 && !o.pipeline.empty())
     throw InvalidOption("size", "sets the default pipeline's remesh pass; with a pipeline of your own, give "
                                 "remesh:length=L in it");
+  if (!(o.tolerance >= 0 && o.tolerance < 1e12))
+    throw InvalidOption("tolerance", cat("must be a distance above 0 in world units (0: none), got ", o.tolerance));
+  if (o.tolerance > 0 && !(o.size > 0))
+    throw InvalidOption("tolerance", "needs --size, the longest edge (where surfaces are flat)");
+  if (o.tolerance > o.size)
+    throw InvalidOption("tolerance", cat("must not exceed --size (", o.size, "), got ", o.tolerance));
+  if (!(o.min_size >= 0 && o.min_size < 1e12))
+    throw InvalidOption("min_size", cat("must be a length above 0 in world units (0: half of --size), got ", o.min_size));
+  if (o.min_size > 0 && !(o.tolerance > 0))
+    throw InvalidOption("min_size", "needs --tolerance (without it every edge aims at --size)");
+  if (o.min_size > 0 && !(o.min_size >= 0.1 * o.size && o.min_size <= o.size))
+    throw InvalidOption("min_size", cat("must lie between a tenth of --size and --size (", 0.1 * o.size, " to ",
+                                        o.size, "), got ", o.min_size));
 }
 
 std::optional<tbb::global_control> thread_limit(const MeshOptions& o) {

@@ -257,9 +257,15 @@ int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const 
 std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   if (!options.pipeline.empty()) return options.pipeline;
   if (options.size > 0) {
-    std::array<char, 32> length{}; // shortest text that reads back as the same double
-    const auto end = std::to_chars(length.data(), length.data() + length.size(), options.size).ptr;
-    return "remesh:length=" + std::string(length.data(), end) + "," + kPassesAfterRemesh;
+    auto text = [](double x) { // the shortest text that reads back as the same double
+      std::array<char, 32> digits{};
+      return std::string(digits.data(), std::to_chars(digits.data(), digits.data() + digits.size(), x).ptr);
+    };
+    std::string remesh = "remesh:length=" + text(options.size);
+    // The pass takes its tolerance and shortest edge as multiples of the length.
+    if (options.tolerance > 0) remesh += ":tolerance=" + text(options.tolerance / options.size);
+    if (options.min_size > 0) remesh += ":min_size=" + text(options.min_size / options.size);
+    return remesh + "," + kPassesAfterRemesh;
   }
   return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
 }
@@ -268,7 +274,7 @@ NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options, RunObserver*
   NodeMesh mesh = create_mesh(scene, options, observer);
   MeshOptions improving = options;
   improving.pipeline = pipeline_for(options, &scene);
-  improving.size = 0; // in the pipeline now
+  improving.size = improving.tolerance = improving.min_size = 0; // in the pipeline now
   improve_mesh(mesh, scene.field, improving, observer);
   return mesh;
 }
@@ -295,7 +301,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
                                  "less smoothing of labels, may resolve them)"));
     field = scene.field;
     resolved.options.pipeline = pipeline_for(job.options, &scene);
-    resolved.options.size = 0; // in the pipeline now
+    resolved.options.size = resolved.options.tolerance = resolved.options.min_size = 0; // in the pipeline now
   } else {
     mesh = read_mesh(job.mesh, observer);
     if (!job.input.empty()) {

@@ -64,8 +64,15 @@ struct MeshOptions {
   /// Target edge length in world units, 0 for none: the default pipeline is
   /// then remesh:length=`size` and kPassesAfterRemesh for every input (the
   /// same target for a mesh read back from a file). Not with `pipeline` (give
-  /// remesh:length=L there).
+  /// remesh:length=L there). With `tolerance`, the longest target edge.
   double size = 0;
+  /// With `size`: how far, in world units, a triangle may stand off a curved
+  /// surface (like CGAL's facet distance); edges shorten where surfaces curve,
+  /// down to `min_size` (remesh:tolerance). 0: edges of `size` everywhere.
+  double tolerance = 0;
+  /// With `tolerance`: the shortest target edge, in world units, between a
+  /// tenth of `size` and `size`; 0: half of `size` (remesh:min_size).
+  double min_size = 0;
   /// The passes `pipeline` may name (e.g. built-ins plus a plugin's); null:
   /// the built-in passes. Not owned; must outlive the call.
   const PassRegistry* passes = nullptr;
