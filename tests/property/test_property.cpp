@@ -27,8 +27,10 @@ constexpr uint64_t kThreadsEvery = 6;
 /// grid node's), some cases mesh differently: 4792 -> 4802 in all, shards 0, 4, 7
 /// up by 3, 16, 2, shards 1, 2, 3, 6 down by 3, 1, 5, 2. Since corner triangles at
 /// quadruple points are no ears (they flipped back and forth), 4802 -> 4791:
-/// shards 0, 4, 5 down by 12, 9, 3, shards 1, 2, 3, 7 up by 3, 2, 5, 3.
-constexpr std::array<size_t, kShards> kAgainstAtMost = {665, 875, 105, 1311, 791, 193, 554, 297};
+/// shards 0, 4, 5 down by 12, 9, 3, shards 1, 2, 3, 7 up by 3, 2, 5, 3. Since
+/// collapses below q 0.15 (not 0.05) leave better triangles and merge close
+/// corners, 4791 -> 4767: shard 6 up by 3, the others down by 0 to 8.
+constexpr std::array<size_t, kShards> kAgainstAtMost = {662, 867, 102, 1306, 786, 190, 557, 297};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

@@ -22,7 +22,7 @@ namespace vm {
 struct CollapseParams {
   /// Triangles below this quality with two or three corners on junctions (or
   /// the box) are collapsed. 0 turns collapsing off.
-  double below_quality = 0.05;
+  double below_quality = 0.15;
   /// At most this many collapses per call.
   int max_collapses = 64;
   /// Refuse collapses after which a moved triangle crosses another surface.

@@ -17,12 +17,12 @@ namespace vm {
 inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 
 /// The passes after the remesh pass in the remeshing defaults below: the paper's,
-/// with junction slivers below q 0.15 collapsed (flip:collapse_below, 0.05 by
-/// default). After remeshing, curve nodes bunch where a triple curve turns
+/// with junction slivers below q 0.15 collapsed (flip:collapse_below, the flip
+/// pass's default too since 2026-11-26; said here as these defaults chose it
+/// first). After remeshing, curve nodes bunch where a triple curve turns
 /// tightly and leave triangles with three corners on the curve: 0.15 lifts the
 /// worst triangle of the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain
-/// polycrystal from 0.052 to 0.158, and lowers none measured (on the paper's
-/// pipeline alone it would: four spheres 0.502 -> 0.475).
+/// polycrystal from 0.052 to 0.158.
 inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:collapse_below=0.15";
 
 /// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
