@@ -188,6 +188,19 @@ def test_progress_abort_and_errors():
     alg.AddObserver("ProgressEvent", lambda o, e: o.SetAbortExecute(1) if o.GetProgress() > 0.2 else None)
     assert fetch(g).GetNumberOfCells() == 0
 
+    # Size and Tolerance reach the remesh pass: edges shorten where the balls
+    # curve, so more triangles than at Size alone; Tolerance without Size is an error.
+    sized = {}
+    for tolerance in (0, 0.1):
+        s = VoronoiMesh(Input=producer(image({"labels": labels})), Iterations=3, Size=2.0, Tolerance=tolerance)
+        s.Labels = ["POINTS", "labels"]
+        sized[tolerance] = fetch(s).GetNumberOfCells()
+    assert 0 < sized[0] < sized[0.1], sized
+    print("an error about --tolerance is expected next:", flush=True)
+    t = VoronoiMesh(Input=producer(image({"labels": labels})), Tolerance=0.1)
+    t.Labels = ["POINTS", "labels"]
+    assert fetch(t).GetNumberOfCells() == 0
+
     # A real-valued array is no label array: an error, an empty output.
     print("an error about label array 'density' is expected next:", flush=True)
     h = VoronoiMesh(Input=producer(image({"density": labels.astype(np.float32)})))

@@ -99,6 +99,7 @@ int vtkVoronoiMeshFilter::RequestData(vtkInformation*, vtkInformationVector** in
   options.iterations = Iterations;
   options.pipeline = Pipeline;
   options.size = Size;
+  options.tolerance = Tolerance;
   options.close = Close;
   options.snap = Snap;
   options.threads = Threads;
@@ -158,6 +159,7 @@ void vtkVoronoiMeshFilter::PrintSelf(ostream& os, vtkIndent indent) {
   os << indent << "Iterations: " << Iterations << "\n"
      << indent << "Pipeline: " << (Pipeline.empty() ? "(the input's default)" : Pipeline) << "\n"
      << indent << "Size: " << Size << "\n"
+     << indent << "Tolerance: " << Tolerance << "\n"
      << indent << "Close: " << Close << "\n"
      << indent << "Snap: " << Snap << "\n"
      << indent << "Smoothing: " << Smoothing << "\n"

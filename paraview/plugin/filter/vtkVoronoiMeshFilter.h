@@ -33,6 +33,9 @@ public:
   /// Target edge length in world units (mesh --size); 0: the default sizing.
   vtkSetMacro(Size, double)
   vtkGetMacro(Size, double)
+  /// With Size: largest distance off a curved surface, world units (mesh --tolerance); 0: none.
+  vtkSetMacro(Tolerance, double)
+  vtkGetMacro(Tolerance, double)
   /// Close the box: its faces become surfaces against a phase "exterior" (mesh --close).
   vtkSetMacro(Close, bool)
   vtkGetMacro(Close, bool)
@@ -69,6 +72,7 @@ private:
   int Iterations = 20;
   std::string Pipeline;
   double Size = 0;
+  double Tolerance = 0;
   bool Close = false;
   double Snap = 0.2;
   double Smoothing = 1.0;
