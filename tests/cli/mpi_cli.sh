@@ -29,6 +29,16 @@ for iterations in 0 5; do
   else pass; fi
 done
 
+# Collapses over the ranks: at grid 32 the 30 seeds' flip passes collapse
+# junction slivers and merge close quadruple points into higher-order points,
+# each rank answering for its own; the assembled mesh is still one process's.
+"$vm" mesh "$examples/voronoi30.json" --grid 32 --iterations 10 -q -o alone_30.ply
+run mesh "$examples/voronoi30.json" --grid 32 --mpi --iterations 10 -q -o ranks_30.ply 2>stderr.txt
+if [ $? -ne 0 ]; then fail "voronoi30 collapses: $(cat stderr.txt)"
+elif ! cmp -s alone_30.ply ranks_30.ply; then fail "voronoi30 collapses: differs from one process"
+elif ! "$vm" stats alone_30.ply | grep -E "^higher-order points +[1-9]" >/dev/null; then fail "voronoi30: no corners merged"
+else pass; fi
+
 # `create --mpi` is `mesh --mpi --iterations 0`.
 run create "$scene" --grid 16 --mpi --threads 1 -q -o created.ply 2>stderr.txt
 if [ $? -ne 0 ]; then fail "create --mpi: $(cat stderr.txt)"
