@@ -270,12 +270,21 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
 }
 
+namespace {
+
+/// `options` with pipeline_for() `scene` as their pipeline, and without the
+/// sizing options it has taken in (they and a pipeline exclude each other).
+MeshOptions with_pipeline_for(MeshOptions options, const Scene& scene) {
+  options.pipeline = pipeline_for(options, &scene);
+  options.size = options.tolerance = options.min_size = 0;
+  return options;
+}
+
+} // namespace
+
 NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options, RunObserver* observer) {
   NodeMesh mesh = create_mesh(scene, options, observer);
-  MeshOptions improving = options;
-  improving.pipeline = pipeline_for(options, &scene);
-  improving.size = improving.tolerance = improving.min_size = 0; // in the pipeline now
-  improve_mesh(mesh, scene.field, improving, observer);
+  improve_mesh(mesh, scene.field, with_pipeline_for(options, scene), observer);
   return mesh;
 }
 
@@ -300,8 +309,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
                                  "meshes to nothing: no two phases meet between the grid's nodes (a finer grid, or "
                                  "less smoothing of labels, may resolve them)"));
     field = scene.field;
-    resolved.options.pipeline = pipeline_for(job.options, &scene);
-    resolved.options.size = resolved.options.tolerance = resolved.options.min_size = 0; // in the pipeline now
+    resolved.options = with_pipeline_for(job.options, scene);
   } else {
     mesh = read_mesh(job.mesh, observer);
     if (!job.input.empty()) {
