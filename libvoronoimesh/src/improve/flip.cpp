@@ -57,7 +57,8 @@ private:
 /// quadruple point, a box corner), its two boundary edges lie on two curves: a
 /// corner triangle, which a flip only moves to the other side of the corner's
 /// neighbour, where it was an "ear" again and flipped back, round after round
-/// (on 30 Voronoi cells such a pair ended every iteration as min q 0.17).
+/// (on 30 Voronoi cells such a pair ended every flip pass as the worst
+/// triangle: min q 0.064 after 20 iterations).
 bool is_ear_across(const InterfaceMesh& mesh, OMesh::HalfedgeHandle h) {
   const OMesh& om = mesh.omesh();
   const auto n = om.next_halfedge_handle(h);
