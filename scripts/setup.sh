@@ -21,7 +21,7 @@ packages=(
   zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
 )
-installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep "install ok installed" >/dev/null; }
 readers=0 paraview=0
 for arg in "$@"; do
   case "$arg" in
