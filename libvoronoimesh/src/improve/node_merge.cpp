@@ -104,7 +104,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to) {
+                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
@@ -115,6 +115,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
   // and the rest checked again (one whole-mesh check, then searches around the
   // dropped collapses only; not one check per collapse).
   std::vector<char> active(chosen.size(), 1);
+  if (made) made->assign(chosen.size(), 0);
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
   // Once a trial has searched for crossings: the ends of the collapses dropped since.
   std::vector<uint8_t> changed;
@@ -146,6 +147,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     if (blamed && failed_ids.empty()) {
       m = std::move(trial);
       done = left;
+      if (made) made->assign(active.begin(), active.end());
       break;
     }
     size_t dropped = 0;

@@ -56,10 +56,11 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 /// @param node_ids       the id of each node of `m`, increasing
 /// @param kept_triangles set to the old index of each triangle of the merged mesh
 /// @param moved_to       empty, or where each collapse's a goes (not finite: it stays)
+/// @param made           if given, set to one flag per collapse of `chosen`: made or not
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to = {});
+                     std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr);
 
 } // namespace vm::detail
