@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,11 +34,11 @@ bool in_cube(int i, int j, int k, int lo, int hi) {
 uint8_t organ_with_tumour(int i, int j, int k) { return in_cube(i, j, k, 6, 10) ? 2 : in_cube(i, j, k, 3, 13) ? 1 : 0; }
 
 /// The header lines of segment i.
-std::string segment(int i, const std::string& name, int label, int layer) {
+std::string segment(int i, const std::string& name, int label, int layer, const std::string& color = "0.5 0.25 1") {
   const std::string key = "Segment" + std::to_string(i) + "_";
   return key + "ID:=Segment_" + std::to_string(i + 1) + "\n" + key + "Name:=" + name + "\n" + key +
          "LabelValue:=" + std::to_string(label) + "\n" + key + "Layer:=" + std::to_string(layer) + "\n" + key +
-         "Color:=0.5 0.25 1\n";
+         "Color:=" + color + "\n";
 }
 
 /// A segmentation of `layers` layers, layer l of voxel (i, j, k) holding value(l, i, j, k), in LPS.
@@ -103,6 +104,26 @@ TEST(Segmentation, segment_names_name_the_phases_and_the_labels_on_the_command_l
   EXPECT_NE(unknown.find(path), std::string::npos) << unknown;
   const std::string empty = refusal([&] { load_input(path, InputOptions{.keep_labels = {"vessel"}}); });
   EXPECT_NE(empty.find("--keep-labels: label 3 ('vessel') is not in the volume"), std::string::npos) << empty;
+}
+
+TEST(Segmentation, segment_colours_colour_their_phases_in_the_mesh) {
+  const std::string path = write_segmentation(
+      "colours.seg.nrrd", 1, segment(0, "liver", 1, 0, "0.9 0.5 0.25") + segment(1, "tumour", 2, 0, "0 0.5 1"),
+      [](int, int i, int j, int k) { return organ_with_tumour(i, j, k); });
+  const Scene scene = load_input(path);
+  const std::optional<Rgb> liver = Rgb{0.9f, 0.5f, 0.25f}, tumour = Rgb{0, 0.5f, 1};
+  EXPECT_EQ(scene.field->phase_color(0), std::nullopt) << "the background is no segment";
+  EXPECT_EQ(scene.field->phase_color(1), liver);
+  EXPECT_EQ(scene.field->phase_color(2), tumour);
+  EXPECT_EQ(create_mesh(scene).phase_colors, (std::vector<std::optional<Rgb>>{std::nullopt, liver, tumour}));
+  // A closed mesh's exterior has no colour; merged segments show the colour of the label they keep.
+  const NodeMesh closed = create_mesh(scene, MeshOptions{.close = true});
+  EXPECT_EQ(closed.phase_colors, (std::vector<std::optional<Rgb>>{std::nullopt, liver, tumour}));
+  EXPECT_EQ(closed.phase_names.back(), kOutsidePhaseName);
+  const Scene merged = load_input(path, InputOptions{.merge_labels = {{"tumour", "liver"}}});
+  EXPECT_EQ(merged.field->phase_color(1), liver);
+  // Through the improvement passes, whose mesh is rebuilt from and to a NodeMesh.
+  EXPECT_EQ(mesh_scene(scene, MeshOptions{.iterations = 2}).phase_colors, create_mesh(scene).phase_colors);
 }
 
 TEST(Segmentation, overlapping_layers_give_each_voxel_to_the_smaller_segment) {

@@ -503,9 +503,14 @@ namespace vm {
 void name_phases(NodeMesh& mesh, const PhaseField& field) {
   mesh.phase_names.clear();
   mesh.phase_labels.clear();
+  mesh.phase_colors.clear();
   for (int p = 0; p < field.num_phases(); ++p) {
     mesh.phase_names.push_back(field.phase_name(p));
     if (field.phase_label(p) != p) mesh.phase_labels.resize(size_t(field.num_phases()));
+    if (const auto color = field.phase_color(p)) {
+      mesh.phase_colors.resize(size_t(p) + 1);
+      mesh.phase_colors[size_t(p)] = color;
+    }
   }
   for (size_t p = 0; p < mesh.phase_labels.size(); ++p) mesh.phase_labels[p] = field.phase_label(int(p));
 }

@@ -282,6 +282,7 @@ std::shared_ptr<const TopKGridField> label_field(const PhaseVoxels& v, const Lab
   for (size_t b = 0; b < uniform.size(); ++b) takes.dense[b] = uniform[b] < 0, uniform[b] = std::max(uniform[b], -1);
   const float top = p.signed_distance ? band : float(p.smoothing * std::sqrt(2 * std::numbers::pi) / 2 * v.spacing.minCoeff());
   auto field = std::make_shared<TopKGridField>(grid, p.k, v.names, v.labels, std::move(uniform), top);
+  field->set_phase_colors(v.colors);
   // Blocks of kBlockBricks^3 bricks, computed independently over the box of
   // their dense bricks: each node is offered its phases by one task, in phase
   // order, so the result does not depend on the threads.

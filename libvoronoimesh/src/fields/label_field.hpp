@@ -8,6 +8,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct PhaseVoxels {
   std::vector<int16_t> phase; ///< phase per voxel (x fastest); -1 = not a phase (left to the others)
   std::vector<std::string> names;
   std::vector<int32_t> labels; ///< label value of each phase, strictly increasing
+  std::vector<std::optional<Rgb>> colors; ///< display colour of each phase, when known (may be shorter)
 };
 
 /// The field on the voxel grid (nodes at voxel centres), computed only in the

@@ -39,6 +39,7 @@ public:
     return i == n_ ? "the phase outside the domain box" : inner_->describe_phase(i);
   }
   int32_t phase_label(int i) const override { return i == n_ ? inner_->phase_label(n_ - 1) + 1 : inner_->phase_label(i); }
+  std::optional<Rgb> phase_color(int i) const override { return i == n_ ? std::nullopt : inner_->phase_color(i); }
 
   void values(const Vec3& x, std::span<double> out) const override {
     inner_->values(x, out.first(size_t(n_)));

@@ -14,6 +14,7 @@
 #include "voronoimesh/fields/phase_field.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,11 @@ public:
   int num_phases() const override { return int(names_.size()); }
   std::string phase_name(int i) const override { return names_.at(size_t(i)); }
   int32_t phase_label(int i) const override { return labels_.empty() ? i : labels_[size_t(i)]; }
+  std::optional<Rgb> phase_color(int i) const override {
+    return size_t(i) < colors_.size() ? colors_[size_t(i)] : std::nullopt;
+  }
+  /// Gives the phases display colours (by phase id; may be shorter than the phases).
+  void set_phase_colors(std::vector<std::optional<Rgb>> colors) { colors_ = std::move(colors); }
   void values(const Vec3& x, std::span<double> out) const override;
   double value(int i, const Vec3& x) const override;
   Vec3 gradient(int i, const Vec3& x) const override;
@@ -109,6 +115,7 @@ private:
   int k_;
   std::vector<std::string> names_;
   std::vector<int32_t> labels_;
+  std::vector<std::optional<Rgb>> colors_;
   std::array<int64_t, 3> bricks_{};
   /// Per brick: >= 0 its index among the dense bricks, < 0 a uniform brick of phase -1 - value.
   std::vector<int32_t> brick_;

@@ -70,11 +70,12 @@ std::vector<std::optional<int32_t>> label_targets(const std::vector<int32_t>& pr
 }
 
 /// The name of label l's phase: "background", its segment's name (from
-/// `named`, label -> name), or "label<l>".
-std::string label_name(int32_t l, const InputOptions& o, const std::unordered_map<int32_t, std::string>& named) {
+/// `segment_of`, label -> segment), or "label<l>".
+std::string label_name(int32_t l, const InputOptions& o,
+                       const std::unordered_map<int32_t, const io::Segment*>& segment_of) {
   if (l == o.background) return "background";
-  const auto it = named.find(l);
-  return it != named.end() ? it->second : cat("label", l);
+  const auto it = segment_of.find(l);
+  return it != segment_of.end() ? it->second->name : cat("label", l);
 }
 
 /// Refuses, before building them, phase functions that cannot fit in memory:
@@ -122,9 +123,16 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   std::sort(pv.labels.begin(), pv.labels.end());
   pv.labels.erase(std::unique(pv.labels.begin(), pv.labels.end()), pv.labels.end());
   check_phase_count(pv.labels.size(), path, " after the label options");
-  std::unordered_map<int32_t, std::string> named;
-  for (const io::Segment& s : v.segments) named.emplace(s.label, s.name);
-  for (int32_t l : pv.labels) pv.names.push_back(label_name(l, o, named));
+  std::unordered_map<int32_t, const io::Segment*> segment_of;
+  for (const io::Segment& s : v.segments) segment_of.emplace(s.label, &s);
+  for (int32_t l : pv.labels) pv.names.push_back(label_name(l, o, segment_of));
+  // A phase named after its segment shows the segment's colour (the background shows none).
+  for (size_t p = 0; p < pv.labels.size(); ++p) {
+    const auto it = segment_of.find(pv.labels[p]);
+    if (it == segment_of.end() || pv.labels[p] == o.background || !it->second->color) continue;
+    pv.colors.resize(p + 1);
+    pv.colors[p] = it->second->color;
+  }
   std::vector<std::string> notes = std::move(v.notes);
   for (const io::Segment& s : v.segments)
     if (!std::binary_search(present.begin(), present.end(), s.label))

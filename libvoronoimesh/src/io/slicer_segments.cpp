@@ -19,13 +19,15 @@ namespace {
 using detail::cat;
 using detail::parse_number;
 
-/// The three numbers of a Segment<i>_Color value, or a failure.
-bool parse_color(const std::string& text, std::array<float, 3>& rgb) {
+/// The three numbers of a Segment<i>_Color value, or nothing when it is not three numbers in [0, 1].
+std::optional<Rgb> parse_color(const std::string& text) {
   std::istringstream in(text);
+  Rgb rgb;
   for (float& c : rgb)
-    if (!(in >> c) || !(c >= 0 && c <= 1)) return false;
+    if (!(in >> c) || !(c >= 0 && c <= 1)) return std::nullopt;
   std::string rest;
-  return !(in >> rest);
+  if (in >> rest) return std::nullopt;
+  return rgb;
 }
 
 } // namespace
@@ -47,8 +49,10 @@ std::vector<Segment> read_segments(const HeaderValue& value_of, int layers, cons
     if (label && !parse_number(*label, s.label)) throw field_error("LabelValue", *label, "an integer");
     s.layer = label ? 0 : i; // before label values, each segment had a layer of its own
     if (layer && !parse_number(*layer, s.layer)) throw field_error("Layer", *layer, "an integer");
-    if (const auto color = value_of(key + "Color"); color && !parse_color(*color, s.color))
-      throw field_error("Color", *color, "three numbers in [0, 1]");
+    if (const auto color = value_of(key + "Color")) {
+      s.color = parse_color(*color);
+      if (!s.color) throw field_error("Color", *color, "three numbers in [0, 1]");
+    }
     if (s.layer < 0 || s.layer >= layers)
       throw InvalidInput(located(path, cat("segment ", i, " (", detail::quote(s.name), ") is in layer ", s.layer,
                                            ", but the file has ", layers, layers == 1 ? " layer" : " layers")));

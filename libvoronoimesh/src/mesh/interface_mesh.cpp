@@ -74,6 +74,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   im.domain_ = m.domain;
   im.names_ = m.phase_names;
   im.labels_ = m.phase_labels;
+  im.colors_ = m.phase_colors;
   im.outside_ = m.outside_phase;
 
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
@@ -259,6 +260,7 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
   m.domain = domain_;
   m.phase_names = names_;
   m.phase_labels = labels_;
+  m.phase_colors = colors_;
   m.outside_phase = outside_;
   m.triangles.reserve(mesh_.n_faces());
   m.pairs.reserve(mesh_.n_faces());

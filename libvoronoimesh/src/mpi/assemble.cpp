@@ -24,6 +24,7 @@ NodeMesh mesh_of(const MeshPart& part) {
   m.pairs = part.pairs;
   m.phase_names = part.phase_names;
   m.phase_labels = part.phase_labels;
+  m.phase_colors = part.phase_colors;
   m.domain = part.domain;
   m.outside_phase = part.outside_phase;
   return m;
@@ -95,6 +96,7 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
     mesh.domain = part.domain;
     mesh.phase_names = part.phase_names;
     mesh.phase_labels = part.phase_labels;
+    mesh.phase_colors = part.phase_colors;
     mesh.outside_phase = part.outside_phase;
   });
   return mesh;

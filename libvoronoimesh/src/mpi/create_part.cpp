@@ -286,6 +286,7 @@ MeshPart create_part(MPI_Comm c, const Scene& scene, const MeshOptions& o, Distr
     name_phases(names, *phases_of_mesh(names, scene.field));
     out.phase_names = std::move(names.phase_names);
     out.phase_labels = std::move(names.phase_labels);
+    out.phase_colors = std::move(names.phase_colors);
     return out;
   });
   finish_stats(stats, comm, start);

@@ -70,6 +70,7 @@ Window build_window(std::vector<TriangleRecord> records, const MeshPart& part) {
   w.mesh.domain = part.domain;
   w.mesh.phase_names = part.phase_names;
   w.mesh.phase_labels = part.phase_labels;
+  w.mesh.phase_colors = part.phase_colors;
   w.mesh.outside_phase = part.outside_phase;
   return w;
 }

@@ -64,4 +64,8 @@ struct GridSpec {
 /// the triangle points from phase `first` into phase `second`.
 using PhasePair = std::array<int32_t, 2>;
 
+/// A phase's display colour: red, green, blue, each in [0, 1] (as 3D Slicer
+/// stores a segment's colour).
+using Rgb = std::array<float, 3>;
+
 } // namespace vm

@@ -96,16 +96,17 @@ uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t,
 /// @param field  the samples of the phase functions; their grid must come from grid_for_lattice()
 /// @param params the lattice, snapping threshold and whether to close the domain
 /// @param out    receives the mesh (replaced); its domain is the grid's, its outside_phase set with
-///               params.close. Phase names and labels are left empty (name_phases()).
+///               params.close. Phase names, labels and colours are left empty (name_phases()).
 /// @return what create did
 /// @throws InvalidInput for a snap outside [0, 0.5] (InvalidOption "snap") or an odd grid with bcc
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params,
                                 NodeMesh& out);
 
-/// Sets mesh.phase_names and mesh.phase_labels from `field` (left empty when
-/// every label is the phase id), so writers show them. For a closed mesh pass
+/// Sets mesh.phase_names, mesh.phase_labels (left empty when every label is
+/// the phase id) and mesh.phase_colors (empty when no phase has a colour) from
+/// `field`, so writers show them. For a closed mesh pass
 /// phases_of_mesh(mesh, field) (fields/outside_phase.hpp), which has the extra phase.
-/// @param mesh  the mesh to name the phases of; its phase_names and phase_labels are replaced
+/// @param mesh  the mesh to name the phases of; its phase_names, phase_labels and phase_colors are replaced
 /// @param field the phase functions the mesh was created from, one phase per phase id of the mesh
 void name_phases(NodeMesh& mesh, const PhaseField& field);
 

@@ -6,6 +6,7 @@
 #include "voronoimesh/core/types.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -30,6 +31,10 @@ public:
   /// Strictly increasing in i. Default: i itself.
   /// @param i a phase id, in [0, num_phases())
   virtual int32_t phase_label(int i) const { return i; }
+  /// The display colour of phase `i`, when the input gives one (a 3D Slicer
+  /// segment's colour). Default: none.
+  /// @param i a phase id, in [0, num_phases())
+  virtual std::optional<Rgb> phase_color([[maybe_unused]] int i) const { return std::nullopt; }
   /// phi_i(x) for every phase.
   /// @param x   the point
   /// @param out receives phi_i(x) in out[i]; `out.size() == num_phases()`

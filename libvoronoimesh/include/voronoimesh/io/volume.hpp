@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,8 @@ struct Segment {
   std::string name;  ///< SegmentN_Name (SegmentN_ID when it has none)
   int32_t label = 1; ///< its voxels' value in its layer (SegmentN_LabelValue; 1 in files older than Slicer 4.11)
   int layer = 0;     ///< the layer holding it (SegmentN_Layer; N in files older than Slicer 4.11, one layer each)
-  /// Display colour, red, green, blue in [0, 1] (SegmentN_Color); negative when the file has none.
-  std::array<float, 3> color{-1.f, -1.f, -1.f};
+  /// Display colour, red, green, blue in [0, 1] (SegmentN_Color), when the file gives one.
+  std::optional<Rgb> color;
 };
 
 /// A voxel volume in physical space. Voxel (i, j, k) has its centre at

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -154,6 +155,7 @@ private:
   Box domain_;
   std::vector<std::string> names_;
   std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
+  std::vector<std::optional<Rgb>> colors_; // NodeMesh::phase_colors, likewise
   int32_t outside_ = -1;
 };
 

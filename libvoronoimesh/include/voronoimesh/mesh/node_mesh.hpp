@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct NodeMesh {
   /// id; strictly increasing, so orientation conventions survive the mapping.
   /// Empty: files show the phase ids themselves.
   std::vector<int32_t> phase_labels;
+  /// Display colours by phase id, when the input gives them (a 3D Slicer
+  /// segment's colour); a phase beyond the end, or without a value, has none.
+  std::vector<std::optional<Rgb>> phase_colors;
   /// The domain box; edges lying on it may bound a single triangle.
   Box domain;
   /// The phase outside the box of a closed mesh (CreateParams::close: the box
@@ -39,12 +43,13 @@ struct NodeMesh {
   /// when the mesh is not closed.
   int32_t outside_phase = -1;
 
-  /// A mesh with the same domain and phases (names, labels, outside phase) and
+  /// A mesh with the same domain and phases (names, labels, colours, outside phase) and
   /// no points or triangles: where a new mesh is made from this one.
   NodeMesh empty_like() const {
     NodeMesh m;
     m.phase_names = phase_names;
     m.phase_labels = phase_labels;
+    m.phase_colors = phase_colors;
     m.domain = domain;
     m.outside_phase = outside_phase;
     return m;

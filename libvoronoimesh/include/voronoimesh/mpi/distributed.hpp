@@ -36,6 +36,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,7 @@ struct MeshPart {
   Box domain;                      ///< the domain box of the whole mesh (NodeMesh::domain)
   std::vector<std::string> phase_names; ///< as NodeMesh::phase_names
   std::vector<int32_t> phase_labels;    ///< as NodeMesh::phase_labels
+  std::vector<std::optional<Rgb>> phase_colors; ///< as NodeMesh::phase_colors
   int32_t outside_phase = -1;           ///< as NodeMesh::outside_phase
 };
 
