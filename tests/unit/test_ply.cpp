@@ -276,3 +276,36 @@ TEST_F(Ply, a_phase_described_twice_is_an_error) {
                                             "vertex_indices\nproperty int phase0\nproperty int phase1\nend_header\n");
   EXPECT_NE(error_of(p).find("phase 3 is described twice"), std::string::npos) << error_of(p);
 }
+
+TEST_F(Ply, colours_round_trip_on_lines_of_their_own) {
+  NodeMesh m = test::two_cubes(1); // phases 0, 1, 2
+  m.phase_labels = {1, 4, 6};
+  m.phase_names = {"matrix", "grain one", "pore"};
+  m.phase_colors = {std::nullopt, Rgb{0.3f, 0.5f, 1}}; // phase 2: past the end, no colour either
+  for (bool ascii : {false, true}) {
+    io::write_ply(m, path("m.ply"), ascii);
+    const std::string text = read_bytes(path("m.ply"));
+    EXPECT_NE(text.find("comment phase 4 grain one\ncomment phase_color 4 0.3 0.5 1\n"), std::string::npos);
+    EXPECT_EQ(text.find("phase_color 1 "), std::string::npos) << "a phase without colour has no colour line";
+    const NodeMesh back = io::read_ply(path("m.ply"));
+    expect_exact(back, m);
+    EXPECT_EQ(back.phase_colors, m.phase_colors); // the float text reads back to the same float
+  }
+}
+
+TEST_F(Ply, malformed_colour_comments_are_errors) {
+  const std::string rest = "element vertex 0\nproperty double x\nproperty double y\nproperty double z\n"
+                           "element face 0\nproperty list uchar int vertex_indices\nproperty int phase0\n"
+                           "property int phase1\nend_header\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"comment phase 3 a\ncomment phase_color 3 0.5 0.5\n", "bad phase_color comment"},
+      {"comment phase 3 a\ncomment phase_color 3 0.5 0.5 2\n", "three numbers in [0, 1]"},
+      {"comment phase 3 a\ncomment phase_color x 0.5 0.5 0.5\n", "bad phase_color comment"},
+      {"comment phase 3 a\ncomment phase_color 3 0 0 0\ncomment phase_color 3 1 1 1\n", "phase 3 has two colours"},
+      {"comment phase 3 a\ncomment phase_color 4 0 0 0\n", "phase_color comment for label 4, which no phase has"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string p = write_text("c" + std::to_string(i) + ".ply", "ply\nformat ascii 1.0\n" + cases[i].first + rest);
+    EXPECT_NE(error_of(p).find(cases[i].second), std::string::npos) << "case " << i << ": " << error_of(p);
+  }
+}

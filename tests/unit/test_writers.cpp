@@ -460,3 +460,33 @@ TEST_F(Writers, ply_through_write_mesh_round_trips_labels) {
   EXPECT_EQ(back.phase_names, m.phase_names);
   EXPECT_NE(read_bytes(path("m.ply")).find("\ncomment phase 40 sphere4\n"), std::string::npos);
 }
+
+TEST_F(Writers, colours_go_where_a_format_holds_a_table_of_them) {
+  NodeMesh m = relabelled(test::four_spheres()); // labels 0, 10, 20, 30, 40
+  m.phase_colors = {std::nullopt, Rgb{1, 0.5f, 0}, Rgb{0, 0.25f, 1}}; // sphere1 and sphere2; the rest none
+  // VTU and VTP: one field-data table, a row (label, red, green, blue) per coloured phase.
+  for (const char* name : {"m.vtu", "m.vtp"}) {
+    const std::string text = written(m, name);
+    EXPECT_NE(text.find("Name=\"phase_colors\" NumberOfComponents=\"4\" ComponentName0=\"label\" ComponentName1=\"red\""
+                        " ComponentName2=\"green\" ComponentName3=\"blue\" NumberOfTuples=\"2\" format=\"ascii\">\n"
+                        "        10 1 0.5 0\n        20 0 0.25 1\n      </DataArray>"),
+              std::string::npos)
+        << name;
+  }
+  // OBJ: a material per group in <stem>.mtl, the pair's second phase's colour, else its first's.
+  EXPECT_EQ(io::write_mesh(m, path("m.obj")), (std::vector<std::string>{path("m.obj"), path("m.mtl")}));
+  const std::string obj = read_bytes(path("m.obj")), mtl = read_bytes(path("m.mtl"));
+  EXPECT_NE(obj.find("\nmtllib m.mtl\n"), std::string::npos);
+  EXPECT_NE(obj.find("\ng 10-sphere1_20-sphere2\nusemtl 10-sphere1_20-sphere2\n"), std::string::npos);
+  EXPECT_NE(mtl.find("#   10-sphere1 1 0.5 0\n#   20-sphere2 0 0.25 1\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("\nnewmtl 0-outside_10-sphere1\nKd 1 0.5 0\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("\nnewmtl 10-sphere1_20-sphere2\nKd 0 0.25 1\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("\nnewmtl 10-sphere1_30-sphere3\nKd 1 0.5 0\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("\nnewmtl 30-sphere3_40-sphere4\n"), std::string::npos) << "a material without colour";
+  EXPECT_EQ(mtl.find("\nnewmtl 30-sphere3_40-sphere4\nKd"), std::string::npos);
+  // Without colours, no materials at all: the OBJ is what it was.
+  m.phase_colors.clear();
+  EXPECT_EQ(io::write_mesh(m, path("plain.obj")), (std::vector<std::string>{path("plain.obj")}));
+  EXPECT_EQ(read_bytes(path("plain.obj")).find("mtl"), std::string::npos);
+  EXPECT_EQ(written(m, "plain.vtu").find("phase_colors"), std::string::npos);
+}

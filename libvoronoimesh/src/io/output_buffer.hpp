@@ -33,6 +33,16 @@ inline void put_int(std::string& out, long long v) {
   out.append(buf, size_t(r.ptr - buf));
 }
 
+/// Appends "r g b", each the shortest text that reads back to exactly its float.
+inline void put_color(std::string& out, const Rgb& rgb) {
+  for (size_t c = 0; c < 3; ++c) {
+    if (c) out += ' ';
+    char buf[32];
+    auto r = std::to_chars(buf, buf + sizeof buf, rgb[c]);
+    out.append(buf, size_t(r.ptr - buf));
+  }
+}
+
 /// Appends "x y z", each coordinate as put_number() writes it.
 inline void put_point(std::string& out, const Vec3& p) {
   for (int a = 0; a < 3; ++a) {

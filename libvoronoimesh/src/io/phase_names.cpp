@@ -17,6 +17,14 @@ std::string phase_name(const NodeMesh& m, int32_t p) {
   return size_t(p) < m.phase_names.size() ? m.phase_names[size_t(p)] : std::string();
 }
 
+std::optional<Rgb> phase_color(const NodeMesh& m, int32_t p) {
+  return size_t(p) < m.phase_colors.size() ? m.phase_colors[size_t(p)] : std::nullopt;
+}
+
+bool has_phase_colors(const NodeMesh& m) {
+  return std::any_of(m.phase_colors.begin(), m.phase_colors.end(), [](const auto& c) { return c.has_value(); });
+}
+
 std::string phase_token(const NodeMesh& m, int32_t p) {
   std::string token = std::to_string(m.label_of(p));
   const std::string name = phase_name(m, p);

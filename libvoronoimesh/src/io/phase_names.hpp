@@ -5,11 +5,13 @@
 /// its name when it has one ("1-sphere1"); the characters of a name other than
 /// letters, digits, '.', '+' and '-' become '-', so a token is safe in a file
 /// name or an OBJ group name. Several phases are joined by '_'
-/// ("0-outside_1-sphere1").
+/// ("0-outside_1-sphere1"). Phase colours (NodeMesh::phase_colors) are read
+/// here too, for the formats that hold them.
 
 #include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,6 +23,13 @@ size_t phase_count(const NodeMesh& m);
 
 /// The name of phase `p`, "" when it has none.
 std::string phase_name(const NodeMesh& m, int32_t p);
+
+/// The display colour of phase `p`, if it has one.
+std::optional<Rgb> phase_color(const NodeMesh& m, int32_t p);
+
+/// True when some phase of `m` has a display colour: the formats that can hold
+/// colours then write them.
+bool has_phase_colors(const NodeMesh& m);
 
 /// "label" or "label-name" (see the file comment).
 std::string phase_token(const NodeMesh& m, int32_t p);

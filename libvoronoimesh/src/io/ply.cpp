@@ -40,9 +40,16 @@ std::string header(const NodeMesh& m, bool ascii) {
   // Every phase, present or not, so a reader recovers the whole label set.
   // (phase_count scans every triangle: once, not once per phase.)
   const size_t phases = detail::phase_count(m);
-  for (size_t p = 0; p < phases; ++p)
+  // A colour goes on a line of its own: a name runs to the end of its line.
+  for (size_t p = 0; p < phases; ++p) {
     h += cat("comment phase ", m.label_of(int32_t(p)), " ", header_safe(detail::phase_name(m, int32_t(p))),
              "\n");
+    if (const auto color = detail::phase_color(m, int32_t(p))) {
+      h += cat("comment phase_color ", m.label_of(int32_t(p)), " ");
+      vm::detail::put_color(h, *color);
+      h += '\n';
+    }
+  }
   h += cat("element vertex ", m.points.size(), "\n");
   h += "property double x\nproperty double y\nproperty double z\n";
   h += cat("element face ", m.triangles.size(), "\n");

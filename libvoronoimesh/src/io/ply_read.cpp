@@ -31,6 +31,7 @@ using ply::Property;
 struct Comments {
   std::optional<Box> domain;
   std::map<int32_t, std::string> phase_names; ///< by label, from "comment phase <label> <name>"
+  std::map<int32_t, Rgb> phase_colors;        ///< by label, from "comment phase_color <label> <r> <g> <b>"
 };
 
 class Reader {
@@ -63,8 +64,9 @@ public:
 private:
   [[noreturn]] void fail(const std::string& what) const { file_.fail(what); }
 
-  /// "comment domain x0 y0 z0 x1 y1 z1" and "comment phase <label> <name>", as
-  /// write_ply stores them; any other comment is ignored.
+  /// "comment domain x0 y0 z0 x1 y1 z1", "comment phase <label> <name>" and
+  /// "comment phase_color <label> <r> <g> <b>", as write_ply stores them; any
+  /// other comment is ignored.
   void parse_comment(std::string_view line) {
     const auto w = ply::split_words(line);
     if (w.size() == 8 && w[1] == "domain") {
@@ -78,6 +80,13 @@ private:
       const size_t name_at = size_t(w[2].data() + w[2].size() - line.data());
       std::string_view name = line.substr(std::min(line.size(), name_at + 1));
       if (!comments_.phase_names.emplace(label, std::string(name)).second) fail(cat("phase ", label, " is described twice"));
+    } else if (w.size() >= 2 && w[1] == "phase_color") {
+      int32_t label = 0;
+      Rgb rgb{};
+      bool ok = w.size() == 6 && parse_number(w[2], label);
+      for (size_t c = 0; ok && c < 3; ++c) ok = parse_number(w[c + 3], rgb[c]) && rgb[c] >= 0 && rgb[c] <= 1;
+      if (!ok) fail(cat("bad phase_color comment '", line, "' (expected a label and three numbers in [0, 1])"));
+      if (!comments_.phase_colors.emplace(label, rgb).second) fail(cat("phase ", label, " has two colours"));
     }
   }
 
@@ -173,6 +182,13 @@ private:
         const auto it = comments_.phase_names.find(labels[i]);
         if (it != comments_.phase_names.end()) m.phase_names[i] = it->second;
       }
+    }
+    for (const auto& [label, rgb] : comments_.phase_colors) {
+      const auto at = std::lower_bound(labels.begin(), labels.end(), label);
+      if (at == labels.end() || *at != label) fail(cat("phase_color comment for label ", label, ", which no phase has"));
+      const size_t phase = size_t(at - labels.begin());
+      if (m.phase_colors.size() <= phase) m.phase_colors.resize(phase + 1);
+      m.phase_colors[phase] = rgb;
     }
     for (size_t i = 0; i < labels.size(); ++i)
       if (labels[i] != int32_t(i)) {

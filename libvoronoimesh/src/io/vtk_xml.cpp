@@ -21,6 +21,7 @@ using vm::detail::put_int;
 // The data arrays of every dataset, named once for the pieces and their index.
 constexpr const char* kNodeArray = "junction_order"; // Int32 point data
 constexpr std::array<const char*, 2> kPhaseArrays{"phase0", "phase1"}; // Int32 cell data
+constexpr const char* kColorTable = "phase_colors"; // Float64 field data: label, red, green, blue
 
 /// `text` made safe inside an XML comment, which may not hold "--" or end in "-".
 std::string xml_comment_safe(const std::string& text) {
@@ -62,6 +63,35 @@ void int_array(ChunkedOutput& out, const char* type, const char* name, size_t n,
   buf += "        </DataArray>\n";
 }
 
+/// The FieldData element: the named phases, one Int32 array per phase named as
+/// it is and holding its label (what ParaView lists and meshio reads as
+/// field_data), and the colours in one table beside them, a row per coloured
+/// phase keyed by label (an array per colour would read as one more named
+/// phase). Empty when no phase has a name or a colour.
+std::string field_data(const NodeMesh& m, size_t phases) {
+  if (m.phase_names.empty() && !has_phase_colors(m)) return {};
+  std::string buf = "    <FieldData>\n";
+  for (size_t p = 0; p < phases; ++p)
+    if (const std::string name = phase_name(m, int32_t(p)); !name.empty())
+      buf += cat("      <DataArray type=\"Int32\" Name=\"", xml_attribute_safe(name),
+                 "\" NumberOfTuples=\"1\" format=\"ascii\">", m.label_of(int32_t(p)), "</DataArray>\n");
+  if (has_phase_colors(m)) {
+    size_t rows = 0;
+    for (size_t p = 0; p < phases; ++p) rows += phase_color(m, int32_t(p)).has_value();
+    buf += cat("      <DataArray type=\"Float64\" Name=\"", kColorTable, "\" NumberOfComponents=\"4\"",
+               " ComponentName0=\"label\" ComponentName1=\"red\" ComponentName2=\"green\"",
+               " ComponentName3=\"blue\" NumberOfTuples=\"", rows, "\" format=\"ascii\">\n");
+    for (size_t p = 0; p < phases; ++p)
+      if (const auto color = phase_color(m, int32_t(p))) {
+        buf += cat("        ", m.label_of(int32_t(p)), " ");
+        vm::detail::put_color(buf, *color);
+        buf += '\n';
+      }
+    buf += "      </DataArray>\n";
+  }
+  return buf + "    </FieldData>\n";
+}
+
 } // namespace
 
 void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path,
@@ -81,16 +111,7 @@ void write_vtk_xml(vm::detail::StagedOutputs& staged, const NodeMesh& m, const s
     buf += " -->\n";
     buf += cat("<VTKFile type=\"", type, "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
     buf += cat("  <", type, ">\n");
-    // Named phases as field data, one array per phase named as it is and
-    // holding its label: what ParaView lists and meshio reads (field_data).
-    if (!m.phase_names.empty()) {
-      buf += "    <FieldData>\n";
-      for (size_t p = 0; p < phases; ++p)
-        if (const std::string name = phase_name(m, int32_t(p)); !name.empty())
-          buf += cat("      <DataArray type=\"Int32\" Name=\"", xml_attribute_safe(name),
-                     "\" NumberOfTuples=\"1\" format=\"ascii\">", m.label_of(int32_t(p)), "</DataArray>\n");
-      buf += "    </FieldData>\n";
-    }
+    buf += field_data(m, phases);
     buf += grid ? cat("    <Piece NumberOfPoints=\"", m.points.size(), "\" NumberOfCells=\"", nt, "\">\n")
                 : cat("    <Piece NumberOfPoints=\"", m.points.size(),
                       "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"", nt, "\">\n");

@@ -57,7 +57,8 @@ const std::vector<std::pair<std::string, FormatWriter>>& formats() {
          detail::write_ply(staged, m, path, o.ascii);
          return {path};
        }},
-      {".obj", one_file<detail::write_obj>},
+      {".obj", [](StagedOutputs& staged, const NodeMesh& m, const std::string& path,
+                  const WriteOptions&) { return detail::write_obj(staged, m, path); }},
       {".stl", [](StagedOutputs& staged, const NodeMesh& m, const std::string& path,
                   const WriteOptions& o) { return detail::write_stl_per_pair(staged, m, path, o.ascii); }},
       {".msh", one_file<detail::write_msh>},

@@ -20,8 +20,10 @@ namespace vm::io::detail {
 /// triangles (32-bit indices in PLY and STL).
 void check_output_mesh(const NodeMesh& m, const std::string& path);
 
-/// Wavefront OBJ, one group per phase pair (obj.cpp).
-void write_obj(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path);
+/// Wavefront OBJ, one group per phase pair, and when a phase has a colour the
+/// material library `<stem>.mtl` beside it, a material per group (obj.cpp).
+/// Returns the files written.
+std::vector<std::string> write_obj(vm::detail::StagedOutputs& staged, const NodeMesh& m, const std::string& path);
 
 /// One STL per phase pair, `<stem>_<pair>.stl` beside `path`, binary unless
 /// `ascii` (stl.cpp).

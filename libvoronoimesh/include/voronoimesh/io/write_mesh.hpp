@@ -8,7 +8,10 @@
 /// Phases appear in files as their labels (NodeMesh::phase_labels); where a
 /// format names a surface, curve or point, the name is built from the labels and
 /// phase names of the phases meeting there, "1-sphere1_2-sphere2" (label, then
-/// "-name" if the phase has a name; phases joined by '_'). Every file is written
+/// "-name" if the phase has a name; phases joined by '_'). Phase colours
+/// (NodeMesh::phase_colors) go where a format holds a table of them: PLY
+/// comments, VTU/VTP field data, OBJ materials; STL, MSH and MEDIT have no
+/// place for them (docs/formats.md says why). Every file is written
 /// to a temporary name and renamed, so a failure leaves no partial file.
 
 #include "voronoimesh/mesh/node_mesh.hpp"
@@ -38,7 +41,10 @@ void check_output_format(const std::string& path);
 
 /// Writes `m` to `path` in the format of its extension:
 ///  - .ply: io/ply.hpp (double coordinates, face properties phase0/phase1).
-///  - .obj: one group `g` per phase pair, named after the pair.
+///  - .obj: one group `g` per phase pair, named after the pair; when a phase
+///    has a colour (NodeMesh::phase_colors), also `<stem>.mtl` beside it, one
+///    material per group with the colour of the pair's second phase (else its
+///    first's): a face shows one colour, though it lies between two phases.
 ///  - .stl: one STL per phase pair (STL holds one surface per file), named
 ///    `<stem>_<pair>.stl` beside `path`, e.g. out_0-outside_1-sphere1.stl; the
 ///    normals point from the pair's first phase into its second. No file is
@@ -50,14 +56,16 @@ void check_output_format(const std::string& path);
 ///    each node is written once, in the entity of lowest dimension holding it.
 ///  - .vtu / .vtp: VTK XML UnstructuredGrid / PolyData (ASCII) with cell data
 ///    phase0/phase1 (labels) and point data junction_order (2 surface, 3 triple
-///    curve, 4 or more quadruple point).
+///    curve, 4 or more quadruple point); field data: an Int32 array per named
+///    phase holding its label, and the table `phase_colors` (label, red, green,
+///    blue per coloured phase).
 ///  - .mesh: MEDIT (MeshVersionFormatted 2): triangles with one reference per
 ///    phase pair, triple curves as Edges, quadruple points as Corners and
 ///    RequiredVertices; the reference table is in comments at the top.
 /// @param m       the mesh to write
 /// @param path    the file to write; its extension (case-insensitive) chooses the format
 /// @param options how to write it (ASCII or binary PLY and STL)
-/// @return the files written (one, or one per pair for .stl)
+/// @return the files written (one; two for .obj with colours; one per pair for .stl)
 /// @throws InvalidInput for an unknown extension (as check_output_format())
 /// @throws IoError      if a file cannot be written or the mesh is malformed (pair count differs from the
 ///                      triangle count, a node id out of range, more than 2^31 - 1 nodes or triangles)
