@@ -219,6 +219,17 @@ PYBIND11_MODULE(_voronoimesh, m) {
             return labels;
           },
           "The label each phase shows, by phase id")
+      .def_property_readonly(
+          "phase_colors", [](const Mesh& self) {
+            py::list colors;
+            for (size_t p = 0; p < self.mesh.phase_names.size(); ++p) {
+              const auto rgb = p < self.mesh.phase_colors.size() ? self.mesh.phase_colors[p] : std::nullopt;
+              colors.append(rgb ? py::object(py::make_tuple((*rgb)[0], (*rgb)[1], (*rgb)[2])) : py::object(py::none()));
+            }
+            return colors;
+          },
+          "Each phase's display colour, by phase id: (red, green, blue) in [0, 1] (a 3D Slicer segment's colour), "
+          "or None")
       .def(
           "validate", [](const Mesh& self) { return vm::validate(self.mesh).problems; },
           "The problems the validator finds (every phase closed and 2-manifold, junctions consistent, no duplicate "

@@ -95,11 +95,13 @@ def test_files_are_read_as_the_cli_reads_them(tmp_path):
     header = ("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 16 16\nspace: left-posterior-superior\n"
               "space directions: (1,0,0) (0,1,0) (0,0,1)\nkinds: domain domain domain\nencoding: raw\n"
               "space origin: (0,0,0)\nSegment0_ID:=a\nSegment0_Name:=liver\nSegment0_LabelValue:=3\n"
-              "Segment1_ID:=b\nSegment1_Name:=tumour\nSegment1_LabelValue:=7\n\n")
+              "Segment1_ID:=b\nSegment1_Name:=tumour\nSegment1_LabelValue:=7\nSegment1_Color:=0 0.5 1\n\n")
     path = tmp_path / "organ.seg.nrrd"
     path.write_bytes(header.encode() + data.tobytes(order="F"))
     mesh = vm.mesh_file(str(path), iterations=2)
     assert mesh.phase_names == ["background", "liver", "tumour"]
+    assert mesh.phase_colors == [None, None, (0.0, 0.5, 1.0)]  # the liver's header gives none
+    assert mesh.to_meshio().field_data["phase_colors"].tolist() == [[7, 0, 0.5, 1]]
     ras = vm.mesh_file(str(path), iterations=0, world="ras", keep_labels=["tumour"])
     assert ras.phase_names == ["background", "tumour"] and ras.points[:, 0].max() <= 0
     with pytest.raises(OSError, match="missing.nrrd: cannot open"):

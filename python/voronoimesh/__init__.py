@@ -24,12 +24,16 @@ def _stats(self):
 
 def _to_meshio(self):
     """The mesh as a meshio.Mesh: triangles, cell data phase0/phase1 (labels), and the
-    phase names as field data (name -> [label]), as the VTU writer stores them."""
+    phase names as field data (name -> [label]) and their colours as the table
+    phase_colors (label, red, green, blue), as the VTU writer stores them."""
     import meshio
     import numpy
 
     phases = self.phases
     field_data = {name: numpy.array([label]) for name, label in zip(self.phase_names, self.phase_labels) if name}
+    colors = [(label, *rgb) for label, rgb in zip(self.phase_labels, self.phase_colors) if rgb is not None]
+    if colors:
+        field_data["phase_colors"] = numpy.array(colors, dtype=numpy.float64)
     return meshio.Mesh(self.points.copy(), [("triangle", self.triangles.copy())],
                        cell_data={"phase0": [phases[:, 0]], "phase1": [phases[:, 1]]}, field_data=field_data)
 
