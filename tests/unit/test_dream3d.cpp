@@ -1,6 +1,7 @@
 // DREAM.3D files: a grain map written here through the HDF5 C library in both
 // layouts (DREAM.3D 6's SIMPL and DREAM3D-NX 7's), read back as a label volume
-// of grains named after their phase; then files that are not grain maps.
+// of grains named after their phase, by its name where the file names the
+// phases; then files that are not grain maps, and malformed phase names.
 
 #include "nrrd_file.hpp"
 #include "refusal.hpp"
@@ -10,7 +11,9 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +56,42 @@ void attribute(hid_t object, const char* name, hid_t type, const std::vector<T>&
 }
 
 hid_t group(hid_t parent, const char* name) { return H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT); }
+
+/// Writes a list of strings at `where` (a path from `parent`): variable length
+/// as DREAM.3D writes them, or fixed length, null-padded and UTF-8 (so both
+/// character sets are read).
+void strings(hid_t parent, const char* where, const std::vector<std::string>& values, bool variable = true) {
+  const hsize_t n = values.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr), type = H5Tcopy(H5T_C_S1);
+  size_t width = 1;
+  for (const std::string& v : values) width = std::max(width, v.size());
+  H5Tset_size(type, variable ? H5T_VARIABLE : width);
+  if (!variable) {
+    H5Tset_strpad(type, H5T_STR_NULLPAD);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+  }
+  const hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  const hid_t d = H5Dcreate2(parent, where, type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+  std::vector<const char*> pointers;
+  std::string packed;
+  for (const std::string& v : values) {
+    pointers.push_back(v.c_str());
+    packed += v + std::string(width - v.size(), '\0');
+  }
+  ASSERT_GE(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, variable ? (const void*)pointers.data() : packed.data()), 0);
+  H5Dclose(d);
+  H5Pclose(lcpl);
+  H5Tclose(type);
+  H5Sclose(space);
+}
+
+/// Adds `values` at `where` to the file at `path`.
+void add_strings(const std::string& path, const char* where, const std::vector<std::string>& values, bool variable = true) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  strings(file, where, values, variable);
+  H5Fclose(file);
+}
 
 const std::vector<hsize_t> cell_shape{nz, ny, nx, 1}; // DREAM.3D: z slowest, x fastest, then components
 const std::vector<int32_t> grain_phases{0, 1, 2, 1}; // by grain id; 0 is no grain
@@ -169,4 +208,60 @@ TEST(Dream3d, files_that_are_no_grain_map_are_refused_naming_the_file) {
   const std::string absurd = refusal([&] { load_input(huge); });
   EXPECT_NE(absurd.find("Cell Feature Data/Phases: has 1099511627776 entries for grain ids up to 3"), std::string::npos)
       << absurd;
+}
+
+TEST(Dream3d, grains_are_named_after_the_names_the_file_gives_their_phases) {
+  const std::vector<std::string> names{"Invalid Phase", "Austenite", "Ferrite"};
+  const std::vector<std::string> expected{"grain1-Austenite", "grain2-Ferrite", "grain3-Austenite"};
+  // DREAM.3D 6: CellEnsembleData/PhaseName, variable-length strings.
+  const std::string simpl = write_simpl("named6.dream3d");
+  add_strings(simpl, "DataContainers/ImageDataContainer/CellEnsembleData/PhaseName", names);
+  EXPECT_EQ(names_of(*load_input(simpl).field), expected);
+  // DREAM3D-NX: PhaseNames (Create Ensemble Info), here fixed-length as numpy writes bytes.
+  const std::string nx7 = write_nx("named7.dream3d");
+  add_strings(nx7, "DataStructure/Image Geometry/CellEnsembleData/PhaseNames", names, false);
+  EXPECT_EQ(names_of(*load_input(nx7).field), expected);
+  // The EBSD readers' MaterialName serves when no PhaseName is there; an empty
+  // name leaves its grains named by the phase's number.
+  const std::string ebsd = write_nx("material.dream3d");
+  add_strings(ebsd, "DataStructure/Image Geometry/CellEnsembleData/MaterialName", {"Invalid Phase", "Nickel", ""});
+  EXPECT_EQ(names_of(*load_input(ebsd).field),
+            (std::vector<std::string>{"grain1-Nickel", "grain2-phase2", "grain3-Nickel"}));
+  // The names pick grains on the command line.
+  EXPECT_EQ(names_of(*load_input(simpl, InputOptions{.drop_labels = {"grain2-Ferrite"}}).field),
+            (std::vector<std::string>{"background", "grain1-Austenite", "grain3-Austenite"}));
+}
+
+TEST(Dream3d, malformed_phase_names_are_refused_naming_the_file_and_dataset) {
+  // A SIMPL file whose CellEnsembleData group gets what `add` puts in it.
+  auto refused = [](const std::string& name, const std::function<void(hid_t ensemble)>& add) {
+    const std::string path = write_simpl(name);
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t ensemble = group(file, "DataContainers/ImageDataContainer/CellEnsembleData");
+    add(ensemble);
+    H5Gclose(ensemble);
+    H5Fclose(file);
+    const std::string why = refusal([&] { load_input(path); });
+    EXPECT_EQ(why.rfind(path + ": DataContainers/ImageDataContainer/CellEnsembleData/PhaseName: ", 0), 0u) << why;
+    EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+    return why;
+  };
+  EXPECT_NE(refused("few.dream3d", [](hid_t e) { strings(e, "PhaseName", {"Invalid Phase", "Austenite"}); })
+                .find("has 2 names (phases 0 to 1), but grain 2 is of phase 2"),
+            std::string::npos);
+  EXPECT_NE(refused("numbers.dream3d",
+                    [](hid_t e) { dataset(e, "PhaseName", H5T_NATIVE_INT32, {3}, std::vector<int32_t>{0, 1, 2}); })
+                .find("holds no strings"),
+            std::string::npos);
+  EXPECT_NE(refused("table.dream3d",
+                    [](hid_t e) {
+                      const hsize_t dims[2] = {3, 2};
+                      const hid_t space = H5Screate_simple(2, dims, nullptr), type = H5Tcopy(H5T_C_S1);
+                      H5Tset_size(type, 8);
+                      H5Dclose(H5Dcreate2(e, "PhaseName", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+                      H5Tclose(type);
+                      H5Sclose(space);
+                    })
+                .find("is not a list of names"),
+            std::string::npos);
 }

@@ -2,7 +2,8 @@
 /// DREAM.3D files (.dream3d, HDF5) through the HDF5 C library: the grain map
 /// (`FeatureIds`, one grain id per cell) of an image geometry, as a label
 /// volume whose labels are grains, named after them and, when the file has a
-/// feature-level `Phases` array, after their phase. Two layouts:
+/// feature-level `Phases` array, after their phase: by the phase's name when
+/// an ensemble-level array names the phases, else by its number. Two layouts:
 ///
 /// - SIMPL (DREAM.3D 6.x): `/DataContainers/<container>/_SIMPL_GEOMETRY` holds
 ///   datasets DIMENSIONS, ORIGIN and SPACING (RESOLUTION in older files); the
@@ -22,6 +23,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -201,6 +203,78 @@ std::vector<int32_t> phases_of_grains(hid_t parent, const Grains& g, int32_t max
   return {};
 }
 
+/// The strings of a one-column string dataset (variable or fixed length, as
+/// DREAM.3D and h5py write them), refusing anything else in one line.
+std::vector<std::string> read_strings(hid_t d, const std::string& path, const std::string& where) {
+  auto malformed = [&](const std::string& what) { return InvalidInput(located(path, cat(where, ": ", what))); };
+  const Handle type(H5Dget_type(d), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING) throw malformed("holds no strings (phase names are strings)");
+  const Handle space(H5Dget_space(d), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  hsize_t dims[2] = {0, 1};
+  if (rank < 1 || rank > 2 || H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0 || dims[1] != 1)
+    throw malformed("is not a list of names (one column)");
+  // One name per phase, and phase ids are small: a damaged size must not decide what we allocate.
+  if (dims[0] > kMaxPhases) throw malformed(cat("has ", dims[0], " names; at most ", kMaxPhases, " phases"));
+  const size_t n = size_t(dims[0]);
+  std::vector<std::string> names(n);
+  // Read in the file's character set (h5py writes UTF-8): HDF5 converts between none.
+  const Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_cset(memory.get(), H5Tget_cset(type.get()));
+  if (H5Tis_variable_str(type.get()) > 0) {
+    H5Tset_size(memory.get(), H5T_VARIABLE);
+    std::vector<char*> text(n, nullptr);
+    if (H5Dread(d, memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) < 0)
+      throw malformed("cannot be read (truncated or corrupt)");
+    for (size_t i = 0; i < n; ++i)
+      if (text[i]) names[i] = text[i];
+    H5Dvlen_reclaim(memory.get(), space.get(), H5P_DEFAULT, text.data()); // H5Treclaim from HDF5 1.12
+  } else {
+    const size_t width = H5Tget_size(type.get());
+    if (width == 0 || width > 4096) throw malformed(cat("holds names of ", width, " bytes each"));
+    H5Tset_size(memory.get(), width);
+    std::vector<char> text(n * width);
+    if (H5Dread(d, memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) < 0)
+      throw malformed("cannot be read (truncated or corrupt)");
+    for (size_t i = 0; i < n; ++i) {
+      std::string name(text.data() + i * width, width);
+      name.erase(std::min(name.find('\0'), name.size())); // null-terminated or null-padded
+      name.erase(name.find_last_not_of(' ') + 1);          // space-padded
+      names[i] = std::move(name);
+    }
+  }
+  return names;
+}
+
+/// The phases' names, by phase id, from an ensemble-level string array in a
+/// group beside the cell data: `PhaseName` (DREAM.3D 6's StatsGenerator and
+/// Create Ensemble Info), `PhaseNames` (DREAM3D-NX's Create Ensemble Info) or
+/// else `MaterialName` (the EBSD readers of both). Entry 0 is DREAM.3D's
+/// placeholder for cells of no phase. Empty when there is none. `where` gets
+/// the dataset's path, for messages.
+std::vector<std::string> phase_names(hid_t parent, const Grains& g, const std::string& path, std::string& where) {
+  for (const char* array : {"PhaseName", "PhaseNames", "MaterialName"})
+    for (const std::string& group : groups_holding(parent, array)) {
+      if (group == g.cell_group) continue;
+      const Handle features(H5Gopen2(parent, group.c_str(), H5P_DEFAULT), H5Gclose);
+      const Handle d(H5Dopen2(features.get(), array, H5P_DEFAULT), H5Dclose);
+      where = cat(g.parent, "/", group, "/", array);
+      return read_strings(d.get(), path, where);
+    }
+  return {};
+}
+
+/// The name of grain `id` of phase `phase`: grain<id>-<phase's name> when the
+/// file names the phases, else grain<id>-phase<phase>.
+std::string grain_name(int32_t id, int32_t phase, const std::vector<std::string>& names, const std::string& path,
+                       const std::string& where) {
+  if (phase >= 0 && size_t(phase) >= names.size() && !names.empty())
+    throw InvalidInput(located(path, cat(where, ": has ", names.size(), " names (phases 0 to ", names.size() - 1,
+                                         "), but grain ", id, " is of phase ", phase)));
+  if (phase >= 0 && !names.empty() && !names[size_t(phase)].empty()) return cat("grain", id, "-", names[size_t(phase)]);
+  return cat("grain", id, "-phase", phase);
+}
+
 } // namespace
 
 Volume read_dream3d(const std::string& path) {
@@ -246,12 +320,14 @@ Volume read_dream3d(const std::string& path) {
   // Names: grain<id>, and its phase when the file has the grains' phases.
   const std::vector<int32_t> present = detail::distinct(v.labels);
   const std::vector<int32_t> phase = phases_of_grains(parent.get(), g, present.back(), path);
+  std::string names_at;
+  const std::vector<std::string> names = phase.empty() ? std::vector<std::string>{}
+                                                       : phase_names(parent.get(), g, path, names_at);
   for (int32_t id : present)
     if (id > 0) {
       Segment s;
       s.label = id;
-      s.name = cat("grain", id);
-      if (!phase.empty()) s.name += cat("-phase", phase[size_t(id)]);
+      s.name = phase.empty() ? cat("grain", id) : grain_name(id, phase[size_t(id)], names, path, names_at);
       v.segments.push_back(std::move(s));
     }
   return v;
