@@ -4,7 +4,8 @@
 Usage: independent_readers.py READER VORONOIMESH WORK_DIR
   READER: meshio (MSH, VTU, MEDIT, STL, OBJ, ASCII PLY), vtk (VTU, VTP: what ParaView reads with),
           each also on a 3D Slicer segmentation and a DREAM.3D grain map (written with h5py)
-          whose names must reach MSH and VTU,
+          whose names must reach MSH and VTU, and the segments' colours VTU/VTP field data,
+          OBJ materials (VTK's OBJ importer reads the .mtl) and PLY comments,
           gmsh (loads the MSH, then tetrahedralises sphere volumes bounded by its physical surfaces),
           tetgen (tetrahedralises each closed per-phase ASCII STL and the MEDIT file, checking for
           self-intersections with -d).
@@ -149,8 +150,9 @@ def prepare(vm, work):
         run(vm, "create", "-q", "--ascii", "cells.json", "-o", out, cwd=work)
     cells = Reference(os.path.join(work, "cells.ply"))
     write_segmentation(os.path.join(work, "organ.seg.nrrd"))
-    for out in ["seg.msh", "seg.vtu"]:
+    for out in ["seg.msh", "seg.vtu", "seg.vtp", "seg.obj"]:
         run(vm, "mesh", "-q", "--iterations", "2", "organ.seg.nrrd", "-o", out, cwd=work)
+    run(vm, "mesh", "-q", "--iterations", "2", "--ascii", "organ.seg.nrrd", "-o", "seg.ply", cwd=work)
     write_grains(os.path.join(work, "grains.dream3d"))
     for out in ["grains.msh", "grains.vtu"]:
         run(vm, "mesh", "-q", "--iterations", "2", "grains.dream3d", "-o", out, cwd=work)
@@ -159,6 +161,9 @@ def prepare(vm, work):
 
 
 SEGMENT_NAMES = {0: "background", 1: "liver", 2: "tumour & cyst"}
+SEGMENT_COLORS = {1: (0.9, 0.5, 0.25), 2: (0.0, 0.5, 1.0)}  # the background is no segment: no colour
+# The OBJ's material of each surface: its second phase's colour.
+SEGMENT_MATERIALS = {"0-background_1-liver": SEGMENT_COLORS[1], "1-liver_2-tumour---cyst": SEGMENT_COLORS[2]}
 
 
 def write_segmentation(path):
@@ -176,17 +181,18 @@ def write_segmentation(path):
               "encoding: raw", "space origin: (0,0,0)"]
     for s, name in [(0, "liver"), (1, "tumour & cyst")]:
         header += [f"Segment{s}_ID:=Segment_{s + 1}", f"Segment{s}_Name:={name}", f"Segment{s}_LabelValue:=1",
-                   f"Segment{s}_Layer:={s}", f"Segment{s}_Color:=0.5 0.5 0.5"]
+                   f"Segment{s}_Layer:={s}", f"Segment{s}_Color:={' '.join(map(str, SEGMENT_COLORS[s + 1]))}"]
     with open(path, "wb") as f:
         f.write(("\n".join(header) + "\n\n").encode() + bytes(data))
 
 
-GRAIN_NAMES = {1: "grain1-phase1", 2: "grain2-phase2", 3: "grain3-phase1"}
+GRAIN_NAMES = {1: "grain1-Austenite", 2: "grain2-Ferrite", 3: "grain3-Austenite"}
 
 
 def write_grains(path):
     """A DREAM3D-NX grain map written with h5py: three grains in slabs along x, with the
-    grains' phases in a feature-level Phases array."""
+    grains' phases in a feature-level Phases array and the phases' names in an
+    ensemble-level PhaseNames array (entry 0: DREAM.3D's placeholder for no phase)."""
     import h5py
     import numpy as np
     ids = np.empty((8, 10, 12, 1), dtype=np.int32)  # z, y, x, components
@@ -198,6 +204,8 @@ def write_grains(path):
         geometry.attrs["_SPACING"] = np.ones(3, dtype=np.float32)
         geometry.create_dataset("Cell Data/FeatureIds", data=ids)
         geometry.create_dataset("Cell Feature Data/Phases", data=np.array([[0], [1], [2], [1]], dtype=np.int32))
+        geometry.create_dataset("Cell Ensemble Data/PhaseNames", data=["Unknown Phase", "Austenite", "Ferrite"],
+                                dtype=h5py.string_dtype())
 
 
 def triangles_of(mesh):
@@ -243,8 +251,15 @@ def meshio_checks(work, ref, cells):
     check(list(m.point_data["junction_order"]) == ref.order, "vtu: junction_order differs")
     # A Slicer segmentation's names: VTU field data (name -> label), MSH physical names.
     m = meshio.read(path("seg.vtu"))
+    colors = m.field_data.pop("phase_colors", None)
     check({k: list(v) for k, v in m.field_data.items()} == {n: [l] for l, n in SEGMENT_NAMES.items()},
           f"seg.vtu: field data {m.field_data} is not the segments' names and labels")
+    # Their colours: one table, a row (label, red, green, blue) per coloured phase.
+    check(colors is not None and [tuple(row) for row in colors] == [(l, *c) for l, c in SEGMENT_COLORS.items()],
+          f"seg.vtu: phase_colors {colors} is not the segments' colours by label")
+    m = meshio.read(path("seg.obj"))
+    check(len({int(g) for block in m.cell_data["obj:group_ids"] for g in block}) == 2,
+          "seg.obj: its materials keep it readable, two groups")
     m = meshio.read(path("seg.msh"))
     check(sorted(n for n, (t, d) in m.field_data.items() if d == 2) == ["0-background_1-liver", "1-liver_2-tumour---cyst"],
           f"seg.msh: physical surfaces {sorted(m.field_data)} are not named after the segments")
@@ -254,7 +269,7 @@ def meshio_checks(work, ref, cells):
           f"grains.vtu: field data {m.field_data} is not the grains' names and ids")
     m = meshio.read(path("grains.msh"))
     check(sorted(n for n, (t, d) in m.field_data.items() if d == 2) ==
-          ["1-grain1-phase1_2-grain2-phase2", "2-grain2-phase2_3-grain3-phase1"],
+          ["1-grain1-Austenite_2-grain2-Ferrite", "2-grain2-Ferrite_3-grain3-Austenite"],
           f"grains.msh: physical surfaces {sorted(m.field_data)} are not named after the grains")
     # MEDIT: references through the table in the comments.
     with open(path("out.mesh")) as f:
@@ -336,12 +351,44 @@ def vtk_checks(work, ref, cells):
     check(ply.GetOutput().GetNumberOfCells() == len(ref.triangles) and "phase1" not in arrays,
           f"ply in VTK: {ply.GetOutput().GetNumberOfCells()} cells, cell arrays {arrays}: docs/formats.md says "
           "ParaView opens a .ply without its phases")
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(os.path.join(work, "seg.vtu"))
-    reader.Update()
-    fields = reader.GetOutput().GetFieldData()
-    got = {fields.GetArrayName(i): fields.GetArray(i).GetValue(0) for i in range(fields.GetNumberOfArrays())}
-    check(got == {n: l for l, n in SEGMENT_NAMES.items()}, f"seg.vtu: VTK reads field data {got}")
+    for ext, reader in [("vtu", vtk.vtkXMLUnstructuredGridReader()), ("vtp", vtk.vtkXMLPolyDataReader())]:
+        reader.SetFileName(os.path.join(work, "seg." + ext))
+        reader.Update()
+        fields = reader.GetOutput().GetFieldData()
+        arrays = {fields.GetArrayName(i): fields.GetArray(i) for i in range(fields.GetNumberOfArrays())}
+        table = arrays.pop("phase_colors", None)
+        got = {name: a.GetValue(0) for name, a in arrays.items()}
+        check(got == {n: l for l, n in SEGMENT_NAMES.items()}, f"seg.{ext}: VTK reads field data {got}")
+        rows = [] if table is None else [tuple(table.GetTuple4(r)) for r in range(table.GetNumberOfTuples())]
+        check(rows == [(l, *c) for l, c in SEGMENT_COLORS.items()] and
+              [table.GetComponentName(c) for c in range(4)] == ["label", "red", "green", "blue"],
+              f"seg.{ext}: VTK reads the colour table as {rows}")
+    # OBJ: VTK's importer (what ParaView's OBJ import uses) reads the .mtl: a coloured actor per material.
+    importer = vtk.vtkOBJImporter()
+    importer.SetFileName(os.path.join(work, "seg.obj"))
+    importer.SetFileNameMTL(os.path.join(work, "seg.mtl"))
+    window = vtk.vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    renderer = vtk.vtkRenderer()
+    window.AddRenderer(renderer)
+    importer.SetRenderWindow(window)
+    importer.Update()
+    materials = {}
+    actors = renderer.GetActors()
+    actors.InitTraversal()
+    for i in range(actors.GetNumberOfItems()):
+        actor = actors.GetNextActor()
+        if actor.GetMapper().GetInput().GetNumberOfCells() > 0:
+            name = re.search(r"material named (\S+)", importer.GetOutputDescription(i)).group(1)
+            materials[name] = tuple(round(c, 6) for c in actor.GetProperty().GetDiffuseColor())
+    check(materials == SEGMENT_MATERIALS, f"seg.obj: VTK imports the materials {materials}")
+    # PLY: the colours are comments, which VTK's PLY reader hands over.
+    ply = vtk.vtkPLYReader()
+    ply.SetFileName(os.path.join(work, "seg.ply"))
+    ply.Update()
+    comments = [ply.GetComments().GetValue(i) for i in range(ply.GetComments().GetNumberOfValues())]
+    want = [f"phase_color {l} {' '.join(f'{x:g}' for x in c)}" for l, c in SEGMENT_COLORS.items()]
+    check([c for c in comments if c.startswith("phase_color")] == want, f"seg.ply: VTK reads the comments {comments}")
 
 
 def gmsh_checks(work, ref, cells):
@@ -352,7 +399,7 @@ def gmsh_checks(work, ref, cells):
         check(f"{len(mesh.points)} nodes" in log, f"gmsh read a different node count from {name}:\n{log}")
     # A Slicer segmentation's and a grain map's physical names survive Gmsh reading and writing them.
     for name, want in [("seg", {"0-background_1-liver", "1-liver_2-tumour---cyst"}),
-                       ("grains", {"1-grain1-phase1_2-grain2-phase2", "2-grain2-phase2_3-grain3-phase1"})]:
+                       ("grains", {"1-grain1-Austenite_2-grain2-Ferrite", "2-grain2-Ferrite_3-grain3-Austenite"})]:
         run(gmsh, name + ".msh", "-0", "-o", name + "_again.msh", cwd=work)
         with open(os.path.join(work, name + "_again.msh")) as f:
             again = set(re.findall(r'^2 \d+ "([^"]+)"$', f.read(), re.M))
