@@ -182,7 +182,8 @@ expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud
 { printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nproperty int label\nend_header\n'
   grep -v '^#' cloud.xyz; } >cloud.ply
 if "$vm" create -q cloud.ply -o cp.ply && "$vm" stats cp.ply | contains -E "^phases +3" && cmp -s c.ply cp.ply; then pass; else fail "create on a PLY point cloud (same mesh as its .xyz)"; fi
-if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply && "$vm" mesh -q cloud.ply --iterations 2 -o cpm.ply &&
+if "$vm" smooth -q cp.ply --field cloud.ply --iterations 2 -o cps.ply &&
+  "$vm" mesh -q cloud.ply --iterations 2 --pipeline smooth,project,clamp,flip -o cpm.ply &&
   cmp -s cps.ply cpm.ply && ! cmp -s cps.ply cp.ply; then pass; else fail "smooth --field on a PLY point cloud is not mesh's improvement"; fi
 if python3 "$examples/../scripts/make_point_cloud.py" --count 2000 four.ply 2>/dev/null \
   && "$vm" mesh -q four.ply --grid 32 --iterations 20 -o four_mesh.ply && "$vm" stats four_mesh.ply >four.txt \

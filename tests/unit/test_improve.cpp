@@ -97,20 +97,25 @@ std::vector<double> distances_in_h(const InterfaceMesh& m, const PhaseField& f, 
 // After 20 iterations nodes lie on their surfaces, curves and points: every node
 // within 0.05 h on the four spheres; 99% of them on the 30-seed scene and the
 // split sphere, whose worst nodes (near quadruple points closer than a cell, and
-// on the sphere's sharp rim) are still up to 0.14 h off (issue 3 notes).
+// on the sphere's sharp rim) are still up to 0.14 h off (issue 3 notes). With
+// the scenes' default pipeline (remesh first) the worst few are farther: on 30
+// seeds a quadruple point 0.22 h and a curve node on the box 0.28 h off, on the
+// split sphere three rim nodes 0.15 h off, held where moving them would lower
+// the worst triangle (docs/algorithm.md, known gaps).
 TEST(Improve, nodes_end_on_their_surfaces_curves_and_points) {
   const PassRegistry registry = builtin_registry();
-  for (const char* name : {"four_spheres.json", "voronoi30.json", "split_sphere.json"}) {
-    SCOPED_TRACE(name);
-    Scene scene = example(name, 64);
-    InterfaceMesh mesh = initial_mesh(scene);
-    Pipeline::parse(kDefaultPipeline, registry).run(mesh, scene.field.get(), iterations(20));
-    const std::vector<double> d = distances_in_h(mesh, *scene.field, scene.grid.h());
-    EXPECT_LT(d[d.size() * 99 / 100], 0.05);
-    // The bounds docs/algorithm.md gives, which may only shrink.
-    if (std::string(name) == "four_spheres.json") EXPECT_LT(d.back(), 0.05);
-    else EXPECT_LT(d.back(), 0.14) << "worst node " << d.back() << " h off";
-  }
+  for (const auto& [pipeline, worst] : {std::pair{kDefaultPipeline, 0.14}, std::pair{kScenePipeline, 0.3}})
+    for (const char* name : {"four_spheres.json", "voronoi30.json", "split_sphere.json"}) {
+      SCOPED_TRACE(std::string(name) + ", " + pipeline);
+      Scene scene = example(name, 64);
+      InterfaceMesh mesh = initial_mesh(scene);
+      Pipeline::parse(pipeline, registry).run(mesh, scene.field.get(), iterations(20));
+      const std::vector<double> d = distances_in_h(mesh, *scene.field, scene.grid.h());
+      EXPECT_LT(d[d.size() * 99 / 100], 0.05);
+      // The bounds docs/algorithm.md gives, which may only shrink.
+      if (std::string(name) == "four_spheres.json") EXPECT_LT(d.back(), 0.05);
+      else EXPECT_LT(d.back(), worst) << "worst node " << d.back() << " h off";
+    }
 }
 
 /// Eight spheres apart in the outside phase (no three overlapping): triple
@@ -153,19 +158,27 @@ std::pair<double, double> curve_offsets_in_h(const InterfaceMesh& m, const Phase
 // 0.0014 h RMS (max 0.008 h) after 20 iterations, below 1e-4 h after 60.
 TEST(Improve, triple_curve_nodes_converge_onto_their_curves) {
   const Scene scene = parse_scene(kEightSpheres, "eight spheres");
-  InterfaceMesh mesh = initial_mesh(scene);
-  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());
   const double h = scene.grid.h();
-  pipeline.run(mesh, scene.field.get(), iterations(20));
-  const auto [rms20, worst20] = curve_offsets_in_h(mesh, *scene.field, h);
-  std::printf("triple-curve nodes off their curve: 20 iterations %.5f h RMS, max %.5f h\n", rms20, worst20);
-  EXPECT_LT(rms20, 0.01);
-  EXPECT_LT(worst20, 0.05);
-  pipeline.run(mesh, scene.field.get(), iterations(40));
-  const auto [rms60, worst60] = curve_offsets_in_h(mesh, *scene.field, h);
-  std::printf("triple-curve nodes off their curve: 60 iterations %.5f h RMS, max %.5f h\n", rms60, worst60);
-  EXPECT_LE(rms60, rms20);
-  EXPECT_LT(worst60, 0.01);
+  // With remesh first (the scenes' default) three curve nodes stay 0.016-0.025
+  // h off, beside the mesh's worst triangle: moving them on would lower it, and
+  // the quality floor lets offsets below 0.02 of an edge stand (improve/guard.cpp).
+  for (const auto& [name, worst] : {std::pair{kDefaultPipeline, 0.01}, std::pair{kScenePipeline, 0.03}}) {
+    SCOPED_TRACE(name);
+    InterfaceMesh mesh = initial_mesh(scene);
+    const Pipeline pipeline = Pipeline::parse(name, builtin_registry());
+    pipeline.run(mesh, scene.field.get(), iterations(20));
+    const auto [rms20, worst20] = curve_offsets_in_h(mesh, *scene.field, h);
+    std::printf("%s: triple-curve nodes off their curve: 20 iterations %.5f h RMS, max %.5f h\n", name, rms20,
+                worst20);
+    EXPECT_LT(rms20, 0.01);
+    EXPECT_LT(worst20, 0.05);
+    pipeline.run(mesh, scene.field.get(), iterations(40));
+    const auto [rms60, worst60] = curve_offsets_in_h(mesh, *scene.field, h);
+    std::printf("%s: triple-curve nodes off their curve: 60 iterations %.5f h RMS, max %.5f h\n", name, rms60,
+                worst60);
+    EXPECT_LE(rms60, rms20);
+    EXPECT_LT(worst60, worst);
+  }
 }
 
 // More iterations do not hurt: each iteration's commit undoes the moves that

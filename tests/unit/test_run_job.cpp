@@ -84,6 +84,7 @@ TEST_F(RunJob, makes_what_the_stages_make_and_tells_every_stage_in_order) {
   MeshOptions o = four_spheres_job("").options;
   const Scene scene = read_input(kFourSpheres);
   NodeMesh by_stages = create_mesh(scene, o);
+  o.pipeline = pipeline_for(o, &scene); // improve_mesh() sees no scene: the paper's passes by default
   improve_mesh(by_stages, scene.field, o);
   EXPECT_EQ(written.points, by_stages.points);
   EXPECT_EQ(written.triangles, by_stages.triangles);
@@ -210,7 +211,7 @@ struct PipelineRecorder : RunObserver {
   void improved(const ImproveReport& r) override { pipelines.push_back(r.pipeline); }
 };
 
-TEST_F(RunJob, label_volumes_are_remeshed_by_default_other_inputs_and_meshes_from_files_are_not) {
+TEST_F(RunJob, label_volumes_are_coarsened_by_default_scenes_evened_out_and_meshes_from_files_left_as_they_are) {
   // A ball of label 5 in 24^3 voxels: its voxel grid is finer than the ball needs.
   std::vector<int32_t> labels;
   for (int k = 0; k < 24; ++k)
@@ -237,7 +238,7 @@ TEST_F(RunJob, label_volumes_are_remeshed_by_default_other_inputs_and_meshes_fro
   EXPECT_EQ(pipeline_for(flip_only, &volume), "flip");
   const Scene spheres = read_input(kFourSpheres);
   EXPECT_FALSE(spheres.voxel_grid);
-  EXPECT_EQ(pipeline_for(MeshOptions{}, &spheres), kDefaultPipeline);
+  EXPECT_EQ(pipeline_for(MeshOptions{}, &spheres), kScenePipeline);
   EXPECT_EQ(pipeline_for(MeshOptions{}, nullptr), kDefaultPipeline);
   // A mesh from a file is improved as it is, not coarsened again.
   MeshJob again;

@@ -20,8 +20,9 @@ void add_passes_command(CLI::App& app, int& exit_code) {
       std::map<std::string, std::string> origin; // pass name -> "plugin NAME VERSION"
       for (const vm::PluginRecord& r : plugins)
         for (const std::string& p : r.passes) origin[p] = "  [plugin " + r.name + " " + r.version + "]";
-      std::printf("Passes (use as --pipeline name,name:param=value,...; default: %s; for label volumes: %s)\n\n",
-                  vm::kDefaultPipeline, vm::kLabelVolumePipeline);
+      std::printf("Passes (use as --pipeline name,name:param=value,...; default: %s; for label volumes: %s; for a "
+                  "mesh read from a file and under --mpi: %s)\n\n",
+                  vm::kScenePipeline, vm::kLabelVolumePipeline, vm::kDefaultPipeline);
       for (const vm::PassInfo* p : registry.all()) {
         std::printf("%s%s%s\n  %s\n", p->name.c_str(), origin[p->name].c_str(),
                     p->needs_field ? "  [needs the phase functions]" : "", p->summary.c_str());

@@ -94,10 +94,14 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
   cmd->add_option("--pipeline", o.pipeline,
                   std::string("Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh "
                               "passes'). Default: ") +
-                      vm::kDefaultPipeline + "; for label volumes " + vm::kLabelVolumePipeline +
+                      vm::kScenePipeline +
+                      " (the remesh pass evens out the created mesh at its own edge length before the paper's "
+                      "passes); for label volumes " +
+                      vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
                       "edges 1.4x the lattice's, about half the triangles, before the paper's passes, which then "
-                      "collapse junction slivers below q 0.15)");
+                      "collapse junction slivers below q 0.15); for a mesh read from a file and under --mpi the "
+                      "paper's " + vm::kDefaultPipeline);
   cmd->add_option("--size,--max-size", o.size,
                   std::string("Target edge length in world units (the input's units): remesh to edges of about L "
                               "first, for any input (remesh:length=L,") +

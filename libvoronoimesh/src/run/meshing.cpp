@@ -267,7 +267,8 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
     if (options.min_size > 0) remesh += ":min_size=" + text(options.min_size / options.size);
     return remesh + "," + kPassesAfterRemesh;
   }
-  return scene && scene->voxel_grid ? kLabelVolumePipeline : kDefaultPipeline;
+  if (!scene) return kDefaultPipeline;
+  return scene->voxel_grid ? kLabelVolumePipeline : kScenePipeline;
 }
 
 namespace {

@@ -255,8 +255,9 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& options = {}, RunObs
 /// The pipeline a run of `options` improves with: options.pipeline, or if that
 /// is empty and options.size is set, remesh:length=`size` before
 /// kPassesAfterRemesh, else the default for the input: kLabelVolumePipeline when `scene` is
-/// a label volume (Scene::voxel_grid), otherwise kDefaultPipeline (also without
-/// a scene: a mesh read from a file is not coarsened again).
+/// a label volume (Scene::voxel_grid), kScenePipeline for any other scene, and
+/// kDefaultPipeline (the paper's) without a scene: a mesh read from a file is
+/// not remeshed again.
 /// @param options the options of the run
 /// @param scene   the scene the mesh is created from; null for none
 /// @return the pipeline, "name,name:key=value,..."
