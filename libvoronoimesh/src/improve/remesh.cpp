@@ -1,6 +1,7 @@
 #include "voronoimesh/improve/remesh.hpp"
 
 #include "core/parallel.hpp"
+#include "core/union_find.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -31,6 +32,10 @@ constexpr double kShortEdge = 0.8;
 /// radius R has its centroid L^2 / (6 R) off it, and edges reach 4/3 of the
 /// target before they split, so (3/4)^2 6 = 3.375.
 constexpr double kCentroidRule = 3.375;
+/// Pieces of the mesh (connected through triangles) with fewer nodes than this
+/// are not coarsened: collapses would shrink a small closed surface, such as a
+/// one-voxel label's, to a tetrahedron that need not enclose what it bounded.
+constexpr int32_t kSmallPiece = 16;
 /// Rounds of splits per call: each halves the edges still too long.
 constexpr int kSplitRounds = 4;
 /// Splits edges longer than this share of their target, and lets no collapse make one (their 4/3).
@@ -176,7 +181,7 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
 /// node a failure may be reported at (a, b and their rings), the collapses to
 /// drop for it.
 std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh, std::span<const double> target,
-                                                          const RemeshParams& params,
+                                                          std::span<const uint8_t> small, const RemeshParams& params,
                                                           std::unordered_multimap<int64_t, int32_t>& blame,
                                                           std::vector<Vec3>& moved_to) {
   std::vector<std::optional<Candidate>> found(mesh.num_nodes());
@@ -191,7 +196,7 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
   std::vector<uint8_t> near_b(mesh.num_nodes(), 0), is_b(mesh.num_nodes(), 0);
   const auto& pos = mesh.positions();
   for (const Candidate& c : candidates) {
-    if (near_b[size_t(c.b)] || is_b[size_t(c.a)] || (c.merge && near_b[size_t(c.a)])) continue;
+    if (small[size_t(c.b)] || near_b[size_t(c.b)] || is_b[size_t(c.a)] || (c.merge && near_b[size_t(c.a)])) continue;
     const int32_t id = int32_t(chosen.size());
     // A merge moves its a as well: a is then held like a b (nobody's target, no
     // neighbour of another b) so that every check stays exact.
@@ -208,6 +213,17 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
     chosen.push_back({c.a, c.b});
   }
   return chosen;
+}
+
+/// Per node, whether it lies in a piece of `m` of fewer than kSmallPiece nodes.
+std::vector<uint8_t> in_small_pieces(const NodeMesh& m) {
+  detail::UnionFind pieces(m.num_nodes());
+  for (const auto& t : m.triangles) pieces.unite(t[0], t[1]), pieces.unite(t[0], t[2]);
+  std::vector<int32_t> nodes(m.num_nodes(), 0);
+  for (size_t v = 0; v < m.num_nodes(); ++v) ++nodes[size_t(pieces.find(int32_t(v)))];
+  std::vector<uint8_t> small(m.num_nodes());
+  for (size_t v = 0; v < m.num_nodes(); ++v) small[v] = nodes[size_t(pieces.find(int32_t(v)))] < kSmallPiece;
+  return small;
 }
 
 /// Splits, in `m`, every edge longer than kLongEdge of the smaller target of
@@ -327,7 +343,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     target_current = true;
     std::unordered_multimap<int64_t, int32_t> blame;
     std::vector<Vec3> moved_to;
-    const auto chosen = choose_collapses(rings, target, params, blame, moved_to);
+    const auto chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
     if (chosen.empty()) break;
     std::vector<int64_t> ids(m.num_nodes());
     std::iota(ids.begin(), ids.end(), 0);
