@@ -193,9 +193,10 @@ void smoothed(const PhaseVoxels& v, Pred is_in, const Box& to, const std::vector
   convolve_axis(a, from, result, to, 2, w, v.size);
 }
 
-/// Offers every phase its smoothed indicator at the voxels of `block` in dense bricks.
+/// Offers every phase its smoothed indicator at the voxels of `block` in dense
+/// bricks; with `lead` > 0, then raises each voxel's own phase to lead there by `lead`.
 void offer_smoothed_indicators(const PhaseVoxels& v, const Box& block, const DenseBricks& takes, const Index3& reach,
-                               const std::vector<float>& w, float scale, TopKGridField& field) {
+                               const std::vector<float>& w, float scale, float lead, TopKGridField& field) {
   const Box volume{{0, 0, 0}, v.size};
   const auto phases = phase_boxes(v, block.grown(reach, volume));
   // Where some voxels are not a phase, each value is divided by the smoothed
@@ -221,6 +222,12 @@ void offer_smoothed_indicators(const PhaseVoxels& v, const Box& block, const Den
       if (value > 0) field.offer(i, j, k, phase, value * scale);
     });
   }
+  // Only nodes of dense bricks can fall behind: a uniform brick's lead is the whole scale.
+  if (lead > 0)
+    block.for_each([&](int64_t i, int64_t j, int64_t k) {
+      const int16_t own = phase_at(v, i, j, k);
+      if (own >= 0 && takes(i, j, k)) field.lead(i, j, k, own, lead, 0.f);
+    });
 }
 
 /// Offers every phase its signed distance, clamped to `band`, at the voxels of `block` in dense bricks.
@@ -283,6 +290,7 @@ std::shared_ptr<const TopKGridField> label_field(const PhaseVoxels& v, const Lab
   const float top = p.signed_distance ? band : float(p.smoothing * std::sqrt(2 * std::numbers::pi) / 2 * v.spacing.minCoeff());
   auto field = std::make_shared<TopKGridField>(grid, p.k, v.names, v.labels, std::move(uniform), top);
   field->set_phase_colors(v.colors);
+  const float lead = p.voxel_faithful ? float(kVoxelCentreLead * v.spacing.minCoeff()) : 0.f;
   // Blocks of kBlockBricks^3 bricks, computed independently over the box of
   // their dense bricks: each node is offered its phases by one task, in phase
   // order, so the result does not depend on the threads.
@@ -306,7 +314,7 @@ std::shared_ptr<const TopKGridField> label_field(const PhaseVoxels& v, const Lab
     if (p.signed_distance)
       offer_signed_distances(v, block, takes, reach, band, *field);
     else
-      offer_smoothed_indicators(v, block, takes, reach, w, top, *field);
+      offer_smoothed_indicators(v, block, takes, reach, w, top, lead, *field);
   }, 1);
   if (const int64_t empty = field->finish(p.signed_distance ? -band : 0.f); empty >= 0)
     fail({empty % v.size[0], (empty / v.size[0]) % v.size[1], empty / (v.size[0] * v.size[1])});

@@ -18,9 +18,22 @@ namespace vm::detail {
 struct LabelFieldParams {
   bool signed_distance = false; ///< false: Gaussian-smoothed indicator; true: banded signed distance
   double smoothing = 1.0;       ///< Gaussian sigma in voxels (indicator)
+  /// Indicator: at every voxel centre its own label leads every other by at
+  /// least kVoxelCentreLead (raised where smoothing leaves it behind), so
+  /// every voxel centre lies in its own label's phase.
+  bool voxel_faithful = true;
   double band = 3.0;            ///< half-width of the band in voxels (signed distance)
   int k = 4;                    ///< phases kept per voxel
 };
+
+/// How far, in units of the smallest voxel spacing, a voxel's own label leads
+/// at its centre with LabelFieldParams::voxel_faithful. A flat boundary puts it
+/// 0.5 ahead (sigma sqrt(2 pi) / 2 times the kernel's centre weight), so only
+/// the centres smoothing leaves behind (corners, edges, structures a voxel or
+/// two thin) are raised. Measured (docs/inputs.md): 0.5 raised most centres of
+/// the liver's curved surfaces and made them bumpy; 0.2 is create's snapping
+/// threshold on isotropic voxels, which then tied a one-voxel sheet's centres.
+constexpr double kVoxelCentreLead = 0.3;
 
 /// The voxels of a label volume, already mapped to phases.
 struct PhaseVoxels {
@@ -39,7 +52,9 @@ struct PhaseVoxels {
 /// inside a region (TopKGridField's uniform bricks). Indicator: phi_i =
 /// Gaussian-smoothed indicator of phase i (normalised by the smoothed weight of
 /// the voxels that are a phase), scaled by sigma sqrt(2 pi) / 2 voxel sizes so
-/// that phi_i - phi_j grows at about 1 per unit length across a flat boundary.
+/// that phi_i - phi_j grows at about 1 per unit length across a flat boundary;
+/// voxel_faithful then raises each voxel's own label at its centre where it
+/// does not lead by kVoxelCentreLead.
 /// Signed distance: exact Euclidean distance to the region's boundary, halfway
 /// between voxel centres, positive inside, clamped to +-band. Throws
 /// InvalidInput naming `source` if some voxel is farther than the band from

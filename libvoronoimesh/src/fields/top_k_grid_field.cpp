@@ -85,6 +85,27 @@ void TopKGridField::offer(int64_t i, int64_t j, int64_t k, int32_t id, float val
   vals[at] = value;
 }
 
+void TopKGridField::lead(int64_t i, int64_t j, int64_t k, int32_t id, float margin, float far) {
+  const size_t s = slot(i, j, k);
+  int16_t* ids = &ids_[s * size_t(k_)];
+  float* vals = &values_[s * size_t(k_)];
+  const int filled = filled_[s];
+  // The values are in rank order: the first other phase is the largest one.
+  const int own = int(std::find(ids, ids + filled, int16_t(id)) - ids);
+  const int first_other = own == 0 ? 1 : 0;
+  float other = first_other < filled ? vals[first_other] : far;
+  const int others_offered = filled - (own < filled ? 1 : 0);
+  if (others_offered < num_phases() - 1) other = std::max(other, far);
+  const float wanted = other + margin;
+  if (own < filled && vals[own] >= wanted) return;
+  // Out of its slot (or in place of the smallest, when not kept), then first.
+  int from = own < filled ? own : std::min(filled, k_ - 1);
+  if (own == filled && filled < k_) ++filled_[s];
+  for (; from > 0; --from) ids[from] = ids[from - 1], vals[from] = vals[from - 1];
+  ids[0] = int16_t(id);
+  vals[0] = wanted;
+}
+
 int64_t TopKGridField::finish(float far) {
   const size_t k = size_t(k_);
   const double h = grid_.h();

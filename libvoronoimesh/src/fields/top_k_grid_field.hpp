@@ -42,6 +42,11 @@ public:
   /// independent, so different nodes may be offered to from different threads at once.
   void offer(int64_t n, int32_t id, float value);
   void offer(int64_t i, int64_t j, int64_t k, int32_t id, float value);
+  /// After every offer to node (i, j, k): raises phase `id` there, where it is
+  /// not already ahead of every other phase by `margin`, to the largest other
+  /// value plus `margin` (`far` counts as the value of the phases not offered
+  /// when fewer than all were). The node's other values stay as offered.
+  void lead(int64_t i, int64_t j, int64_t k, int32_t id, float margin, float far);
   /// Ends the offers: slots a node did not fill take the lowest ids not kept
   /// there at value `far` (the value of every phase not offered), and each
   /// node gets its floor. Returns the first node (linear index) that was
