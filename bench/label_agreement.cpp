@@ -17,6 +17,7 @@
 #include "voronoimesh/fields/sampled_field.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/io/volume.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include <tbb/global_control.h>
 
@@ -26,6 +27,7 @@
 #include <cstring>
 #include <exception>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace {
@@ -35,7 +37,7 @@ struct Options {
   std::string pipeline = vm::kLabelVolumePipeline; ///< the CLI's default for label volumes
   int iterations = 20;
   int threads = 2;
-  vm::Lattice lattice = vm::Lattice::bcc;
+  std::optional<vm::Lattice> lattice; ///< none: the CLI's default (vm::lattice_for())
 };
 
 /// Voxel centres of one label: how many, and how many lie in its phase.
@@ -55,7 +57,9 @@ int run(const std::string& path, const Options& o) {
   const vm::Scene scene = vm::load_input(path, o.input);
   vm::CreateParams close;
   close.close = true;
-  close.lattice = o.lattice;
+  vm::MeshOptions defaults;
+  defaults.lattice = o.lattice;
+  close.lattice = vm::lattice_for(defaults, scene);
   const auto phases = vm::with_outside_phase(scene.field, scene.grid.domain);
   const vm::SampledField samples =
       vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice), 4,

@@ -50,6 +50,7 @@ Options options_from(const py::kwargs& kwargs, Input input) {
       {"crossing_guard", [&](const py::handle& v) { m.guard_crossings = v.cast<bool>(); }},
       {"top_k", [&](const py::handle& v) { m.top_k = in.top_k = v.cast<int>(); }},
       {"lattice", [&](const py::handle& v) {
+         if (v.is_none()) return m.lattice.reset(); // the input's default
          const auto name = v.cast<std::string>();
          if (name != "bcc" && name != "cube6") throw py::value_error("lattice: 'bcc' or 'cube6', got '" + name + "'");
          m.lattice = name == "bcc" ? vm::Lattice::bcc : vm::Lattice::cube6;
@@ -77,6 +78,7 @@ Options options_from(const py::kwargs& kwargs, Input input) {
          in.label_function = v.cast<bool>() ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
        }},
       {"smoothing", [&](const py::handle& v) { in.smoothing = v.cast<double>(); }},
+      {"voxel_faithful", [&](const py::handle& v) { in.voxel_faithful = v.cast<bool>(); }},
       {"band", [&](const py::handle& v) { in.band = v.cast<double>(); }},
   };
   const std::map<std::string, Set> files_only{

@@ -60,7 +60,7 @@ void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase);
 struct CreateOptions {
   std::vector<int> grid; ///< one number or three
   double snap = vm::MeshOptions{}.snap;
-  std::string lattice = "bcc";
+  std::string lattice = "auto";
   int top_k = vm::MeshOptions{}.top_k;
   bool skip_validation = false;
   bool close = false; ///< box faces become surfaces against an "exterior" phase
@@ -76,6 +76,7 @@ struct InputCliOptions {
   std::vector<std::string> merge;      ///< "A+B" groups
   std::string world = "file";          ///< --world
   bool signed_distance = false;
+  bool no_voxel_faithful = false;
 };
 /// Adds the options of label volumes to `cmd`.
 void add_input_options(CLI::App* cmd, InputCliOptions& o);

@@ -37,8 +37,10 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
       ->delimiter(',');
   cmd->add_option("--snap", o.snap, "Snapping threshold in units of the grid spacing h; 0 turns it off")
       ->capture_default_str();
-  cmd->add_option("--lattice", o.lattice, "Background tetrahedra: bcc (every second grid point) or cube6")
-      ->check(CLI::IsMember({"bcc", "cube6"}))
+  cmd->add_option("--lattice", o.lattice,
+                  "Background tetrahedra: bcc (every second grid point), cube6 (every grid point) or auto (bcc, but "
+                  "cube6 for a label volume with structures one voxel thin where bcc has no grid point)")
+      ->check(CLI::IsMember({"auto", "bcc", "cube6"}))
       ->capture_default_str();
   cmd->add_option("--top-k", o.top_k, "Phases kept per grid point (memory does not grow with the phase count)")
       ->capture_default_str();
@@ -70,6 +72,11 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->group(labels);
   cmd->add_option("--smoothing", o.input.smoothing, "Gaussian sigma of the smoothed indicator, in voxels")
       ->capture_default_str()->group(labels);
+  cmd->add_flag("--no-voxel-faithful", o.no_voxel_faithful,
+                "The smoothed indicator as it is: smoother where labels are a voxel or two thin, and such labels "
+                "may be lost (by default each voxel's label leads at its centre, so every voxel centre lies in its "
+                "label's phase after create)")
+      ->group(labels);
   cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
       ->capture_default_str()->group(labels);
   cmd->add_option("--voxels-per-cell", o.input.voxels_per_cell,
@@ -155,6 +162,7 @@ vm::InputOptions input_options(const InputCliOptions& o) {
   }
   input.world = o.world == "lps" ? vm::World::lps : o.world == "ras" ? vm::World::ras : vm::World::file;
   input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
+  input.voxel_faithful = !o.no_voxel_faithful;
   return input;
 }
 
@@ -166,7 +174,7 @@ void set_create_options(const CreateOptions& create, vm::MeshOptions& options) {
     for (size_t a = 0; a < 3; ++a) (*options.grid)[a] = create.grid[create.grid.size() == 1 ? 0 : a];
   }
   options.snap = create.snap;
-  options.lattice = create.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
+  if (create.lattice != "auto") options.lattice = create.lattice == "cube6" ? vm::Lattice::cube6 : vm::Lattice::bcc;
   options.top_k = create.top_k;
   options.close = create.close;
   options.validate = !create.skip_validation;

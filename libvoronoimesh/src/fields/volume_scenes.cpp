@@ -6,6 +6,7 @@
 #include "core/memory.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
+#include "fields/bcc_fit.hpp"
 #include "fields/label_field.hpp"
 #include "fields/top_k_grid_field.hpp"
 #include "fields/voxel_grid.hpp"
@@ -86,6 +87,29 @@ void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string
                        cat("building the phase functions of ", double(nodes), " voxels"));
 }
 
+/// A label the bcc lattice would lose more than this share of decides for cube6.
+constexpr double kBccLossAllowed = 0.01;
+
+/// Whether create should take every node of the voxel grid, with the line that
+/// says so, or says how many voxel centres the bcc lattice cannot hold.
+bool needs_every_grid_node(const PhaseVoxels& pv, const std::vector<int64_t>& voxels, std::vector<std::string>& notes) {
+  const std::vector<int64_t> lost = voxels_bcc_cannot_hold(pv);
+  size_t worst = 0;
+  int64_t total = 0;
+  for (size_t p = 0; p < lost.size(); ++p) {
+    total += lost[p];
+    if (double(lost[p]) * double(voxels[worst]) > double(lost[worst]) * double(voxels[p])) worst = p;
+  }
+  if (total == 0) return false;
+  const double share = double(lost[worst]) / double(voxels[worst]);
+  const bool every_node = share > kBccLossAllowed;
+  notes.push_back(cat(total, " voxel centres lie in structures one voxel thin where the bcc lattice has no node (",
+                      "label ", pv.labels[worst], ": ", lost[worst], " of ", voxels[worst], "): ",
+                      every_node ? "create takes every grid node (the cube6 lattice; --lattice bcc keeps the coarser one)"
+                                 : "the bcc lattice leaves them to the labels around (--lattice cube6 keeps them)"));
+  return every_node;
+}
+
 void check_phase_count(size_t count, const std::string& source, const char* what) {
   if (count < 2) throw InvalidInput(located(source, cat("has ", count, " phase(s)", what, "; meshing needs 2 or more")));
   if (count > kMaxPhases) throw InvalidInput(located(source, cat("has ", count, " phases; at most ", kMaxPhases)));
@@ -107,6 +131,8 @@ void check_input_options(const InputOptions& o) {
   const InputOptions defaults;
   if (o.label_function == LabelFunction::signed_distance && o.smoothing != defaults.smoothing)
     throw InvalidInput("--smoothing: applies to the smoothed indicator, not with --signed-distance");
+  if (o.label_function == LabelFunction::signed_distance && !o.voxel_faithful)
+    throw InvalidInput("--no-voxel-faithful: applies to the smoothed indicator; signed distances always lead at voxel centres");
   if (o.label_function != LabelFunction::signed_distance && o.band != defaults.band)
     throw InvalidInput("--band: applies to signed distances: give it with --signed-distance");
 }
@@ -159,10 +185,16 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   LabelFieldParams params;
   params.signed_distance = o.label_function == LabelFunction::signed_distance;
   params.smoothing = o.smoothing;
+  params.voxel_faithful = o.voxel_faithful;
   params.band = o.band;
   params.k = o.top_k;
+  // Off the voxel grid, or with labels smoothing may lose anyway, no lattice holds every voxel.
+  const bool faithful = params.signed_distance || params.voxel_faithful;
+  const bool every_node = faithful && o.voxels_per_cell == 1 && needs_every_grid_node(pv, voxels, notes);
   auto field = label_field(pv, params, path);
-  return Scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels), std::move(notes)};
+  Scene scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels), std::move(notes)};
+  scene.needs_every_grid_node = every_node;
+  return scene;
 }
 
 Scene phase_values_scene(const GridSpec& grid, int num_phases, const NodeValues& fill, std::vector<std::string> names,

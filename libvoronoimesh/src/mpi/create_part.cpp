@@ -268,7 +268,7 @@ MeshPart create_part(MPI_Comm c, const Scene& scene, const MeshOptions& o, Distr
     std::optional<tbb::global_control> limit;
     if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
     const GridSpec grid = create_grid(scene, o);
-    const CreateParams params = create_params(o);
+    const CreateParams params = create_params(scene, o);
     // An equal share of the grid layers for each rank to sample.
     const int32_t layers = grid.cells[2] + 1, r = comm.rank(), n = comm.size();
     const Layers block{int32_t(int64_t(layers) * r / n), int32_t(int64_t(layers) * (r + 1) / n) - 1};

@@ -204,12 +204,17 @@ GridSpec create_grid(const Scene& scene, const MeshOptions& o) {
   detail::check_options(o);
   GridSpec grid = scene.grid;
   if (o.grid) grid.cells = *o.grid;
-  return grid_for_lattice(grid, o.lattice);
+  return grid_for_lattice(grid, lattice_for(o, scene));
 }
 
-CreateParams create_params(const MeshOptions& o) {
+Lattice lattice_for(const MeshOptions& o, const Scene& scene) {
+  if (o.lattice) return *o.lattice;
+  return scene.needs_every_grid_node && !o.grid ? Lattice::cube6 : Lattice::bcc;
+}
+
+CreateParams create_params(const Scene& scene, const MeshOptions& o) {
   CreateParams params;
-  params.lattice = o.lattice;
+  params.lattice = lattice_for(o, scene);
   params.snap = o.snap;
   params.close = o.close;
   return params;
@@ -218,7 +223,7 @@ CreateParams create_params(const MeshOptions& o) {
 NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* observer) {
   const GridSpec grid = create_grid(scene, o);
   const auto limit = detail::thread_limit(o);
-  const CreateParams params = create_params(o);
+  const CreateParams params = create_params(scene, o);
   const std::string too_big =
       detail::beyond_memory(double(estimate_create_memory(grid, o.top_k, params.lattice)),
                             cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid"));
@@ -226,9 +231,9 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* obse
 
   CreateReport report;
   report.grid = grid;
-  report.lattice = o.lattice;
+  report.lattice = params.lattice;
   // The bcc lattice reads a quarter of the grid's nodes: only those are sampled.
-  const SampledNodes sampled = o.lattice == Lattice::bcc ? SampledNodes::bcc : SampledNodes::all;
+  const SampledNodes sampled = params.lattice == Lattice::bcc ? SampledNodes::bcc : SampledNodes::all;
   begin(observer, Stage::sample, cat("sampling ", SampledField::count_nodes(grid, sampled), " grid nodes..."));
   const auto start = std::chrono::steady_clock::now();
   const SampledField samples = SampledField::sample(*scene.field, grid, o.top_k, sampled);

@@ -39,8 +39,10 @@ struct MeshOptions {
   /// The domain stays the scene's. Finer grids resolve thinner features; time
   /// and memory grow with the cube.
   std::optional<std::array<int, 3>> grid;
-  /// Background tetrahedra (create/create.hpp); bcc rounds each cell count up to even.
-  Lattice lattice = Lattice::bcc;
+  /// Background tetrahedra (create/create.hpp); bcc rounds each cell count up
+  /// to even. None: the scene's (lattice_for()), bcc but for label volumes
+  /// with structures one voxel thin where bcc has no node.
+  std::optional<Lattice> lattice;
   /// Snapping threshold in grid spacings, in [0, 0.5] (paper sect. 4.1: 0.2).
   double snap = 0.2;
   /// Phases kept per grid node when sampling (and per voxel when reading a
@@ -234,10 +236,19 @@ Scene read_input(const std::string& path, const InputOptions& options = {}, RunO
 /// @throws InvalidOption for a grid or top_k out of range (and any other option: snap, iterations, threads)
 GridSpec create_grid(const Scene& scene, const MeshOptions& options);
 
-/// The CreateParams of `options`.
+/// The lattice create takes: options.lattice when given, else cube6 for a
+/// scene that needs every grid node (Scene::needs_every_grid_node, on its own
+/// grid), else bcc.
+/// @param options the options of the run (lattice, grid)
+/// @param scene   the scene to mesh
+/// @return the lattice
+Lattice lattice_for(const MeshOptions& options, const Scene& scene);
+
+/// The CreateParams of `options` for `scene`.
+/// @param scene   the scene to mesh
 /// @param options the options of the run
-/// @return its lattice, snap and close as CreateParams
-CreateParams create_params(const MeshOptions& options);
+/// @return its lattice (lattice_for()), snap and close as CreateParams
+CreateParams create_params(const Scene& scene, const MeshOptions& options);
 
 /// Samples `scene.field` on create_grid() and creates the initial mesh (paper
 /// sect. 4.1), with the phases' names and labels (NodeMesh::phase_names,
