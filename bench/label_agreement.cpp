@@ -7,6 +7,7 @@
 // label; the worst label), labels missing from the mesh, and seconds.
 //
 // usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T] [--lattice bcc|cube6]
+//                        [--voxel-faithful]
 //        label_agreement --header
 
 #include "voronoimesh/check/locate.hpp"
@@ -128,7 +129,7 @@ int main(int argc, char** argv) {
   }
   if (argc < 2) {
     std::fputs("usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]\n"
-               "                       [--lattice bcc|cube6]\n"
+               "                       [--lattice bcc|cube6] [--voxel-faithful]\n"
                "       label_agreement --header\n",
                stderr);
     return 2;
@@ -140,6 +141,7 @@ int main(int argc, char** argv) {
     else if (flag == "--pipeline" && i + 1 < argc) o.pipeline = argv[++i];
     else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
     else if (flag == "--threads" && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else if (flag == "--voxel-faithful") o.input.voxel_faithful = true;
     else if (flag == "--lattice" && i + 1 < argc) o.lattice = std::strcmp(argv[++i], "cube6") == 0 ? vm::Lattice::cube6 : vm::Lattice::bcc;
     else {
       std::fprintf(stderr, "label_agreement: unknown option '%s'\n", flag.c_str());

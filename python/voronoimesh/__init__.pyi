@@ -37,7 +37,7 @@ def mesh_labels(labels: npt.NDArray[np.integer], spacing: Sequence[float] = (1.0
                 stop_when_converged: bool = False, crossing_guard: bool = True,
                 drop_labels: Iterable[Label] = (), keep_labels: Iterable[Label] = (),
                 merge_labels: Iterable[Iterable[Label]] = (), background: int = 0, no_background: bool = False,
-                signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = True, band: float = 3.0,
+                signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = False, band: float = 3.0,
                 progress: Optional[Progress] = None) -> Mesh: ...
 
 def mesh_values(values: Union[npt.NDArray[np.floating], Sequence[npt.NDArray[np.floating]]],
@@ -53,7 +53,7 @@ def mesh_file(path: str, *, iterations: int = 20, pipeline: str = "", size: floa
               snap: float = 0.2, top_k: int = 4, validate: bool = True, stop_when_converged: bool = False,
               crossing_guard: bool = True, drop_labels: Iterable[Label] = (), keep_labels: Iterable[Label] = (),
               merge_labels: Iterable[Iterable[Label]] = (), background: int = 0, no_background: bool = False,
-              signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = True, band: float = 3.0,
+              signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = False, band: float = 3.0,
               voxels_per_cell: float = 1.0, ignore_direction: bool = False, world: str = "file",
               progress: Optional[Progress] = None) -> Mesh: ...
 

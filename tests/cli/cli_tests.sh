@@ -141,11 +141,11 @@ if out=$("$vm" mesh labels.nrrd --iterations 2 -o lr.ply 2>&1) && grep -q "itera
     "$("$vm" stats --json lm2.ply | python3 -c 'import json,sys; print(json.load(sys.stdin)["triangles"])')" ]; then pass
 else fail "mesh on a label volume does not remesh by default"; fi
 # A label too small for the grid is named with its size, not dropped in silence (issue 19):
-# the plain smoothed indicator loses the one-voxel label 1, the default keeps it.
+# the default loses the one-voxel label 1 and says --voxel-faithful may keep it, which does.
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n'; printf '\0\0\0\1\2\3\2\3'; } >two.nrrd
-if out=$("$vm" mesh two.nrrd --no-voxel-faithful -o two.ply 2>&1) && grep -q "^label 1: 1 voxel, no surface in the mesh" <<<"$out" &&
-  out=$("$vm" mesh two.nrrd -o two.ply 2>&1) && ! grep -q "no surface in the mesh" <<<"$out"; then pass
-else fail "a lost label is not reported, or the default loses it"; fi
+if out=$("$vm" mesh two.nrrd -o two.ply 2>&1) && grep -q "^label 1: 1 voxel, no surface in the mesh.*--voxel-faithful" <<<"$out" &&
+  out=$("$vm" mesh two.nrrd --voxel-faithful -o two.ply 2>&1) && ! grep -q "no surface in the mesh" <<<"$out"; then pass
+else fail "a lost label is not reported, or --voxel-faithful loses it"; fi
 if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&
   "$vm" stats sd.ply | contains -E "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
 if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | contains -E "^phases +2"; then pass; else fail "--merge-labels"; fi

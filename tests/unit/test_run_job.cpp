@@ -289,14 +289,12 @@ struct NoteRecorder : RunObserver {
 };
 
 TEST_F(RunJob, a_phase_the_mesh_loses_is_named_with_its_size_never_dropped_silently) {
-  // The 2 x 2 x 2 volume of mesher test suites: label 1 is one voxel, which
-  // the plain smoothed indicator loses (the default keeps it: VoxelFaithful.*).
+  // The 2 x 2 x 2 volume of mesher test suites: label 1 is one voxel, too small
+  // for the default phase functions (--voxel-faithful keeps it: VoxelFaithful.*).
   const std::vector<int32_t> labels{0, 0, 0, 1, 2, 3, 2, 3};
   const std::string file = test::write_nrrd("two.nrrd", "type: int\ndimension: 3\nsizes: 2 2 2\n", labels);
-  InputOptions plain;
-  plain.voxel_faithful = false;
   NoteRecorder seen;
-  create_mesh(read_input(file, plain), MeshOptions{}, &seen);
+  create_mesh(read_input(file), MeshOptions{}, &seen);
   std::filesystem::remove(file);
   EXPECT_EQ(seen.lost, std::vector<int32_t>{1});
   ASSERT_EQ(seen.notes.size(), 1u);
@@ -325,7 +323,6 @@ TEST_F(RunJob, a_thin_sheet_snapping_removes_is_kept_with_the_snap_the_note_sugg
   const std::string file = test::write_nrrd("sheet.nrrd", "type: uchar\ndimension: 3\nsizes: 24 24 24\n", labels);
   InputOptions smoothing;
   smoothing.smoothing = 0.7;
-  smoothing.voxel_faithful = false;
   const Scene scene = read_input(file, smoothing);
   std::filesystem::remove(file);
   NoteRecorder snapped, kept;

@@ -76,7 +76,6 @@ struct InputCliOptions {
   std::vector<std::string> merge;      ///< "A+B" groups
   std::string world = "file";          ///< --world
   bool signed_distance = false;
-  bool no_voxel_faithful = false;
 };
 /// Adds the options of label volumes to `cmd`.
 void add_input_options(CLI::App* cmd, InputCliOptions& o);

@@ -39,7 +39,8 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
       ->capture_default_str();
   cmd->add_option("--lattice", o.lattice,
                   "Background tetrahedra: bcc (every second grid point), cube6 (every grid point) or auto (bcc, but "
-                  "cube6 for a label volume with structures one voxel thin where bcc has no grid point)")
+                  "with --voxel-faithful cube6 for a label volume with structures one voxel thin where bcc has no "
+                  "grid point)")
       ->check(CLI::IsMember({"auto", "bcc", "cube6"}))
       ->capture_default_str();
   cmd->add_option("--top-k", o.top_k, "Phases kept per grid point (memory does not grow with the phase count)")
@@ -72,10 +73,10 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->group(labels);
   cmd->add_option("--smoothing", o.input.smoothing, "Gaussian sigma of the smoothed indicator, in voxels")
       ->capture_default_str()->group(labels);
-  cmd->add_flag("--no-voxel-faithful", o.no_voxel_faithful,
-                "The smoothed indicator as it is: smoother where labels are a voxel or two thin, and such labels "
-                "may be lost (by default each voxel's label leads at its centre, so every voxel centre lies in its "
-                "label's phase after create)")
+  cmd->add_flag("--voxel-faithful", o.input.voxel_faithful,
+                "Keep labels one or two voxels thin: each voxel's label leads at its centre, and --lattice auto takes "
+                "cube6 where bcc would lose more than 1% of a label. Off by default: on CGAL's liver it took the voxel "
+                "centres in their label from 99.868% to 99.942%, but 21% more time and min q from 0.352 to 0.164")
       ->group(labels);
   cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
       ->capture_default_str()->group(labels);
@@ -162,7 +163,6 @@ vm::InputOptions input_options(const InputCliOptions& o) {
   }
   input.world = o.world == "lps" ? vm::World::lps : o.world == "ras" ? vm::World::ras : vm::World::file;
   input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
-  input.voxel_faithful = !o.no_voxel_faithful;
   return input;
 }
 

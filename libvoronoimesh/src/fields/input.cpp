@@ -47,7 +47,7 @@ std::vector<std::string> options_that_do_not_apply(const InputOptions& o, bool v
     if (o.no_background) given.push_back("--no-background");
     if (o.label_function != defaults.label_function) given.push_back("--signed-distance");
     if (o.smoothing != defaults.smoothing) given.push_back("--smoothing");
-    if (!o.voxel_faithful) given.push_back("--no-voxel-faithful");
+    if (o.voxel_faithful) given.push_back("--voxel-faithful");
     if (o.band != defaults.band) given.push_back("--band");
   }
   if (!volume) {

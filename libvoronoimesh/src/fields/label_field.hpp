@@ -20,8 +20,8 @@ struct LabelFieldParams {
   double smoothing = 1.0;       ///< Gaussian sigma in voxels (indicator)
   /// Indicator: at every voxel centre its own label leads every other by at
   /// least kVoxelCentreLead (raised where smoothing leaves it behind), so
-  /// every voxel centre lies in its own label's phase.
-  bool voxel_faithful = true;
+  /// every voxel centre lies in its own label's phase (InputOptions::voxel_faithful).
+  bool voxel_faithful = false;
   double band = 3.0;            ///< half-width of the band in voxels (signed distance)
   int k = 4;                    ///< phases kept per voxel
 };

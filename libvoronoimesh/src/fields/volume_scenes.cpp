@@ -131,8 +131,6 @@ void check_input_options(const InputOptions& o) {
   const InputOptions defaults;
   if (o.label_function == LabelFunction::signed_distance && o.smoothing != defaults.smoothing)
     throw InvalidInput("--smoothing: applies to the smoothed indicator, not with --signed-distance");
-  if (o.label_function == LabelFunction::signed_distance && !o.voxel_faithful)
-    throw InvalidInput("--no-voxel-faithful: applies to the smoothed indicator; signed distances always lead at voxel centres");
   if (o.label_function != LabelFunction::signed_distance && o.band != defaults.band)
     throw InvalidInput("--band: applies to signed distances: give it with --signed-distance");
 }
@@ -188,9 +186,9 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   params.voxel_faithful = o.voxel_faithful;
   params.band = o.band;
   params.k = o.top_k;
-  // Off the voxel grid, or with labels smoothing may lose anyway, no lattice holds every voxel.
-  const bool faithful = params.signed_distance || params.voxel_faithful;
-  const bool every_node = faithful && o.voxels_per_cell == 1 && needs_every_grid_node(pv, voxels, notes);
+  // Opt-in, and only on the voxel grid (off it no lattice holds every voxel).
+  // Signed distances lead at voxel centres already: there the option only asks for the lattice.
+  const bool every_node = o.voxel_faithful && o.voxels_per_cell == 1 && needs_every_grid_node(pv, voxels, notes);
   auto field = label_field(pv, params, path);
   Scene scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels), std::move(notes)};
   scene.needs_every_grid_node = every_node;

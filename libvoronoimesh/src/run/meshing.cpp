@@ -76,9 +76,11 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
         f.phase_name(p) == cat("label", label) ? std::string() : cat(" (", detail::quote(f.phase_name(p)), ")");
     // Smoothing can outweigh a thin region at its own voxel centres; where it
     // still leads there, by less than the snapping threshold, snapping removes it.
+    // --voxel-faithful makes it lead there; a voxel the bcc lattice has no node
+    // at, between two of another label, needs cube6 as well.
     return cat("label ", label, name, ": ", voxels, voxels == 1 ? " voxel" : " voxels",
-               ", no surface in the mesh: thinner than the grid resolves (--smoothing 0.5, --snap 0.1 or "
-               "--signed-distance may keep it)");
+               ", no surface in the mesh: thinner than the grid resolves (--voxel-faithful, with --lattice cube6 "
+               "if need be, or --smoothing 0.5, --snap 0.1, --signed-distance may keep it)");
   }
   return cat("phase ", detail::quote(f.phase_name(p)),
              ": no surface in the mesh: smaller or thinner than the grid resolves (a finer --grid may keep it)");

@@ -29,10 +29,11 @@ struct Scene {
   /// For a volume, the frame of the coordinates: "LPS" or "RAS", and whether
   /// the file's or converted (InputOptions::world); empty for other inputs.
   std::string world = {};
-  /// A label volume on its voxel grid with a label the bcc lattice (every
-  /// second node) would lose more than 1% of: structures one voxel thin along
-  /// an axis where the lattice has no node. create then takes every grid node
-  /// (the cube6 lattice) unless a lattice is given (run/meshing.hpp, lattice_for()).
+  /// A label volume read with InputOptions::voxel_faithful, on its voxel grid,
+  /// with a label the bcc lattice (every second node) would lose more than 1%
+  /// of: structures one voxel thin along an axis where the lattice has no node.
+  /// create then takes every grid node (the cube6 lattice) unless a lattice is
+  /// given (run/meshing.hpp, lattice_for()). Always false without voxel_faithful.
   bool needs_every_grid_node = false;
 };
 

@@ -41,7 +41,8 @@ struct MeshOptions {
   std::optional<std::array<int, 3>> grid;
   /// Background tetrahedra (create/create.hpp); bcc rounds each cell count up
   /// to even. None: the scene's (lattice_for()), bcc but for label volumes
-  /// with structures one voxel thin where bcc has no node.
+  /// read voxel-faithful (InputOptions::voxel_faithful) with structures one
+  /// voxel thin where bcc has no node.
   std::optional<Lattice> lattice;
   /// Snapping threshold in grid spacings, in [0, 0.5] (paper sect. 4.1: 0.2).
   double snap = 0.2;
