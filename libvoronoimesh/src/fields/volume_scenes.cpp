@@ -141,7 +141,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   refuse_huge_field(v.voxel_count(), o.top_k, 6, path); // the labels and their phases
   const std::vector<int32_t> present = distinct(v.labels);
   const std::vector<std::optional<int32_t>> target = label_targets(present, o, v.segments, path);
-  PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}};
+  PhaseVoxels pv{v.size, v.spacing, v.origin, {}, {}, {}, {}};
   for (const auto& t : target)
     if (t) pv.labels.push_back(*t);
   std::sort(pv.labels.begin(), pv.labels.end());
