@@ -299,6 +299,8 @@ TEST_F(RunJob, a_phase_the_mesh_loses_is_named_with_its_size_never_dropped_silen
   EXPECT_EQ(seen.lost, std::vector<int32_t>{1});
   ASSERT_EQ(seen.notes.size(), 1u);
   EXPECT_EQ(seen.notes[0].rfind("label 1: 1 voxel, no surface in the mesh", 0), 0u) << seen.notes[0];
+  // Its voxel touches label 0 across two faces and label 3 across one.
+  EXPECT_NE(seen.notes[0].find("merged into label 0:"), std::string::npos) << seen.notes[0];
   // A scene's phase smaller than a cell is named too; phases the mesh keeps are not.
   const Scene scene = parse_scene(R"({"grid": 8, "phases": [{"name": "outside", "kind": "constant", "value": 0},
       {"name": "big", "kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.3},

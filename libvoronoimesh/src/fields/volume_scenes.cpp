@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <unordered_map>
 
@@ -92,6 +93,45 @@ constexpr double kBccLossAllowed = 0.01;
 
 /// Whether create should take every node of the voxel grid, with the line that
 /// says so, or says how many voxel centres the bcc lattice cannot hold.
+/// Scene::phase_around: for each phase of at most kSurroundedUpTo voxels,
+/// the phase its voxels touch most often across a face (ties: the lower id).
+/// Slices of voxels in parallel, neighbours looked at only for small phases.
+std::vector<int32_t> phases_around_small_ones(const PhaseVoxels& pv, const std::vector<int64_t>& voxels) {
+  constexpr int64_t kSurroundedUpTo = 100000;
+  const size_t phases = voxels.size();
+  std::vector<int32_t> around(phases, -1);
+  std::vector<uint8_t> small(phases, 0);
+  bool any = false;
+  for (size_t p = 0; p < phases; ++p) any |= (small[p] = voxels[p] > 0 && voxels[p] <= kSurroundedUpTo);
+  if (!any) return around;
+  const auto [nx, ny, nz] = pv.size;
+  const int64_t strides[3] = {1, nx, nx * ny}, extents[3] = {nx, ny, nz};
+  using Contact = std::pair<int16_t, int16_t>; // a small phase's voxel, a face neighbour of another phase
+  std::vector<std::vector<Contact>> slices(static_cast<size_t>(nz));
+  parallel_for_each_index(size_t(nz), [&](size_t slice) {
+    const auto k = int64_t(slice);
+    for (int64_t j = 0; j < ny; ++j)
+      for (int64_t i = 0; i < nx; ++i) {
+        const int64_t n = i + nx * (j + ny * k);
+        const int16_t p = pv.phase[size_t(n)];
+        if (p < 0 || !small[size_t(p)]) continue;
+        const int64_t at[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a)
+          for (int64_t step : {-1, 1})
+            if (at[a] + step >= 0 && at[a] + step < extents[a])
+              if (const int16_t q = pv.phase[size_t(n + step * strides[a])]; q >= 0 && q != p)
+                slices[slice].push_back({p, q});
+      }
+  });
+  std::map<Contact, int64_t> count;
+  for (const auto& slice : slices)
+    for (const Contact& c : slice) ++count[c];
+  std::vector<int64_t> most(phases, 0);
+  for (const auto& [c, n] : count) // in phase order: ties go to the lower id
+    if (n > most[size_t(c.first)]) most[size_t(c.first)] = n, around[size_t(c.first)] = c.second;
+  return around;
+}
+
 bool needs_every_grid_node(const PhaseVoxels& pv, const std::vector<int64_t>& voxels, std::vector<std::string>& notes) {
   const std::vector<int64_t> lost = voxels_bcc_cannot_hold(pv);
   size_t worst = 0;
@@ -190,7 +230,9 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   // Signed distances lead at voxel centres already: there the option only asks for the lattice.
   const bool every_node = o.voxel_faithful && o.voxels_per_cell == 1 && needs_every_grid_node(pv, voxels, notes);
   auto field = label_field(pv, params, path);
-  Scene scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels), std::move(notes)};
+  std::vector<int32_t> around = phases_around_small_ones(pv, voxels);
+  Scene scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels),
+              std::move(around), std::move(notes)};
   scene.needs_every_grid_node = every_node;
   return scene;
 }

@@ -78,8 +78,11 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
     // still leads there, by less than the snapping threshold, snapping removes it.
     // --voxel-faithful makes it lead there; a voxel the bcc lattice has no node
     // at, between two of another label, needs cube6 as well.
+    const int32_t around = size_t(p) < scene.phase_around.size() ? scene.phase_around[size_t(p)] : -1;
+    const std::string merged = around < 0 ? std::string() : cat(", merged into label ", f.phase_label(around));
     return cat("label ", label, name, ": ", voxels, voxels == 1 ? " voxel" : " voxels",
-               ", no surface in the mesh: thinner than the grid resolves (--voxel-faithful, with --lattice cube6 "
+               ", no surface in the mesh", merged,
+               ": thinner than the grid resolves (--voxel-faithful, with --lattice cube6 "
                "if need be, or --smoothing 0.5, --snap 0.1, --signed-distance may keep it)");
   }
   return cat("phase ", detail::quote(f.phase_name(p)),

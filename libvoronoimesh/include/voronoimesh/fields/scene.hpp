@@ -23,6 +23,11 @@ struct Scene {
   /// For a label volume, the voxels of each phase (by phase id), so that a phase
   /// the mesh loses can be named with its size; empty otherwise.
   std::vector<int64_t> phase_voxels = {};
+  /// For a label volume, the phase that each phase of at most 100,000 voxels
+  /// touches most across its voxels' faces (by phase id; -1 for larger
+  /// phases, or one touching none): the phase that takes its place when the
+  /// mesh loses it, for the line naming it. Empty otherwise.
+  std::vector<int32_t> phase_around = {};
   /// What reading the input resolved that a user should hear of (segments
   /// with no voxels, overlapping segments), one line each.
   std::vector<std::string> notes = {};
