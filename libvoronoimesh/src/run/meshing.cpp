@@ -54,12 +54,18 @@ void stop_if_asked(RunObserver* observer) {
   if (observer && observer->stop_requested()) throw Cancelled();
 }
 
-/// The phases of `scene` that no triangle of `mesh` bounds.
-std::vector<int32_t> lost_phases(const NodeMesh& mesh, const Scene& scene) {
-  std::vector<uint8_t> bounded(size_t(scene.field->num_phases()), 0);
+/// One flag per phase id below `phases`: some triangle of `mesh` bounds it.
+std::vector<uint8_t> bounded_phases(const NodeMesh& mesh, size_t phases) {
+  std::vector<uint8_t> bounded(phases, 0);
   for (const PhasePair& p : mesh.pairs)
     for (int32_t phase : p)
       if (size_t(phase) < bounded.size()) bounded[size_t(phase)] = 1;
+  return bounded;
+}
+
+/// The phases of `scene` that no triangle of `mesh` bounds.
+std::vector<int32_t> lost_phases(const NodeMesh& mesh, const Scene& scene) {
+  const std::vector<uint8_t> bounded = bounded_phases(mesh, size_t(scene.field->num_phases()));
   std::vector<int32_t> lost;
   for (size_t p = 0; p < bounded.size(); ++p)
     if (!bounded[p]) lost.push_back(int32_t(p));
@@ -116,10 +122,25 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
     if (history) history->record(r.iteration, current.to_node_mesh());
     if (observer) observer->iteration(r, current);
   };
+  int32_t top_phase = -1;
+  for (const PhasePair& p : mesh.pairs) top_phase = std::max({top_phase, p[0], p[1]});
+  const auto phase_count = size_t(top_phase + 1);
+  const std::vector<uint8_t> bounded_before = bounded_phases(mesh, phase_count);
   report.iterations = pipeline.run(im, phases.get(), run);
   stop_if_asked(observer);
   mesh = im.to_node_mesh();
   if (o.validate) require_valid(mesh, "the improved mesh");
+  // Collapses can take a phase's last triangles: never silently.
+  const std::vector<uint8_t> bounded_after = bounded_phases(mesh, phase_count);
+  for (size_t p = 0; p < phase_count; ++p)
+    if (bounded_before[p] && !bounded_after[p] && observer) {
+      const std::string name = size_t(p) < mesh.phase_names.size() && !mesh.phase_names[p].empty()
+                                   ? cat(" (", detail::quote(mesh.phase_names[p]), ")")
+                                   : std::string();
+      observer->note(cat("label ", mesh.label_of(int32_t(p)), name,
+                         ": no surface left after improvement (collapses took its last triangles; a finer grid, or "
+                         "a --pipeline without remesh, may keep it)"));
+    }
   if (observer) observer->improved(report);
   return report.iterations;
 }
