@@ -78,15 +78,20 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
     return all;
   }
   if (!(cell > 0)) cell = 1;
-  auto cell_of = [&](double x) { return int64_t(std::floor(x / cell)); };
   auto key = [](int64_t i, int64_t j, int64_t k) {
     return uint64_t(i) * 0x9E3779B97F4A7C15ull ^ uint64_t(j) * 0xC2B2AE3D27D4EB4Full ^ uint64_t(k) * 0x165667B19E3779F9ull;
   };
   // Calls f(key) for each cell of box b; false if b covers too many to list.
+  // Counted in doubles: with flagged triangles far smaller than the others, a
+  // box's cells can number beyond 2^63 (a product of int64 extents wrapped
+  // round to a small count, and the loops below then never ended).
+  constexpr double kBeyondCells = 1e15; // cell coordinates stay exact integers in int64 and double
   auto cells = [&](const Bounds& b, auto&& f) {
-    const int64_t i0 = cell_of(b.lo.x()), i1 = cell_of(b.hi.x()), j0 = cell_of(b.lo.y()), j1 = cell_of(b.hi.y()),
-                  k0 = cell_of(b.lo.z()), k1 = cell_of(b.hi.z());
-    if ((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 64) return false;
+    const Vec3 lo = (b.lo / cell).array().floor().matrix(), hi = (b.hi / cell).array().floor().matrix();
+    if (!(lo.cwiseAbs().maxCoeff() < kBeyondCells && hi.cwiseAbs().maxCoeff() < kBeyondCells)) return false;
+    if ((hi - lo + Vec3::Ones()).prod() > 64) return false;
+    const int64_t i0 = int64_t(lo.x()), i1 = int64_t(hi.x()), j0 = int64_t(lo.y()), j1 = int64_t(hi.y()),
+                  k0 = int64_t(lo.z()), k1 = int64_t(hi.z());
     for (int64_t i = i0; i <= i1; ++i)
       for (int64_t j = j0; j <= j1; ++j)
         for (int64_t k = k0; k <= k1; ++k) f(key(i, j, k));
