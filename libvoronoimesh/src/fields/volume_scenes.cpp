@@ -91,8 +91,6 @@ void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string
 /// A label the bcc lattice would lose more than this share of decides for cube6.
 constexpr double kBccLossAllowed = 0.01;
 
-/// Whether create should take every node of the voxel grid, with the line that
-/// says so, or says how many voxel centres the bcc lattice cannot hold.
 /// Scene::phase_around: for each phase of at most kSurroundedUpTo voxels,
 /// the phase its voxels touch most often across a face (ties: the lower id).
 /// Slices of voxels in parallel, neighbours looked at only for small phases.
@@ -132,6 +130,8 @@ std::vector<int32_t> phases_around_small_ones(const PhaseVoxels& pv, const std::
   return around;
 }
 
+/// Whether create should take every node of the voxel grid, with the line that
+/// says so, or says how many voxel centres the bcc lattice cannot hold.
 bool needs_every_grid_node(const PhaseVoxels& pv, const std::vector<int64_t>& voxels, std::vector<std::string>& notes) {
   const std::vector<int64_t> lost = voxels_bcc_cannot_hold(pv);
   size_t worst = 0;

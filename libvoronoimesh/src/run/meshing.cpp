@@ -72,21 +72,25 @@ std::vector<int32_t> lost_phases(const NodeMesh& mesh, const Scene& scene) {
   return lost;
 }
 
+/// "label L", and " ('name')" after it when the phase's name says more than
+/// its label does.
+std::string labelled(int32_t label, const std::string& name) {
+  if (name.empty() || name == cat("label", label)) return cat("label ", label);
+  return cat("label ", label, " (", detail::quote(name), ")");
+}
+
 /// One line naming a lost phase, with its size for a label volume.
 std::string lost_phase_line(const Scene& scene, int32_t p) {
   const PhaseField& f = *scene.field;
   if (size_t(p) < scene.phase_voxels.size()) {
     const int64_t voxels = scene.phase_voxels[size_t(p)];
-    const int32_t label = f.phase_label(p);
-    const std::string name =
-        f.phase_name(p) == cat("label", label) ? std::string() : cat(" (", detail::quote(f.phase_name(p)), ")");
     // Smoothing can outweigh a thin region at its own voxel centres; where it
     // still leads there, by less than the snapping threshold, snapping removes it.
     // --voxel-faithful makes it lead there; a voxel the bcc lattice has no node
     // at, between two of another label, needs cube6 as well.
     const int32_t around = size_t(p) < scene.phase_around.size() ? scene.phase_around[size_t(p)] : -1;
     const std::string merged = around < 0 ? std::string() : cat(", merged into label ", f.phase_label(around));
-    return cat("label ", label, name, ": ", voxels, voxels == 1 ? " voxel" : " voxels",
+    return cat(labelled(f.phase_label(p), f.phase_name(p)), ": ", voxels, voxels == 1 ? " voxel" : " voxels",
                ", no surface in the mesh", merged,
                ": thinner than the grid resolves (--voxel-faithful, with --lattice cube6 "
                "if need be, or --smoothing 0.5, --snap 0.1, --signed-distance may keep it)");
@@ -133,14 +137,10 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   // Collapses can take a phase's last triangles: never silently.
   const std::vector<uint8_t> bounded_after = bounded_phases(mesh, phase_count);
   for (size_t p = 0; p < phase_count; ++p)
-    if (bounded_before[p] && !bounded_after[p] && observer) {
-      const std::string name = size_t(p) < mesh.phase_names.size() && !mesh.phase_names[p].empty()
-                                   ? cat(" (", detail::quote(mesh.phase_names[p]), ")")
-                                   : std::string();
-      observer->note(cat("label ", mesh.label_of(int32_t(p)), name,
+    if (bounded_before[p] && !bounded_after[p] && observer)
+      observer->note(cat(labelled(mesh.label_of(int32_t(p)), p < mesh.phase_names.size() ? mesh.phase_names[p] : ""),
                          ": no surface left after improvement (collapses took its last triangles; a finer grid, or "
                          "a --pipeline without remesh, may keep it)"));
-    }
   if (observer) observer->improved(report);
   return report.iterations;
 }
