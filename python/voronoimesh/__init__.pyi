@@ -54,7 +54,7 @@ def mesh_file(path: str, *, iterations: int = 20, pipeline: str = "", size: floa
               crossing_guard: bool = True, drop_labels: Iterable[Label] = (), keep_labels: Iterable[Label] = (),
               merge_labels: Iterable[Iterable[Label]] = (), background: int = 0, no_background: bool = False,
               signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = False, band: float = 3.0,
-              voxels_per_cell: float = 1.0, ignore_direction: bool = False, world: str = "file",
+              voxels_per_cell: float = 0.0, ignore_direction: bool = False, world: str = "file",
               progress: Optional[Progress] = None) -> Mesh: ...
 
 class Mesher:

@@ -285,6 +285,35 @@ TEST(LabelVolume, voxels_per_cell_sets_a_coarser_grid) {
   EXPECT_THROW(load_input(path, o), InvalidInput);
 }
 
+// Slices thicker than their pixels: by default cubic cells of the voxels'
+// volume (about as many cells as voxels), said in a note; the voxel grid with
+// --voxels-per-cell 1, with --voxel-faithful, and for voxels nearly cubic.
+TEST(LabelVolume, flat_voxels_are_meshed_on_cubic_cells_by_default) {
+  auto header = [](double dz) {
+    return "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
+           "space directions: (0.5,0,0) (0,0.5,0) (0,0," + std::to_string(dz) + ")\nspace origin: (1,2,3)\n";
+  };
+  const std::string flat = write_nrrd("flat.nrrd", header(1.2), sphere_labels(7));
+  const Scene cubic = load_input(flat);
+  const Vec3 h = cubic.grid.spacing();
+  EXPECT_LT(h.maxCoeff() / h.minCoeff(), 1.05) << h.transpose();
+  EXPECT_NEAR(h.x(), std::cbrt(0.5 * 0.5 * 1.2), 0.03);
+  const double cells = double(cubic.grid.cells[0]) * cubic.grid.cells[1] * cubic.grid.cells[2];
+  EXPECT_NEAR(cells / (32.0 * 32 * 32), 1.0, 0.15);
+  ASSERT_EQ(cubic.notes.size(), 1u);
+  EXPECT_NE(cubic.notes[0].find("flat"), std::string::npos) << cubic.notes[0];
+  EXPECT_TRUE(validate(create(cubic)).ok());
+  const std::array<int, 3> voxel_grid{32, 32, 32}; // 31 voxel steps, one more for an even count
+  InputOptions o;
+  o.voxels_per_cell = 1;
+  EXPECT_EQ(load_input(flat, o).grid.cells, voxel_grid);
+  EXPECT_TRUE(load_input(flat, o).notes.empty());
+  InputOptions faithful;
+  faithful.voxel_faithful = true;
+  EXPECT_EQ(load_input(flat, faithful).grid.cells, voxel_grid);
+  EXPECT_EQ(load_input(write_nrrd("nearly.nrrd", header(0.55), sphere_labels(7))).grid.cells, voxel_grid);
+}
+
 TEST(LabelVolume, axis_flips_are_honoured_and_oblique_directions_refused) {
   const std::string flipped = "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
                               "space directions: (-0.5,0,0) (0,0,0.5) (0,0.5,0)\nspace origin: (1,2,3)\n";

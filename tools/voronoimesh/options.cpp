@@ -75,15 +75,19 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->capture_default_str()->group(labels);
   cmd->add_flag("--voxel-faithful", o.input.voxel_faithful,
                 "Keep labels one or two voxels thin: each voxel's label leads at its centre, and --lattice auto takes "
-                "cube6 where bcc would lose more than 1% of a label. Off by default: on CGAL's liver it took the voxel "
-                "centres in their label from 99.868% to 99.942%, but 21% more time and min q from 0.352 to 0.164")
+                "cube6 where bcc would lose more than 1% of a label; the grid is then the voxel grid unless "
+                "--voxels-per-cell says otherwise. Off by default: on CGAL's liver it took the voxel centres in their "
+                "label from 99.867% to 99.942%, but 1.6x the time and min q from 0.424 to 0.164")
       ->group(labels);
   cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")
       ->capture_default_str()->group(labels);
   cmd->add_option("--voxels-per-cell", o.input.voxels_per_cell,
-                  "Mesh a volume on cells of about F voxels per axis (2: about a quarter of the triangles of the voxel "
-                  "grid); --grid overrides it")
-      ->capture_default_str()->group(labels);
+                  "Mesh a volume on cells of about F voxels (of the smallest spacing) per axis (2: about a quarter of "
+                  "the triangles of the voxel grid; 1: the voxel grid); --grid overrides it. Default: the voxel grid, "
+                  "but for flat voxels (slices over 1.2 times thicker than their pixels) cubic cells of the voxels' "
+                  "volume, as many as the voxels (bcc tetrahedra on flat cells cut the surfaces into slivers); with "
+                  "--voxel-faithful the voxel grid")
+      ->group(labels);
   cmd->add_flag("--ignore-direction", o.input.ignore_direction,
                 "Use the voxel axes as they are when the volume's direction matrix is oblique")
       ->group(labels);

@@ -29,7 +29,7 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
     std::copy_n(v.values.begin() + ptrdiff_t(size_t(n) * c), c, out.begin());
   };
   Scene scene = detail::phase_values_scene(grid, v.components, fill, {}, {}, o.top_k, path);
-  scene.grid = detail::volume_scene_grid(grid, o.voxels_per_cell, path);
+  scene.grid = detail::volume_scene_grid(grid, o.voxels_per_cell, path, scene.notes);
   return scene;
 }
 

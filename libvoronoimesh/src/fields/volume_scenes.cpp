@@ -161,8 +161,8 @@ void check_input_options(const InputOptions& o) {
   if (!(o.smoothing > 0 && o.smoothing <= 8)) throw InvalidInput(cat("--smoothing: must be in (0, 8] voxels, got ", o.smoothing));
   if (!(o.band >= 1 && o.band <= 64)) throw InvalidInput(cat("--band: must be in [1, 64] voxels, got ", o.band));
   if (o.top_k < 1 || o.top_k > 16) throw InvalidInput("--top-k: must be between 1 and 16");
-  if (!(o.voxels_per_cell >= 1 && o.voxels_per_cell <= 64))
-    throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64], got ", o.voxels_per_cell));
+  if (!(o.voxels_per_cell == 0 || (o.voxels_per_cell >= 1 && o.voxels_per_cell <= 64)))
+    throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64] (or 0, the default grid), got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
   if (o.world != World::file && o.ignore_direction)
@@ -226,12 +226,16 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   params.voxel_faithful = o.voxel_faithful;
   params.band = o.band;
   params.k = o.top_k;
-  // Opt-in, and only on the voxel grid (off it no lattice holds every voxel).
+  // Opt-in, and only on the voxel grid (off it no lattice holds every voxel),
+  // which is then the default grid of flat voxels too.
   // Signed distances lead at voxel centres already: there the option only asks for the lattice.
-  const bool every_node = o.voxel_faithful && o.voxels_per_cell == 1 && needs_every_grid_node(pv, voxels, notes);
+  const double per_cell = o.voxel_faithful && o.voxels_per_cell == 0 ? 1 : o.voxels_per_cell;
   auto field = label_field(pv, params, path);
+  const bool every_node = o.voxel_faithful && resolved_voxels_per_cell(per_cell, field->grid().spacing()) == 1 &&
+                          needs_every_grid_node(pv, voxels, notes);
   std::vector<int32_t> around = phases_around_small_ones(pv, voxels);
-  Scene scene{volume_scene_grid(field->grid(), o.voxels_per_cell, path), field, true, std::move(voxels),
+  const GridSpec grid = volume_scene_grid(field->grid(), per_cell, path, notes);
+  Scene scene{grid, field, true, std::move(voxels),
               std::move(around), std::move(notes)};
   scene.needs_every_grid_node = every_node;
   return scene;

@@ -34,10 +34,22 @@ GridSpec even_scene_grid(const GridSpec& voxel_grid, const std::string& source) 
   return g;
 }
 
-GridSpec volume_scene_grid(const GridSpec& voxel_grid, double voxels_per_cell, const std::string& source) {
-  if (voxels_per_cell == 1) return even_scene_grid(voxel_grid, source);
+double resolved_voxels_per_cell(double voxels_per_cell, const Vec3& spacing) {
+  if (voxels_per_cell > 0) return voxels_per_cell;
+  if (spacing.maxCoeff() <= kFlatVoxels * spacing.minCoeff()) return 1;
+  return std::cbrt(spacing.prod()) / spacing.minCoeff();
+}
+
+GridSpec volume_scene_grid(const GridSpec& voxel_grid, double voxels_per_cell, const std::string& source,
+                           std::vector<std::string>& notes) {
+  const Vec3 h = voxel_grid.spacing();
+  const double per_cell = resolved_voxels_per_cell(voxels_per_cell, h);
+  if (per_cell == 1) return even_scene_grid(voxel_grid, source);
   GridSpec g = voxel_grid;
-  const double cell = voxels_per_cell * voxel_grid.spacing().minCoeff();
+  const double cell = per_cell * h.minCoeff();
+  if (voxels_per_cell == 0)
+    notes.push_back(cat("voxels of ", h[0], " x ", h[1], " x ", h[2], " are flat: meshed on cubic cells of ", cell,
+                        " instead (--voxels-per-cell 1 keeps the voxel grid)"));
   const Vec3 extent = voxel_grid.domain.max - voxel_grid.domain.min;
   for (int a = 0; a < 3; ++a) g.cells[size_t(a)] = 2 * std::max(1, int(std::lround(extent[a] / (2 * cell))));
   return g;

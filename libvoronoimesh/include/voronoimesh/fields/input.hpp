@@ -53,7 +53,7 @@ struct InputOptions {
   /// distances lead there already), and the scene asks for every grid node
   /// (Scene::needs_every_grid_node) where the bcc lattice would lose more than
   /// 1% of a label. Keeps labels a voxel or two thin that the default loses,
-  /// at a cost: on CGAL's liver 21% more time and min q 0.164 instead of 0.352
+  /// at a cost: on CGAL's liver 1.6x the time and min q 0.164 instead of 0.424
   /// (docs/inputs.md), hence off by default.
   bool voxel_faithful = false;
   double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
@@ -67,8 +67,11 @@ struct InputOptions {
   /// spacing) along each axis, in [1, 64]; 1 = the voxel grid itself. A
   /// coarser grid gives a coarser mesh (2: about a quarter of the triangles)
   /// of the same phase functions, still evaluated at voxel resolution by the
-  /// improvement's projection.
-  double voxels_per_cell = 1;
+  /// improvement's projection. 0, the default: the voxel grid, unless the
+  /// voxels are flat (longest side over 1.2 times the shortest, as CT and MR
+  /// slices thicker than their pixels): then cubic cells of the voxels' volume,
+  /// about as many as the voxels (with voxel_faithful, the voxel grid always).
+  double voxels_per_cell = 0;
 };
 
 /// Reads `path` as whatever it is, by extension: .json a scene (load_scene);
