@@ -88,12 +88,12 @@ fi
 
 # ---- the cases: name|tool|case|options|threads|command (OUTPUT stands for the mesh) ----
 cases=(
-  "vm_liver_default|voronoimesh|liver|default (remesh:size=1.4, then the paper's passes)|2|$vm mesh $liver -o OUTPUT --threads 2"
+  "vm_liver_default|voronoimesh|liver|default (cubic cells for its flat voxels, remesh:size=1.4, then the paper's passes)|2|$vm mesh $liver -o OUTPUT --threads 2"
   "cgal_liver|CGAL 5.5 Mesh_3|liver|facet size 2, distance 0.5 voxels, angle 30|TBTHREADS|$cgal $liver OUTPUT --facet-size 2 --facet-distance 0.5 --facet-angle 30"
 )
 if [ "$quick" = 0 ]; then
   cases+=(
-    "vm_liver_paper|voronoimesh|liver|--pipeline smooth,project,clamp,flip (the paper's, on the voxel grid)|2|$vm mesh $liver -o OUTPUT --threads 2 --pipeline smooth,project,clamp,flip"
+    "vm_liver_paper|voronoimesh|liver|--pipeline smooth,project,clamp,flip (the paper's, on the default grid)|2|$vm mesh $liver -o OUTPUT --threads 2 --pipeline smooth,project,clamp,flip"
     "vm_liver_vpc2|voronoimesh|liver|--voxels-per-cell 2|2|$vm mesh $liver -o OUTPUT --threads 2 --voxels-per-cell 2"
     "cgalseq_liver|CGAL 5.5 Mesh_3, Sequential_tag|liver|facet size 2, distance 0.5 voxels, angle 30|1|$cgal_seq $liver OUTPUT --facet-size 2 --facet-distance 0.5 --facet-angle 30"
     "vm_grains96_default|voronoimesh|grains96|default|2|$vm mesh $grains -o OUTPUT --threads 2"
