@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 namespace {
@@ -122,6 +123,53 @@ TEST(CrossingIndex, carries_over_a_renumbering_without_starting_again) {
   EXPECT_GE(index.refiled(), 1u);
   EXPECT_EQ(found, reference(kept_points, kept_triangles, {}));
   EXPECT_FALSE(found.empty()); // the shake made crossings to find
+}
+
+// A remesh call rebuilds the mesh with some triangles and nodes kept (in
+// order), some gone and some new (renumber()'s -1): the index files the new
+// ones and keeps the rest.
+TEST(CrossingIndex, carries_over_a_rebuild_with_new_triangles_and_nodes) {
+  const InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  CrossingIndex index;
+  for (int call = 0; call < 3; ++call) index.crossings(mesh.positions(), mesh.triangles(), {}, mesh.triangle_copies());
+  ASSERT_TRUE(index.indexed());
+  // Every eleventh triangle is cut in three at a new node at its centroid, and
+  // every thirteenth dropped (its nodes stay, used by its neighbours).
+  NodeMesh m = mesh.to_node_mesh();
+  NodeMesh cut = m.empty_like();
+  cut.points = m.points;
+  std::vector<int32_t> old_triangle, old_node(m.num_nodes());
+  std::iota(old_node.begin(), old_node.end(), 0);
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const Triangle& tri = m.triangles[t];
+    if (t % 13 == 5) continue;
+    if (t % 11 != 3) {
+      cut.triangles.push_back(tri), cut.pairs.push_back(m.pairs[t]), old_triangle.push_back(int32_t(t));
+      continue;
+    }
+    const auto c = int32_t(cut.points.size());
+    cut.points.push_back((m.points[size_t(tri[0])] + m.points[size_t(tri[1])] + m.points[size_t(tri[2])]) / 3);
+    old_node.push_back(-1);
+    for (int k = 0; k < 3; ++k) {
+      cut.triangles.push_back({tri[size_t(k)], tri[size_t((k + 1) % 3)], c});
+      cut.pairs.push_back(m.pairs[t]);
+      old_triangle.push_back(-1);
+    }
+  }
+  const InterfaceMesh rebuilt = InterfaceMesh::from_node_mesh(cut);
+  index.renumber(old_triangle, old_node, rebuilt.triangle_copies());
+  const auto made = size_t(std::count(old_triangle.begin(), old_triangle.end(), -1));
+  std::mt19937_64 rng(5);
+  std::vector<Vec3> points = rebuilt.positions();
+  for (int call = 0; call < 3; ++call) {
+    shake(points, rng, call == 0 ? 30 : 10, 0.8 / 16);
+    const auto found = index.crossings(points, rebuilt.triangles(), {}, rebuilt.triangle_copies());
+    EXPECT_TRUE(index.indexed()) << call;
+    EXPECT_FALSE(index.rebuilt()) << call;
+    if (call == 0) EXPECT_GE(index.refiled(), made);
+    EXPECT_EQ(found, reference(points, rebuilt.triangles(), {})) << call;
+    if (call == 0) EXPECT_FALSE(found.empty()); // the shake made crossings to find
+  }
 }
 
 TEST(CrossingIndex, answers_alike_for_any_thread_count) {

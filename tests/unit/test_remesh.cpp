@@ -166,6 +166,52 @@ TEST(Remesh, close_corners_merge_into_one_point_instead_of_leaving_slivers) {
   EXPECT_GT(compute_stats(merged).min_quality, 0.14);
 }
 
+// The ids remesh_edges() reports for the guard's index (RemeshStats): every
+// kept triangle has its old pair (its corners may have collapsed onto
+// neighbours, one per round), many have all three old nodes, every kept node
+// its old position, and the new nodes are the splits' midpoints, last. Over
+// two calls both collapse and split.
+TEST(Remesh, reports_the_old_id_of_every_kept_triangle_and_node) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  const double rms = rms_edge_length(mesh);
+  RemeshParams params;
+  params.size = 1; // the created mesh's own length: the first call mostly collapses, the second splits
+  size_t collapses = 0, splits = 0;
+  for (int call = 0; call < 2; ++call) {
+    const NodeMesh before = mesh.to_node_mesh();
+    const RemeshStats done = remesh_edges(mesh, nullptr, rms, params);
+    collapses += done.collapses, splits += done.splits;
+    const NodeMesh after = mesh.to_node_mesh();
+    ASSERT_EQ(done.old_triangles.size(), after.num_triangles());
+    ASSERT_EQ(done.old_nodes.size(), after.num_nodes());
+    EXPECT_EQ(size_t(std::count(done.old_nodes.begin(), done.old_nodes.end(), -1)), done.splits) << call;
+    EXPECT_TRUE(std::is_sorted(done.old_nodes.begin(), done.old_nodes.end() - ptrdiff_t(done.splits)));
+    size_t unchanged = 0;
+    for (size_t n = 0; n < after.num_nodes(); ++n)
+      if (const int32_t was = done.old_nodes[n]; was >= 0) {
+        EXPECT_EQ(after.points[n], before.points[size_t(was)]) << n;
+      } else {
+        EXPECT_GE(n, after.num_nodes() - done.splits) << "new nodes come last";
+      }
+    int32_t last = -1;
+    for (size_t t = 0; t < after.num_triangles(); ++t) {
+      const int32_t was = done.old_triangles[t];
+      if (was < 0) continue;
+      EXPECT_GT(was, last) << "kept triangles keep their order";
+      last = was;
+      EXPECT_EQ(after.pairs[t], before.pairs[size_t(was)]);
+      int same = 0;
+      for (int32_t v : after.triangles[t])
+        if (const int32_t old = done.old_nodes[size_t(v)]; old >= 0)
+          same += int(std::count(before.triangles[size_t(was)].begin(), before.triangles[size_t(was)].end(), old));
+      unchanged += same == 3;
+    }
+    EXPECT_GT(unchanged, after.num_triangles() / 10) << call; // a wrong map would match almost none
+  }
+  EXPECT_GT(collapses, 0u);
+  EXPECT_GT(splits, 0u);
+}
+
 TEST(Remesh, the_same_mesh_for_any_thread_count) {
   auto run = [](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));

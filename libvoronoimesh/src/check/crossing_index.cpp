@@ -109,6 +109,7 @@ CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangl
 }
 
 template <class F> void CrossingIndex::for_cells(const Filing& f, F&& f_of_key) const {
+  if (f.level < 0) return;
   const auto last = cell_of(f.box.hi, f.level);
   for (int64_t i = f.first[0]; i <= last[0]; ++i)
     for (int64_t j = f.first[1]; j <= last[1]; ++j)
@@ -354,7 +355,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
     const Filing& old = filed_[size_t(t)];
     if (fresh[i].fans != old.fans || fresh[i].nodes != old.nodes) changed.push_back(t), old_fans.push_back(old.fans);
     for (uint64_t k : edits[i].left) cells_.erase_id(size_t(find(k)), t);
-    --level_count_[size_t(old.level)];
+    if (old.level >= 0) --level_count_[size_t(old.level)];
     ++level_count_[size_t(fresh[i].level)];
     filed_[size_t(t)] = fresh[i];
     for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(t, fresh[i]));
@@ -407,11 +408,14 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   settled_calls_ = 0;
   if (filed_.empty()) return;
   std::vector<int32_t> new_triangle(filed_.size(), -1);
-  for (size_t t = 0; t < old_triangle.size(); ++t) new_triangle[size_t(old_triangle[t])] = int32_t(t);
-  int32_t old_nodes = old_node.empty() ? 0 : old_node.back() + 1;
+  for (size_t t = 0; t < old_triangle.size(); ++t)
+    if (old_triangle[t] >= 0) new_triangle[size_t(old_triangle[t])] = int32_t(t);
+  int32_t old_nodes = 0;
+  for (int32_t n : old_node) old_nodes = std::max(old_nodes, n + 1);
   for (const Filing& f : filed_) old_nodes = std::max({old_nodes, f.nodes[0] + 1, f.nodes[1] + 1, f.nodes[2] + 1});
   std::vector<int32_t> new_node(size_t(old_nodes), -1);
-  for (size_t n = 0; n < old_node.size(); ++n) new_node[size_t(old_node[n])] = int32_t(n);
+  for (size_t n = 0; n < old_node.size(); ++n)
+    if (old_node[n] >= 0) new_node[size_t(old_node[n])] = int32_t(n);
   // Old fan ids to new ones, through the corners of kept triangles; a fan
   // that went two ways maps to none (its triangles are filed again).
   int32_t old_fans = 0;
@@ -419,7 +423,7 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   constexpr int32_t kUnseen = -2;
   std::vector<int32_t> new_fan(size_t(old_fans), kUnseen);
   for (size_t t = 0; t < old_triangle.size() && !corner_fans.empty(); ++t)
-    for (size_t k = 0; k < 3; ++k) {
+    for (size_t k = 0; k < 3 && old_triangle[t] >= 0; ++k) {
       const int32_t old = filed_[size_t(old_triangle[t])].fans[k];
       if (old < 0) continue;
       int32_t& to = new_fan[size_t(old)];
@@ -427,15 +431,17 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
     }
   auto fan_of = [&](int32_t old) { return old < 0 || new_fan[size_t(old)] < 0 ? -1 : new_fan[size_t(old)]; };
 
-  std::vector<Filing> filed(old_triangle.size());
+  std::vector<Filing> filed(old_triangle.size()); // new triangles: not filed
   for (size_t t = 0; t < filed.size(); ++t) {
+    if (old_triangle[t] < 0) continue;
     filed[t] = filed_[size_t(old_triangle[t])];
     for (int32_t& n : filed[t].nodes) n = new_node[size_t(n)];
     for (int32_t& f : filed[t].fans) f = fan_of(f);
   }
   filed_ = std::move(filed);
   level_count_.assign(kLevels, 0);
-  for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
+  for (const Filing& f : filed_)
+    if (f.level >= 0) ++level_count_[size_t(f.level)];
   cells_.map_items([&](CellEntry e) {
     e.id = new_triangle[size_t(e.id)];
     return e;
@@ -443,9 +449,11 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   // Lists by new triangle: each old list, mapped (ids keep their order).
   PooledLists<Neighbour> near;
   std::vector<uint32_t> sizes(old_triangle.size());
-  for (size_t t = 0; t < sizes.size(); ++t) sizes[t] = uint32_t(near_.at(size_t(old_triangle[t])).size());
+  for (size_t t = 0; t < sizes.size(); ++t)
+    sizes[t] = old_triangle[t] < 0 ? 0 : uint32_t(near_.at(size_t(old_triangle[t])).size());
   near.assign(sizes);
   for (size_t t = 0; t < sizes.size(); ++t) {
+    if (sizes[t] == 0) continue;
     const auto to = near.at(t);
     std::copy_n(near_.at(size_t(old_triangle[t])).begin(), to.size(), to.begin());
   }

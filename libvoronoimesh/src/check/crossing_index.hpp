@@ -54,9 +54,10 @@ public:
                                  std::span<const uint8_t> involved = {}, std::span<const Triangle> corner_fans = {});
 
   /// Carries the index over to a mesh rebuilt from this one (a collapse
-  /// renumbers triangles and nodes): `old_triangle[t]` and `old_node[n]` are the
-  /// old ids of new triangle t and node n, increasing; `corner_fans` are the new
-  /// mesh's. Triangles that lost a node are filed again at the next call;
+  /// renumbers triangles and nodes; a remesh also makes new ones): `old_triangle[t]`
+  /// and `old_node[n]` are the old ids of new triangle t and node n, increasing
+  /// but for -1, which marks a new one; `corner_fans` are the new mesh's.
+  /// Triangles that lost a node and new ones are filed at the next call;
   /// the others keep their filing, so no rebuild is needed.
   void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
                 std::span<const Triangle> corner_fans);
@@ -72,6 +73,7 @@ public:
 private:
   /// Where a triangle is filed: its grown box, the grid level it is filed in
   /// and the first cell of the box there, and the nodes and fans it had.
+  /// Level -1: not filed yet (a triangle renumber() was given as new), in no cell.
   struct Filing {
     Bounds box;
     std::array<int64_t, 3> first{};

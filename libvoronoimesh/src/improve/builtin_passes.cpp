@@ -63,7 +63,8 @@ public:
     RemeshParams params = params_;
     params.max_triangles = max_triangles_;
     params.guard_crossings = c.guard_crossings;
-    remesh_edges(c.mesh, c.field, reference_, params);
+    const RemeshStats done = remesh_edges(c.mesh, c.field, reference_, params);
+    if (!done.old_triangles.empty()) c.guard.renumbered(c.mesh, done.old_triangles, done.old_nodes);
   }
 
 private:

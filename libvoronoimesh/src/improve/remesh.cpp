@@ -231,9 +231,11 @@ std::vector<uint8_t> in_small_pieces(const NodeMesh& m) {
 /// new ones; `parents` gets each new node's edge) at its midpoint (whose target, appended to `target`, is the mean
 /// of its ends'), in every triangle that has it; each triangle is
 /// cut by the pattern of its split edges (two split edges: the shorter diagonal
-/// of the remaining quad). Returns the number of edges split.
+/// of the remaining quad). `origin` (one entry per triangle) follows the
+/// triangles: an uncut one keeps its entry, the pieces of a cut one get -1.
+/// Returns the number of edges split.
 size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<uint8_t>& held,
-                        std::vector<std::array<int32_t, 2>>& parents) {
+                        std::vector<std::array<int32_t, 2>>& parents, std::vector<int32_t>& origin) {
   std::unordered_map<uint64_t, int32_t> midpoint; // edge (low, high) -> new node
   auto key = [](int32_t u, int32_t v) { return uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)); };
   for (const auto& t : m.triangles)
@@ -252,9 +254,11 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
   if (midpoint.empty()) return 0;
   std::vector<std::array<int32_t, 3>> triangles;
   std::vector<PhasePair> pairs;
+  std::vector<int32_t> origins;
   auto add = [&](int32_t a, int32_t b, int32_t c, const PhasePair& p) {
     triangles.push_back({a, b, c});
     pairs.push_back(p);
+    origins.push_back(-1);
   };
   for (size_t i = 0; i < m.num_triangles(); ++i) {
     const auto t = m.triangles[i];
@@ -268,6 +272,7 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
     }
     if (split == 0) {
       add(t[0], t[1], t[2], p);
+      origins.back() = origin[i];
     } else if (split == 3) {
       add(t[0], mid[0], mid[2], p);
       add(mid[0], t[1], mid[1], p);
@@ -299,6 +304,7 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
   }
   m.triangles = std::move(triangles);
   m.pairs = std::move(pairs);
+  origin = std::move(origins);
   return midpoint.size();
 }
 
@@ -335,6 +341,15 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // a fraction of the short edges), each on the NodeMesh the last one left:
   // the InterfaceMesh is rebuilt once, after the splits.
   NodeMesh m = mesh.to_node_mesh();
+  // The old id of each triangle and node of m, followed through every change.
+  std::vector<int32_t> triangle_was(m.num_triangles()), node_was(m.num_nodes());
+  std::iota(triangle_was.begin(), triangle_was.end(), 0);
+  std::iota(node_was.begin(), node_was.end(), 0);
+  auto follow = [](std::vector<int32_t>& old, const std::vector<int32_t>& kept) {
+    std::vector<int32_t> now(kept.size());
+    for (size_t i = 0; i < kept.size(); ++i) now[i] = old[size_t(kept[i])];
+    old = std::move(now);
+  };
   std::vector<double> target;
   bool collapsed = false, target_current = false;
   for (int round = 0; round < params.collapse_rounds; ++round) {
@@ -353,6 +368,8 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     if (done == 0) break;
     stats.collapses += done;
     detail::drop_unused_nodes(m, kept_nodes);
+    follow(triangle_was, kept_triangles);
+    follow(node_was, kept_nodes);
     collapsed = true;
     target_current = false; // its nodes were renumbered
   }
@@ -364,6 +381,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // another are undone and the nodes around them held from splitting.
   const NodeMesh unsplit = m;
   const std::vector<double> unsplit_target = target;
+  const std::vector<int32_t> unsplit_triangle_was = triangle_was;
   const size_t old_nodes = m.num_nodes();
   std::vector<uint8_t> held(old_nodes, 0);
   for (int attempt = 0;; ++attempt) {
@@ -372,7 +390,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     stats.splits = 0;
     for (int round = 0; round < kSplitRounds; ++round) {
       if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
-      const size_t splits = split_long_edges(m, target, now_held, parents);
+      const size_t splits = split_long_edges(m, target, now_held, parents, triangle_was);
       if (splits == 0) break;
       stats.splits += splits;
     }
@@ -396,12 +414,18 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     }
     m = unsplit;
     target = unsplit_target;
+    triangle_was = unsplit_triangle_was;
     if (attempt == 2) { // still crossing: no splits in this call
       stats.splits = 0;
       break;
     }
   }
-  if (collapsed || stats.splits) mesh = InterfaceMesh::from_node_mesh(m);
+  if (collapsed || stats.splits) {
+    mesh = InterfaceMesh::from_node_mesh(m);
+    node_was.resize(m.num_nodes(), -1); // the splits' midpoints
+    stats.old_triangles = std::move(triangle_was);
+    stats.old_nodes = std::move(node_was);
+  }
   return stats;
 }
 

@@ -100,12 +100,12 @@ public:
   std::vector<std::array<int32_t, 2>> crossings(const InterfaceMesh& mesh, std::span<const uint8_t> involved);
 
   /// Tells the guard that `mesh` was rebuilt from the mesh it last saw, keeping
-  /// some of its faces and nodes (a collapse), so that its index carries over.
+  /// some of its faces and nodes (a collapse, a remesh), so that its index carries over.
   /// Without this call it would notice the change by itself and build its
   /// index anew.
   /// @param mesh     the rebuilt mesh
-  /// @param old_face the old id of each face of `mesh`, increasing
-  /// @param old_node the old id of each node of `mesh`, increasing
+  /// @param old_face the old id of each face of `mesh`, increasing, or -1 for a new face
+  /// @param old_node the old id of each node of `mesh`, increasing, or -1 for a new node
   void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
 
 private:

@@ -60,6 +60,12 @@ struct RemeshParams {
 struct RemeshStats {
   size_t splits = 0;    ///< edges split
   size_t collapses = 0; ///< edges collapsed
+  /// When anything changed: the old id of each triangle of the new mesh, -1
+  /// for one the call made (with old_nodes for CrossingGuard::renumbered(), so
+  /// that the guard's index carries over); empty when nothing changed.
+  std::vector<int32_t> old_triangles;
+  /// Likewise for each node: -1 for the splits' midpoints, which come last.
+  std::vector<int32_t> old_nodes;
 };
 
 /// The target edge length at every node: params.size, or with a field and a
