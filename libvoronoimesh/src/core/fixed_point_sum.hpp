@@ -33,7 +33,17 @@ private:
   Raw to_raw(double term) const {
     // Negative, NaN and zero-unit terms count as nothing rather than as garbage bits.
     const double scaled = unit_ > 0 ? term / unit_ : 0.0;
-    return scaled > 0 ? Raw(std::ldexp(scaled, kFractionBits)) : Raw(0);
+    if (!(scaled > 0)) return 0;
+    // scaled * 2^80 truncated, as Raw(x) would do it, without the library's
+    // slow double-to-128-bit conversion (the passes sum every edge and every
+    // triangle's quality each iteration): the high 64 bits, then the rest,
+    // which is exact in a double because x and its high part share their last bits.
+    const double x = scaled * 0x1p80;
+    if (x < 0x1p63) return Raw(int64_t(x));
+    if (!(x < 0x1p126)) return Raw(std::ldexp(scaled, kFractionBits)); // beyond any sum this class makes
+    const auto high = uint64_t(x * 0x1p-64);
+    const double low = x - double(high) * 0x1p64;
+    return (Raw(high) << 64) + Raw(uint64_t(low));
   }
 
   double unit_;
