@@ -46,6 +46,19 @@ TEST(FixedPointSum, total_does_not_depend_on_the_order_or_the_split) {
   EXPECT_NEAR(forward.total(), double(exact), 1e-12 * double(exact));
 }
 
+// Each term becomes term / unit * 2^80 truncated: the same integer the
+// library's double-to-128-bit conversion gives, below 2^63 and above it.
+TEST(FixedPointSum, each_term_is_its_scaled_value_truncated) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> exponent(-80, 40), mantissa(1, 2);
+  for (int i = 0; i < 20000; ++i) {
+    const double term = mantissa(rng) * std::exp2(exponent(rng));
+    FixedPointSum sum(1.0);
+    sum.add(term);
+    EXPECT_TRUE(sum.raw() == FixedPointSum::Raw(std::ldexp(term, FixedPointSum::kFractionBits))) << term;
+  }
+}
+
 TEST(FixedPointSum, ignores_terms_that_are_not_positive_numbers) {
   FixedPointSum s(1.0);
   s.add(0.25);
