@@ -1,5 +1,6 @@
 #include "voronoimesh/improve/collapse.hpp"
 
+#include "core/parallel.hpp"
 #include "improve/collapse_peers.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
@@ -63,20 +64,26 @@ double quality_after_collapse(const InterfaceMesh& mesh, int32_t b, int32_t a) {
 /// The slivers this rank answers for, with the collapse each would make.
 std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers* peers,
                                          std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids) {
-  // Found on the OpenMesh faces so that the common case (none) costs one pass
-  // and no copy. Face f is triangle f of to_node_mesh().
-  const OMesh& om = mesh.omesh();
+  // Found on the faces so that the common case (none) costs one parallel pass
+  // and no copy. Face f is triangle f of to_node_mesh() (triangles() is
+  // current: the flips before updated it).
   const auto& pos = mesh.positions();
+  const auto& triangles = mesh.triangles();
+  // Two corners on junctions can be an edge along a junction (a triple curve
+  // with nodes bunched where a tiny face ends), which no flip may touch; a
+  // sliver with fewer is the flips' to mend.
+  std::vector<uint8_t> is_sliver(triangles.size(), 0);
+  detail::parallel_for_each_index(triangles.size(), [&](size_t f) {
+    const std::array<int32_t, 3>& c = triangles[f];
+    if (std::count_if(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) >= 3; }) < 2) return;
+    is_sliver[f] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]) < params.below_quality;
+  });
   std::vector<SliverCollapse> slivers;
-  for (auto f : om.faces()) {
-    const std::array<int32_t, 3> c = mesh.face_nodes(f);
+  for (size_t face = 0; face < triangles.size(); ++face) {
+    if (!is_sliver[face]) continue;
+    const std::array<int32_t, 3>& c = triangles[face];
     if (peers && !peers->answers_for(*std::min_element(c.begin(), c.end()))) continue;
-    // Two corners on junctions can be an edge along a junction (a triple curve
-    // with nodes bunched where a tiny face ends), which no flip may touch; a
-    // sliver with fewer is the flips' to mend.
-    if (std::count_if(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) >= 3; }) < 2) continue;
     const double q = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
-    if (q >= params.below_quality) continue;
     // The edge (b -> a) to collapse: the shortest whose b has its constraints
     // among a's, judged with the original phases; or whose ends are two
     // corners on the same box faces (quadruple points closer than the mesh
@@ -93,7 +100,7 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
       else if (corner(u) && corner(w) && mesh.box_faces()[size_t(u)] == mesh.box_faces()[size_t(w)])
         best = {len, node_ids[size_t(u)] < node_ids[size_t(w)] ? std::array{u, w} : std::array{w, u}};
     }
-    SliverCollapse s{q, triangle_ids[size_t(f.idx())], -1, -1, {}};
+    SliverCollapse s{q, triangle_ids[face], -1, -1, {}};
     const auto [a, b] = best.second;
     // A collapse that leaves a triangle no better than the sliver would trade
     // one sliver for another (voronoi30 at grid 48 with collapse_below=0.15:

@@ -40,7 +40,8 @@ struct CollapseParams {
 /// the mesh stays valid and (with guard_crossings) no triangle at a kept node
 /// crosses another surface. Rebuilds `mesh` (node ids change) when anything was
 /// collapsed.
-/// @param mesh   the mesh, changed in place (node ids change when anything was collapsed)
+/// @param mesh   the mesh, changed in place (node ids change when anything was collapsed); its
+///               triangles() current (after flips, InterfaceMesh::faces_changed())
 /// @param params which triangles to collapse, how many at most, and the crossing guard
 /// @return the number of collapses
 size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params = {});
