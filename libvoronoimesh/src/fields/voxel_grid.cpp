@@ -48,8 +48,8 @@ GridSpec volume_scene_grid(const GridSpec& voxel_grid, double voxels_per_cell, c
   GridSpec g = voxel_grid;
   const double cell = per_cell * h.minCoeff();
   if (voxels_per_cell == 0)
-    notes.push_back(cat("voxels of ", h[0], " x ", h[1], " x ", h[2], " are flat: meshed on cubic cells of ", cell,
-                        " instead (--voxels-per-cell 1 keeps the voxel grid)"));
+    notes.push_back(cat("voxels of ", h[0], " x ", h[1], " x ", h[2], " are flat: the grid has cubic cells of ", cell,
+                        " instead (--voxels-per-cell 1: the voxel grid; --grid overrides both)"));
   const Vec3 extent = voxel_grid.domain.max - voxel_grid.domain.min;
   for (int a = 0; a < 3; ++a) g.cells[size_t(a)] = 2 * std::max(1, int(std::lround(extent[a] / (2 * cell))));
   return g;
