@@ -446,19 +446,12 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
     e.id = new_triangle[size_t(e.id)];
     return e;
   });
-  // Lists by new triangle: each old list, mapped (ids keep their order).
-  PooledLists<Neighbour> near;
-  std::vector<uint32_t> sizes(old_triangle.size());
-  for (size_t t = 0; t < sizes.size(); ++t)
-    sizes[t] = old_triangle[t] < 0 ? 0 : uint32_t(near_.at(size_t(old_triangle[t])).size());
-  near.assign(sizes);
-  for (size_t t = 0; t < sizes.size(); ++t) {
-    if (sizes[t] == 0) continue;
-    const auto to = near.at(t);
-    std::copy_n(near_.at(size_t(old_triangle[t])).begin(), to.size(), to.begin());
-  }
-  near.map_items([&](Neighbour s) { return Neighbour{new_triangle[size_t(s.id)], fan_of(s.fan)}; });
-  near_ = std::move(near);
+  // Lists by new triangle: each old list where it is, mapped (ids keep their
+  // order). Copying them all cost time and memory on grain maps, which collapse
+  // junction slivers in every iteration (1,000 grains at 128^3, 20 iterations,
+  // 2 threads: 83 s and 2.26 GB peak with the copy, 72 s and 2.0 GB without).
+  near_.keep_lists(old_triangle);
+  near_.map_items([&](Neighbour s) { return Neighbour{new_triangle[size_t(s.id)], fan_of(s.fan)}; });
   fans_stale_ = true;
 }
 

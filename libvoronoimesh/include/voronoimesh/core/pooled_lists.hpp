@@ -113,6 +113,16 @@ public:
   /// Empties a list (keeping its room).
   /// @param list the list's index
   void clear(size_t list) { range_[list].size = 0; }
+  /// Keeps some lists, in a new order, without copying their items: list i
+  /// becomes the old list from[i], or a new empty one where from[i] is -1.
+  /// The room of the lists not kept stays in the pool, unused.
+  /// @param from the old index of each list, or -1
+  void keep_lists(std::span<const int32_t> from) {
+    std::vector<Range> kept(from.size());
+    for (size_t i = 0; i < from.size(); ++i)
+      if (from[i] >= 0) kept[i] = range_[size_t(from[i])];
+    range_ = std::move(kept);
+  }
   /// Replaces every item x by map(x), dropping those mapped to an id < 0.
   /// @param map a function from T to T
   template <class Map> void map_items(Map&& map) {

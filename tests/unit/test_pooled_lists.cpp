@@ -1,0 +1,43 @@
+// core/pooled_lists.hpp: keep_lists(), which carries the crossing index's
+// neighbour lists over a renumbering without copying them.
+
+#include "voronoimesh/core/pooled_lists.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace {
+
+using vm::detail::PooledLists;
+
+std::vector<int32_t> items(const PooledLists<int32_t>& lists, size_t list) {
+  const auto span = lists.at(list);
+  return {span.begin(), span.end()};
+}
+
+TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
+  PooledLists<int32_t> lists;
+  const std::vector<uint32_t> sizes{2, 3, 1};
+  lists.assign(sizes);
+  int32_t next = 0;
+  for (size_t l = 0; l < 3; ++l)
+    for (int32_t& x : lists.at(l)) x = next++; // 0 1 | 2 3 4 | 5
+  const std::vector<int32_t> from{0, -1, 2}; // list 1 dropped, a new empty one in its place
+  lists.keep_lists(from);
+  ASSERT_EQ(lists.count(), 3u);
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{0, 1}));
+  EXPECT_TRUE(items(lists, 1).empty());
+  EXPECT_EQ(items(lists, 2), (std::vector<int32_t>{5}));
+  for (int32_t x : {7, 8, 9, 10, 11}) lists.push(1, x); // the new list grows at the end of the pool
+  lists.insert_by_id(2, 4);
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{0, 1})) << "growing another list must not touch this one";
+  EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{7, 8, 9, 10, 11}));
+  EXPECT_EQ(items(lists, 2), (std::vector<int32_t>{4, 5}));
+  lists.map_items([](int32_t x) { return x % 2 ? x : -1; }); // drop the even ones
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{1}));
+  EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{7, 9, 11}));
+  EXPECT_EQ(items(lists, 2), (std::vector<int32_t>{5}));
+}
+
+} // namespace
