@@ -110,9 +110,10 @@ int run(const std::string& path, const Options& o) {
     if (c.agree == 0) missing += (missing.empty() ? "" : " ") + std::to_string(label);
   }
   const vm::MeshStats stats = vm::compute_stats(m);
-  const std::string per_cell = o.input.voxels_per_cell > 0 ? std::to_string(o.input.voxels_per_cell) : "default";
+  char per_cell[32] = "default";
+  if (o.input.voxels_per_cell > 0) std::snprintf(per_cell, sizeof per_cell, "%g", o.input.voxels_per_cell);
   std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.2f (label %d, %lld voxels) | %s | %lld | %.1f |\n",
-              path.c_str(), o.pipeline.c_str(), per_cell.c_str(), m.num_triangles(), stats.min_quality,
+              path.c_str(), o.pipeline.c_str(), per_cell, m.num_triangles(), stats.min_quality,
               stats.mean_quality, 100.0 * double(all.agree) / double(all.voxels),
               100.0 * double(interior.agree) / double(interior.voxels), worst, worst_label, (long long)worst_voxels,
               missing.empty() ? "none" : missing.c_str(), (long long)undecided, seconds);

@@ -235,8 +235,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
                           needs_every_grid_node(pv, voxels, notes);
   std::vector<int32_t> around = phases_around_small_ones(pv, voxels);
   const GridSpec grid = volume_scene_grid(field->grid(), per_cell, path, notes);
-  Scene scene{grid, field, true, std::move(voxels),
-              std::move(around), std::move(notes)};
+  Scene scene{grid, field, true, std::move(voxels), std::move(around), std::move(notes)};
   scene.needs_every_grid_node = every_node;
   return scene;
 }
