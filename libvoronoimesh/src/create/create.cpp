@@ -1,12 +1,14 @@
 #include "voronoimesh/create/create.hpp"
 
 #include "check/validate_part.hpp"
+#include "core/clock.hpp"
 #include "core/text.hpp"
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
 #include "create/limit_key_index.hpp"
 #include "create/node_values.hpp"
 #include "create/tet_cutter.hpp"
+#include "fields/node_sampling.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
 
@@ -14,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -272,12 +275,12 @@ uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t,
   return saturated(sample_bytes(grid, k, layers));
 }
 
-uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice) {
+uint64_t estimate_create_memory(const GridSpec& grid, Lattice lattice) {
   const double nodes = double(grid.cells[0] + 1) * double(grid.cells[1] + 1) * double(grid.cells[2] + 1);
   const double lattice_nodes = lattice == Lattice::bcc ? nodes / 4 : nodes;
-  // Samples of the lattice's nodes only (SampledNodes::bcc); NodeValues: id and
-  // quantized value per slot (8 B), floor and label 8 B.
-  return saturated(lattice_nodes * bytes_per_sample(k) + lattice_nodes * (8.0 * k + 8));
+  // NodeValues near interfaces at its peak: winner, lead and key (4 B each),
+  // the held flag (1 B) per lattice node.
+  return saturated(lattice_nodes * 13);
 }
 
 namespace {
@@ -354,8 +357,8 @@ std::pair<std::vector<int64_t>, size_t> offending_nodes(SlabsMesh& part, const B
 
 namespace detail {
 
-CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_range, const CreateParams& params,
-                         SlabRange owned, CreatePeers& peers, SlabsMesh& part) {
+CreateStats create_slabs(const NodeSource& field, NodeValues& values, const CreateParams& params, SlabRange owned,
+                         CreatePeers& peers, SlabsMesh& part) {
   const auto start = std::chrono::steady_clock::now();
   check_params(params);
   const GridSpec& grid = field.grid();
@@ -372,7 +375,10 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
   if (field.layers()[0] > layers[0] || field.layers()[1] < layers[1])
     throw InvalidInput(cat("create: the samples hold grid layers ", field.layers()[0], "..", field.layers()[1],
                            ", slabs ", cut[0], "..", cut[1], " need ", layers[0], "..", layers[1]));
-  const NodeScope scope{lattice.window(layers[0], layers[1]), value_range[0], value_range[1]};
+  const NodeWindow& window = values.window();
+  if (window.z0 > layers[0] || window.z1 < layers[1])
+    throw InvalidInput(cat("create: the node values hold grid layers ", window.z0, "..", window.z1, ", slabs ", cut[0],
+                           "..", cut[1], " need ", layers[0], "..", layers[1]));
   const std::array<int32_t, 2> counted = counted_layers(lattice, owned, grid.cells[2]);
   auto is_counted = [&](int64_t node) {
     const int32_t z = lattice.grid_point(node)[2];
@@ -401,8 +407,6 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
   std::fill(recut.begin() + cut[0], recut.begin() + cut[1] + 1, 1);
   CreateStats stats;
   double check_seconds = 0;
-  // Made once: each round redoes only the nodes it repairs.
-  NodeValues values(field, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), nullptr, &scope);
   for (int round = 0;; ++round) {
     CreateStats round_stats;
     part = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, owned, cut,
@@ -427,7 +431,7 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
       stats.validated = true;
       break;
     }
-    if (repair.empty()) repair.assign(size_t(scope.window.size()), NodeValues::kSnap);
+    if (repair.empty()) repair.assign(size_t(window.size()), NodeValues::kSnap);
     std::fill(recut.begin(), recut.end(), 0);
     uint64_t unsnapped = 0, untied = 0;
     // Repairs that stay at the offending nodes can move the problem to the next
@@ -449,10 +453,13 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    // Values near interfaces only: a neighbour may not be held yet, and whether
+    // snapping changed it decides its repair.
+    if (!everywhere) values.hold(field, lattice, repair, nodes);
     size_t repaired = 0; // nodes[0..repaired): those whose level changes, for values.redo()
     for (const int64_t node : nodes) {
-      if (!scope.window.contains(node)) continue; // no slab cut here uses it
-      Level& level = repair[size_t(scope.window.local(node))];
+      if (!window.contains(node)) continue; // no slab cut here uses it
+      Level& level = repair[size_t(window.local(node))];
       if (level == std::numeric_limits<Level>::max()) continue;
       nodes[repaired++] = node; // in place: never ahead of the node read
       if (!everywhere && level == NodeValues::kSnap && values.snapped(node)) {
@@ -479,26 +486,53 @@ CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_
 
 } // namespace detail
 
-CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
-  check_params(params);
-  const detail::TetLattice lattice(field.grid(), params.lattice);
+namespace {
+
+/// Create in one process from `values`, made from `source` near interfaces only.
+CreateStats create_whole(const detail::NodeSource& source, const detail::TetLattice& lattice,
+                         detail::NodeValues& values, const CreateParams& params, NodeMesh& out) {
   detail::CreatePeers alone;
   SlabsMesh part;
-  const CreateStats stats =
-      detail::create_slabs(field, detail::lattice_value_range(field, lattice, {0, field.grid().cells[2]}), params,
-                           {0, lattice.num_slabs() - 1}, alone, part);
+  const CreateStats stats = detail::create_slabs(source, values, params, {0, lattice.num_slabs() - 1}, alone, part);
   out = NodeMesh{};
-  out.domain = field.grid().domain;
-  out.outside_phase = params.close ? int32_t(field.num_phases()) : -1;
+  out.domain = source.grid().domain;
+  out.outside_phase = params.close ? int32_t(source.num_phases()) : -1;
   out.points = std::move(part.points);
   out.triangles = std::move(part.triangles);
   out.pairs = std::move(part.pairs);
   return stats;
 }
 
-} // namespace vm
+} // namespace
 
-namespace vm {
+CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params, NodeMesh& out) {
+  check_params(params);
+  const auto start = std::chrono::steady_clock::now();
+  const detail::TetLattice lattice(field.grid(), params.lattice);
+  const double h = field.grid().h();
+  const detail::NodeSource source(field);
+  detail::NodeValues values(source, lattice, params.snap * h, kUntieFraction * h, params.close);
+  const double quantizing = detail::seconds_since(start);
+  CreateStats stats = create_whole(source, lattice, values, params, out);
+  stats.seconds += quantizing;
+  return stats;
+}
+
+CreateStats create_initial_mesh(const PhaseField& field, const GridSpec& grid, int k, const CreateParams& params,
+                                NodeMesh& out, const std::function<void()>& sampled) {
+  check_params(params);
+  detail::check_phases_per_node(k);
+  const auto start = std::chrono::steady_clock::now();
+  const detail::TetLattice lattice(grid, params.lattice);
+  const detail::NodeSource source(field, grid, k);
+  detail::NodeValues values(source, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), params.close);
+  const double sampling = detail::seconds_since(start);
+  if (sampled) sampled();
+  CreateStats stats = create_whole(source, lattice, values, params, out);
+  stats.sampling_seconds = sampling;
+  stats.held_nodes = uint64_t(values.held_nodes());
+  return stats;
+}
 
 void name_phases(NodeMesh& mesh, const PhaseField& field) {
   mesh.phase_names.clear();

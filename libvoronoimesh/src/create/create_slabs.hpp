@@ -49,14 +49,14 @@ struct SlabsMesh {
   std::vector<int32_t> first_owned_slab, slab_above;
 };
 
-/// Creates the part of the mesh of slabs owned[0]..owned[1] (SlabsMesh). `field`
-/// must hold the layers of the slabs from owned[0]-1 to owned[1]+1 (those that
-/// exist); values are quantized over `value_range`, the range of the whole
-/// field, the same on every rank. Statistics count the owned slabs and the
-/// nodes of their layers; the repair counts are summed over the ranks (the
-/// rounds need them), the caller sums the rest. Throws InvalidInput as
-/// create_initial_mesh().
-CreateStats create_slabs(const SampledField& field, std::array<double, 2> value_range, const CreateParams& params,
+/// Creates the part of the mesh of slabs owned[0]..owned[1] (SlabsMesh) from
+/// `values`, whose window must hold the layers of the slabs from owned[0]-1 to
+/// owned[1]+1 (those that exist), quantized over the range of the whole field,
+/// the same on every rank; `field` is where they were read, for the repair
+/// rounds to read again. Statistics count the owned slabs and the nodes of their
+/// layers; the repair counts are summed over the ranks (the rounds need them),
+/// the caller sums the rest. Throws InvalidInput as create_initial_mesh().
+CreateStats create_slabs(const NodeSource& field, NodeValues& values, const CreateParams& params,
                          std::array<int, 2> owned, CreatePeers& peers, SlabsMesh& part);
 
 } // namespace vm::detail

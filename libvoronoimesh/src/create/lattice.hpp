@@ -48,6 +48,10 @@ public:
   /// Throws InvalidInput if `kind` is bcc and a cell count is odd.
   TetLattice(const GridSpec& grid, Lattice kind);
 
+  /// The grid whose nodes the lattice uses.
+  const GridSpec& grid() const { return grid_; }
+  /// Which tetrahedra: bcc or cube6.
+  Lattice kind() const { return kind_; }
   int num_slabs() const { return num_slabs_; }
 
   /// The slabs whose tetrahedra use lattice node `id`: first..last (bcc

@@ -5,6 +5,7 @@
 #include <tbb/blocked_range.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -18,6 +19,65 @@ uint64_t mix_bits(uint64_t x) {
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
   return x ^ (x >> 31);
+}
+
+/// The largest float not above `x`.
+float float_below(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+/// 1 for the lattice nodes whose key (their winner, or -1 where it is not sure)
+/// is -1 or differs from a neighbour's (TetLattice::for_each_neighbour), and
+/// with `box` for those on the grid's box. Nodes two grid steps or more inside
+/// the box find their neighbours at fixed id offsets (ids are affine in the grid
+/// point within each kind of node: from the node itself for its kind, from its
+/// neighbour at (-1, -1, -1) for the other kind of bcc): 34 loads instead of the
+/// general walk, which took a fifth of a label volume's create.
+std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::vector<int32_t>& key, bool box) {
+  const GridSpec& grid = lattice.grid();
+  const bool bcc = lattice.kind() == Lattice::bcc;
+  struct Offsets {
+    std::vector<int64_t> same, other; // from the node; from its other-kind neighbour at (-1, -1, -1)
+  };
+  std::array<Offsets, 2> by_parity; // bcc: cube corners (even x), centres (odd x); cube6: one kind
+  for (int32_t parity = 0; parity < 2; ++parity) {
+    const int32_t c = 2 + parity;
+    if (c + 2 > std::min({grid.cells[0], grid.cells[1], grid.cells[2]})) continue; // no inner node of this kind
+    const int64_t id = lattice.node_id(c, c, c), base = bcc ? lattice.node_id(c - 1, c - 1, c - 1) : id;
+    lattice.for_each_neighbour(id, [&](int64_t n) {
+      if (bcc && (lattice.grid_point(n)[0] & 1) != parity)
+        by_parity[size_t(parity)].other.push_back(n - base);
+      else
+        by_parity[size_t(parity)].same.push_back(n - id);
+    });
+  }
+  std::vector<uint8_t> held(key.size());
+  detail::parallel_for(tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), [&](const auto& rows) {
+    for (int64_t r = rows.begin(); r < rows.end(); ++r) {
+      const TetLattice::NodeRow row = lattice.node_row(r);
+      const bool inner_row = row.y >= 2 && row.z >= 2 && row.y + 2 <= grid.cells[1] && row.z + 2 <= grid.cells[2];
+      const bool box_row = box && (row.y == 0 || row.z == 0 || row.y == grid.cells[1] || row.z == grid.cells[2]);
+      const Offsets& around = by_parity[size_t(row.x0 & 1)];
+      for (int32_t x = 0; x < row.count; ++x) {
+        const int64_t id = row.first_id + x;
+        const int32_t gx = row.x0 + row.step * x, own = key[size_t(id)];
+        bool h = own < 0 || box_row || (box && (gx == 0 || gx == grid.cells[0]));
+        const bool inner = inner_row && gx >= 2 && gx + 2 <= grid.cells[0] && !around.same.empty();
+        if (!h && inner) {
+          for (const int64_t o : around.same) h |= key[size_t(id + o)] != own;
+          if (bcc) {
+            const int64_t base = lattice.node_id(gx - 1, row.y - 1, row.z - 1);
+            for (const int64_t o : around.other) h |= key[size_t(base + o)] != own;
+          }
+        } else if (!h) {
+          lattice.for_each_neighbour(id, [&](int64_t n) { h |= key[size_t(n)] != own; });
+        }
+        held[size_t(id)] = h;
+      }
+    }
+  });
+  return held;
 }
 
 } // namespace
@@ -46,25 +106,18 @@ std::array<double, 2> lattice_value_range(const SampledField& field, const TetLa
 NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps,
                        const std::vector<RepairLevel>* repair, const NodeScope* scope)
     : window_(scope ? scope->window : lattice.window(0, field.grid().cells[2])), k_(field.k()) {
-  const GridSpec& grid = field.grid();
-  const int64_t n_nodes = window_.size();
-  ids_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
-  values_.reset(new int32_t[size_t(n_nodes) * size_t(k_)]);
-  floor_.reset(new int32_t[size_t(n_nodes)]);
-  label_.reset(new int32_t[size_t(n_nodes)]);
-  snapped_.reset(new uint8_t[size_t(n_nodes)]);
-
+  const size_t n_nodes = size_t(window_.size()), kk = size_t(k_);
+  label_.resize(n_nodes);
+  ids_.resize(n_nodes * kk);
+  values_.resize(n_nodes * kk);
+  floor_.resize(n_nodes);
+  snapped_.resize(n_nodes);
   // One global affine map to integers, so equal values stay equal everywhere
   // and every node's numbers mean the same thing in every tetrahedron.
   const std::array<double, 2> whole =
-      scope ? std::array{scope->min_value, scope->max_value} : lattice_value_range(field, lattice, {0, grid.cells[2]});
-  lo_ = whole[0];
-  const double range = whole[1] - lo_;
-  scale_ = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
-  eps_ = std::llround(snap_eps * scale_);
-  // Small against the grid yet far above round-off, so that the caps it opens
-  // around a node are triangles validate() takes for non-degenerate.
-  untie_ = std::clamp<int64_t>(std::llround(untie_eps * scale_), 1024, int64_t(1) << 19);
+      scope ? std::array{scope->min_value, scope->max_value}
+            : lattice_value_range(field, lattice, {0, field.grid().cells[2]});
+  set_scale(whole[0], whole[1], snap_eps, untie_eps);
 
   snapped_nodes_ = detail::parallel_reduce(
       tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
@@ -83,30 +136,185 @@ NodeValues::NodeValues(const SampledField& field, const TetLattice& lattice, dou
       std::plus<>());
 }
 
-void NodeValues::redo(const SampledField& field, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+NodeValues::NodeValues(const NodeSource& source, const TetLattice& lattice, double snap_eps, double untie_eps,
+                       bool hold_box_nodes)
+    : window_(lattice.window(0, source.grid().cells[2])), k_(source.k()) {
+  const GridSpec& grid = source.grid();
+  const size_t n_nodes = size_t(window_.size()); // the whole lattice: window index = lattice id
+  label_.resize(n_nodes);
+  // Every node's winner before quantizing, its lead over the second phase
+  // (a float rounded down: a lead it shows is there) and the range.
+  std::vector<float> lead(n_nodes);
+  // The lowest grid node index with a value that is NaN or infinite: the error is the same for any schedule.
+  std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
+  using Range = std::array<double, 2>;
+  const Range none{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  const Range whole = detail::parallel_reduce(
+      tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), none,
+      [&](const tbb::blocked_range<int64_t>& rows, Range range) {
+        NodeSource::Buffer buffer;
+        SampledField::NodeSamples at;
+        for (int64_t r = rows.begin(); r < rows.end(); ++r) {
+          const TetLattice::NodeRow row = lattice.node_row(r);
+          for (int32_t x = 0; x < row.count; ++x) {
+            const GridPoint p{row.x0 + row.step * x, row.y, row.z};
+            if (!source.try_at(p, buffer, at)) {
+              const int64_t n = grid.node_index(p[0], p[1], p[2]);
+              int64_t seen = first_bad.load();
+              while (n < seen && !first_bad.compare_exchange_weak(seen, n)) {}
+              continue;
+            }
+            const size_t id = size_t(row.first_id + x);
+            label_[id] = at.ids[0];
+            lead[id] = k_ > 1 ? float_below(at.values[0] - at.values[1]) : std::numeric_limits<float>::infinity();
+            // The floor is below every stored value of its node, and slot 0 is the node's largest.
+            range = {std::min(range[0], at.floor), std::max(range[1], at.values[0])};
+          }
+        }
+        return range;
+      },
+      [](const Range& a, const Range& b) { return Range{std::min(a[0], b[0]), std::max(a[1], b[1])}; });
+  if (const int64_t bad = first_bad.load(); bad != std::numeric_limits<int64_t>::max())
+    throw_not_finite(*source.field(), grid, bad);
+  set_scale(whole[0], whole[1], snap_eps, untie_eps);
+
+  // Held: a node whose winner is not sure, or next to one, or next to a node
+  // with another winner (a corner of a tetrahedron a cut may read). The key of
+  // a node is its winner if sure, -1 if not: held nodes are those whose key or
+  // a neighbour's differs from their winner.
+  const double margin = hold_margin();
+  slot_.resize(n_nodes);
+  std::vector<int32_t>& key = slot_;
+  for (size_t id = 0; id < n_nodes; ++id) key[id] = double(lead[id]) > margin ? label_[id] : -1;
+  std::vector<float>().swap(lead);
+  const std::vector<uint8_t> held_nodes = held_near_interfaces(lattice, key, hold_box_nodes);
+  int32_t held = 0;
+  for (size_t id = 0; id < n_nodes; ++id) slot_[id] = held_nodes[id] ? held++ : -1;
+  const size_t kk = size_t(k_);
+  ids_.resize(size_t(held) * kk);
+  values_.resize(size_t(held) * kk);
+  floor_.resize(size_t(held));
+  snapped_.resize(size_t(held));
+
+  snapped_nodes_ = detail::parallel_reduce(
+      tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), uint64_t(0),
+      [&](const tbb::blocked_range<int64_t>& rows, uint64_t snapped) {
+        NodeSource::Buffer buffer;
+        for (int64_t r = rows.begin(); r < rows.end(); ++r) {
+          const TetLattice::NodeRow row = lattice.node_row(r);
+          for (int32_t x = 0; x < row.count; ++x) {
+            const int64_t id = row.first_id + x;
+            if (slot_[size_t(id)] >= 0)
+              snapped += fill(source.at({row.x0 + row.step * x, row.y, row.z}, buffer), id, id, kSnap);
+          }
+        }
+        return snapped;
+      },
+      std::plus<>());
+}
+
+void NodeValues::set_scale(double lo, double hi, double snap_eps, double untie_eps) {
+  lo_ = lo;
+  const double range = hi - lo_;
+  scale_ = range > 0 ? std::ldexp(1.0, kValueBits) / range : 1.0;
+  eps_ = std::llround(snap_eps * scale_);
+  // Small against the grid yet far above round-off, so that the caps it opens
+  // around a node are triangles validate() takes for non-degenerate.
+  untie_ = std::clamp<int64_t>(std::llround(untie_eps * scale_), 1024, int64_t(1) << 19);
+}
+
+double NodeValues::hold_margin() const {
+  // Snapping moves a phase onto another closer than eps_; a repair level lowers
+  // the winner by at most k_ untie_ (its ties and its draw) and raises another
+  // phase by at most untie_; quantizing rounds each value by half a quantum.
+  return double(std::max(eps_, untie_ * (k_ + 1)) + 2) / scale_;
+}
+
+void NodeValues::add_slots(std::span<const int64_t> nodes) {
+  const size_t kk = size_t(k_), first = floor_.size();
+  for (size_t i = 0; i < nodes.size(); ++i) slot_[size_t(nodes[i])] = int32_t(first + i);
+  const size_t held = first + nodes.size();
+  ids_.resize(held * kk);
+  values_.resize(held * kk);
+  floor_.resize(held);
+  snapped_.resize(held);
+}
+
+uint64_t NodeValues::hold_nodes(const NodeSource& source, const TetLattice& lattice,
+                                const std::vector<RepairLevel>& repair, std::vector<int64_t> nodes) {
+  if (slot_.empty()) return 0; // every node is held
+  uint64_t snapped = 0;
+  while (!nodes.empty()) {
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    std::erase_if(nodes, [&](int64_t id) { return slot_[size_t(id)] >= 0; }); // whole lattice: id = window index
+    add_slots(nodes);
+    std::vector<int32_t> before(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i) before[i] = label_[size_t(nodes[i])];
+    snapped += detail::parallel_reduce(
+        tbb::blocked_range<size_t>(0, nodes.size(), 256), uint64_t(0),
+        [&](const tbb::blocked_range<size_t>& r, uint64_t sum) {
+          NodeSource::Buffer buffer;
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            const int64_t id = nodes[i];
+            sum += fill(source.at(lattice.grid_point(id), buffer), id, id, repair.empty() ? kSnap : repair[size_t(id)]);
+          }
+          return sum;
+        },
+        std::plus<>());
+    // A node not held had a sure winner, so this finds none: it keeps the rule
+    // true should rounding ever disagree.
+    std::vector<int64_t> next;
+    for (size_t i = 0; i < nodes.size(); ++i)
+      if (label_[size_t(nodes[i])] != before[i])
+        lattice.for_each_neighbour(nodes[i], [&](int64_t n) { next.push_back(n); });
+    nodes = std::move(next);
+  }
+  return snapped;
+}
+
+void NodeValues::redo(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
                       std::span<const int64_t> nodes) {
+  std::vector<int32_t> before;
+  if (!slot_.empty()) {
+    before.resize(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i) before[i] = label_[size_t(window_.local(nodes[i]))];
+  }
   // Snapped nodes gained minus those lost: each node is counted once before and once after.
   const int64_t gained = detail::parallel_reduce(
       tbb::blocked_range<size_t>(0, nodes.size(), 256), int64_t(0),
       [&](const tbb::blocked_range<size_t>& r, int64_t sum) {
+        NodeSource::Buffer buffer;
         for (size_t i = r.begin(); i < r.end(); ++i) {
-          const int64_t id = nodes[i], n = window_.local(id);
-          const GridPoint p = lattice.grid_point(id);
-          sum -= snapped_[n];
-          sum += fill(field.at(p[0], p[1], p[2]), id, n, repair[size_t(n)]);
+          const int64_t id = nodes[i], n = window_.local(id), s = held_slot(n);
+          if (s < 0) continue; // its winner is sure at every level: filled at its level once held
+          sum -= snapped_[size_t(s)];
+          sum += fill(source.at(lattice.grid_point(id), buffer), id, n, repair[size_t(n)]);
         }
         return sum;
       },
       std::plus<>());
   snapped_nodes_ = uint64_t(int64_t(snapped_nodes_) + gained);
+  // A node whose winner changed now borders nodes a cut may read.
+  std::vector<int64_t> next;
+  for (size_t i = 0; i < before.size(); ++i)
+    if (label_[size_t(window_.local(nodes[i]))] != before[i])
+      lattice.for_each_neighbour(nodes[i], [&](int64_t n) { next.push_back(n); });
+  snapped_nodes_ += hold_nodes(source, lattice, repair, std::move(next));
 }
 
-bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t n, RepairLevel level) {
+void NodeValues::hold(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+                      std::span<const int64_t> nodes) {
+  snapped_nodes_ += hold_nodes(source, lattice, repair, std::vector<int64_t>(nodes.begin(), nodes.end()));
+}
+
+bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t local, RepairLevel level) {
+  const size_t n = size_t(held_slot(local));
   auto quantize = [&](double v) { return int32_t((v - lo_) * scale_ + 0.5); }; // v >= lo_: rounds to nearest
   const auto ids = at.ids;
   const auto vals = at.values;
-  std::copy(ids.begin(), ids.end(), ids_.get() + n * k_);
-  int32_t* q = values_.get() + n * k_;
+  std::copy(ids.begin(), ids.end(), ids_.data() + n * size_t(k_));
+  int32_t* q = values_.data() + n * size_t(k_);
   for (int s = 0; s < k_; ++s) q[s] = quantize(vals[s]);
   floor_[n] = quantize(at.floor);
   // Pairwise snapping in phase-id order (Algorithm 2, line 1): a later
@@ -150,7 +358,7 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t n
   int best = 0;
   for (int s = 1; s < k_; ++s)
     if (beats(q[s], ids[s], q[best], ids[best])) best = s;
-  label_[n] = ids[best];
+  label_[size_t(local)] = ids[best];
   return changed;
 }
 

@@ -12,11 +12,11 @@
 /// tolerance.
 
 #include "create/lattice.hpp"
+#include "create/node_source.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -45,6 +45,16 @@ struct NodeScope {
 std::array<double, 2> lattice_value_range(const SampledField& field, const TetLattice& lattice,
                                           std::array<int32_t, 2> layers);
 
+/// The quantized, snapped values of the lattice nodes, with each node's winner.
+///
+/// Held for every node, or near interfaces only: there, every node keeps its
+/// winning phase, but only the nodes a cut can read keep their values (the
+/// nodes of tetrahedra whose corners have different winners). The winner of
+/// every other node is sure: it beats every other phase there by more than
+/// snapping and any repair level can change (hold_margin()), so the node's
+/// tetrahedra stay uncut and its values are never read. A repair that changes
+/// a node's winner holds its neighbours first. A label volume's liver keeps the
+/// values of one lattice node in twelve.
 class NodeValues {
 public:
   /// How much of create's repair a node gets (create/create.cpp), by level: 0 snaps its
@@ -58,7 +68,7 @@ public:
   using RepairLevel = uint8_t;
   static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2;
 
-  /// Quantizes and snaps `field` at the nodes of `lattice`, indexed by lattice
+  /// Quantizes and snaps `field` at every node of `lattice`, indexed by lattice
   /// node id. `snap_eps` and `untie_eps` are in the field's value units. `repair`
   /// (if given, one RepairLevel per node of the window, in its numbering) says
   /// where create undoes what pinched a phase: snapping, or ties and
@@ -68,51 +78,88 @@ public:
   NodeValues(const SampledField& field, const TetLattice& lattice, double snap_eps, double untie_eps = 0,
              const std::vector<RepairLevel>* repair = nullptr, const NodeScope* scope = nullptr);
 
+  /// As above for every node of the lattice at repair level kSnap, but holding
+  /// values near interfaces only (the class comment), read from `source`, which
+  /// is read once for every node and again for the nodes held. With
+  /// `hold_box_nodes` the nodes on the grid's box are held too (closing reads them).
+  /// @throws InvalidInput for a value that is NaN or infinite
+  NodeValues(const NodeSource& source, const TetLattice& lattice, double snap_eps, double untie_eps,
+             bool hold_box_nodes);
+
   /// Computes again the `nodes` (lattice ids in the window, no repeats) whose
   /// level in `repair` changed since: the values a new NodeValues with `repair`
   /// would hold, without redoing the unchanged rest (create's repair rounds
-  /// change a few hundred nodes of millions).
-  void redo(const SampledField& field, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+  /// change a few hundred nodes of millions). Nodes not held are left as they
+  /// are (their winner is sure at every level) until held.
+  void redo(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
             std::span<const int64_t> nodes);
 
-  /// The nodes held.
-  const NodeWindow& window() const { return window_; }
+  /// Holds the values of `nodes` (lattice ids in the window) at their level in
+  /// `repair` (kSnap where it is empty), so that snapped() answers for them.
+  void hold(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+            std::span<const int64_t> nodes);
 
-  /// Stored phase ids of lattice node n (the sampled field's order).
-  std::span<const int32_t> ids(int64_t n) const { return {ids_.get() + window_.local(n) * k_, size_t(k_)}; }
-  /// Quantized, snapped values matching ids(n).
-  std::span<const int32_t> values(int64_t n) const { return {values_.get() + window_.local(n) * k_, size_t(k_)}; }
-  /// Quantized value of phase p at node n (its stored value or the node's floor).
+  /// The nodes of the window.
+  const NodeWindow& window() const { return window_; }
+  /// True when lattice node n holds its values (every node unless near interfaces only).
+  bool held(int64_t n) const { return slot(n) >= 0; }
+  /// How many nodes hold their values.
+  int64_t held_nodes() const { return slot_.empty() ? window_.size() : int64_t(floor_.size()); }
+
+  /// Stored phase ids of lattice node n (the sampled field's order); n must be held.
+  std::span<const int32_t> ids(int64_t n) const { return {ids_.data() + slot(n) * k_, size_t(k_)}; }
+  /// Quantized, snapped values matching ids(n); n must be held.
+  std::span<const int32_t> values(int64_t n) const { return {values_.data() + slot(n) * k_, size_t(k_)}; }
+  /// Quantized value of phase p at node n (its stored value or the node's floor); n must be held.
   int32_t value(int64_t n, int32_t p) const {
-    n = window_.local(n);
-    const int32_t* id = ids_.get() + n * k_;
-    for (int s = 0; s < k_; ++s)
-      if (id[s] == p) return values_[n * k_ + s];
-    return floor_[n];
+    const int64_t s = slot(n);
+    const int32_t* id = ids_.data() + s * k_;
+    for (int i = 0; i < k_; ++i)
+      if (id[i] == p) return values_[size_t(s * k_ + i)];
+    return floor_[size_t(s)];
   }
   /// The winning phase at node n in the perturbed order.
-  int32_t label(int64_t n) const { return label_[window_.local(n)]; }
-  /// Nodes whose values snapping changed.
+  int32_t label(int64_t n) const { return label_[size_t(window_.local(n))]; }
+  /// Held nodes whose values snapping changed.
   uint64_t snapped_nodes() const { return snapped_nodes_; }
-  /// True when snapping changed the values of node n.
-  bool snapped(int64_t n) const { return snapped_[window_.local(n)] != 0; }
+  /// True when snapping changed the values of node n (false for a node not held).
+  bool snapped(int64_t n) const {
+    const int64_t s = held_slot(window_.local(n));
+    return s >= 0 && snapped_[size_t(s)] != 0;
+  }
 
 private:
-  /// Fills node `id` (local index n) from what is sampled there, `at`, at
-  /// repair level `level`; returns whether snapping changed its values.
-  bool fill(const SampledField::NodeSamples& at, int64_t id, int64_t n, RepairLevel level);
+  /// Where the values of the node with window index `local` are, -1 if not held.
+  int64_t held_slot(int64_t local) const { return slot_.empty() ? local : slot_[size_t(local)]; }
+  int64_t slot(int64_t n) const { return held_slot(window_.local(n)); }
+  /// Sets the map to integers from the range of values [lo, hi].
+  void set_scale(double lo, double hi, double snap_eps, double untie_eps);
+  /// The least lead of a node's winner over its second phase, in field units,
+  /// that no snapping and no repair level can overturn (the class comment).
+  double hold_margin() const;
+  /// Gives the nodes `nodes` (window indices, not held, no repeats) their slots.
+  void add_slots(std::span<const int64_t> nodes);
+  /// Holds the values of the lattice nodes `nodes` (ids), those not yet held,
+  /// and for every node whose winner that changes, its neighbours'; returns
+  /// how many snapped among them.
+  uint64_t hold_nodes(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
+                      std::vector<int64_t> nodes);
+  /// Fills the node with lattice id `id`, window index `local`, from what is
+  /// sampled there, `at`, at repair level `level`; returns whether snapping
+  /// changed its values.
+  bool fill(const SampledField::NodeSamples& at, int64_t id, int64_t local, RepairLevel level);
 
   NodeWindow window_;
   int k_;
   // The affine map to integers (v - lo_) * scale_ and the snap and untie distances in its units.
   double lo_ = 0, scale_ = 1;
   int64_t eps_ = 0, untie_ = 0;
-  // Every entry is written once by the parallel fill, so none is zeroed first.
-  std::unique_ptr<int32_t[]> ids_;
-  std::unique_ptr<int32_t[]> values_;
-  std::unique_ptr<int32_t[]> floor_;
-  std::unique_ptr<int32_t[]> label_;
-  std::unique_ptr<uint8_t[]> snapped_;
+  std::vector<int32_t> label_;   // by window index, every node
+  std::vector<int32_t> slot_;    // by window index: where its values are, -1 if not held; empty: all held in order
+  std::vector<int32_t> ids_;     // k_ per held node
+  std::vector<int32_t> values_;  // k_ per held node
+  std::vector<int32_t> floor_;   // per held node
+  std::vector<uint8_t> snapped_; // per held node
   uint64_t snapped_nodes_ = 0;
 };
 

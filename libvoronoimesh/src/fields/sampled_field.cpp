@@ -3,26 +3,18 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include "core/parallel.hpp"
-#include "fields/top_k.hpp"
+#include "fields/node_sampling.hpp"
 
 #include <tbb/blocked_range.h>
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <limits>
 #include <span>
-#include <sstream>
 
 namespace vm {
 
 namespace {
-
-std::string point_text(const Vec3& x) {
-  std::ostringstream s;
-  s << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return s.str();
-}
 
 void check_grid(const GridSpec& grid) {
   for (int a = 0; a < 3; ++a) {
@@ -32,24 +24,6 @@ void check_grid(const GridSpec& grid) {
     if (!(grid.domain.min[a] < grid.domain.max[a]))
       throw InvalidInput(located("grid", "domain min must be below max on every axis"));
   }
-}
-
-/// The error for the first non-finite value at node `n`: evaluating again is
-/// cheaper than carrying the phase out of the parallel loop, and only happens once.
-[[noreturn]] void throw_not_finite(const PhaseField& field, const GridSpec& grid, int64_t n) {
-  const auto nodes = grid.nodes();
-  const Vec3 x = grid.node_position(n % nodes[0], (n / nodes[0]) % nodes[1], n / (nodes[0] * nodes[1]));
-  std::vector<double> v(size_t(field.num_phases()));
-  field.values(x, v);
-  int i = 0;
-  while (i + 1 < int(v.size()) && std::isfinite(v[size_t(i)])) ++i;
-  const std::string what = std::isnan(v[size_t(i)]) ? "NaN" : "infinite";
-  throw InvalidInput(located(field.describe_phase(i), "value is " + what + " at " + point_text(x)));
-}
-
-/// The node's floor value, from its kept values (largest first).
-double node_floor(std::span<const double> vals, double h) {
-  return detail::floor_below(vals.front(), vals.back(), h);
 }
 
 } // namespace
@@ -69,8 +43,7 @@ SampledField SampledField::sample(const PhaseField& field, const GridSpec& grid,
 
 SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec& grid, int k,
                                         std::array<int32_t, 2> layers, SampledNodes which) {
-  if (k < 1 || k > 16)
-    throw InvalidInput(located("sample", "k (phases kept per node) must be between 1 and 16, got " + std::to_string(k)));
+  detail::check_phases_per_node(k);
   check_grid(grid);
   if (layers[0] < 0 || layers[1] > grid.cells[2] || layers[0] > layers[1])
     throw InvalidInput(located("sample", "layers " + std::to_string(layers[0]) + ".." + std::to_string(layers[1]) +
@@ -97,8 +70,6 @@ SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec&
   s.ids_.resize(size_t(count) * kk);
   s.values_.resize(size_t(count) * kk);
   s.floor_.resize(size_t(count));
-  const double h = grid.h();
-
   // Lowest node index holding a NaN or infinity. Nodes above it are skipped and
   // nodes below it are all visited, so the error reported does not depend on
   // scheduling.
@@ -119,18 +90,16 @@ SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec&
         const int64_t at = s.slot(i, j, kz);
         const std::span<int32_t> ids{&s.ids_[size_t(at) * kk], kk};
         const std::span<double> vals{&s.values_[size_t(at) * kk], kk};
-        field.top_values(grid.node_position(i, j, kz), ids, vals);
-        if (!std::all_of(vals.begin(), vals.end(), [](double d) { return std::isfinite(d); })) {
+        if (!detail::sample_node(field, grid, i, j, kz, ids, vals, s.floor_[size_t(at)])) {
           int64_t seen = first_bad.load();
           while (n - s.first_node_ < seen && !first_bad.compare_exchange_weak(seen, n - s.first_node_)) {}
           return;
         }
-        s.floor_[size_t(at)] = node_floor(vals, h);
       }
     }
   });
   if (const int64_t bad = first_bad.load(); bad != std::numeric_limits<int64_t>::max())
-    throw_not_finite(field, grid, bad + s.first_node_);
+    detail::throw_not_finite(field, grid, bad + s.first_node_);
   s.find_range();
   return s;
 }

@@ -107,13 +107,21 @@ std::vector<Layers> windows(const Plan& p, const GridSpec& grid, Lattice kind) {
 
 /// Bytes of a rank's part of the mesh per interface tetrahedron of its slabs:
 /// create's vertices with their exact keys, triangles and indices, then the
-/// MeshPart. One process's peak memory beyond estimate_create_memory() was
+/// MeshPart. One process's peak memory beyond its samples and node values was
 /// 200-265 B per cut tetrahedron (the four spheres and voronoi30 at 64^3 to
 /// 192^3, `/usr/bin/time -f %M voronoimesh create`); the part adds its copy.
 constexpr double kMeshBytesPerInterfaceTet = 300;
 
 std::string grid_text(const GridSpec& grid) {
   return vm::detail::cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid");
+}
+
+/// Bytes of the lattice node values of `window`'s grid, every node held
+/// (NodeValues from samples): id and quantized value per phase kept (8 B),
+/// floor and winner (8 B), snap flag (1 B).
+double node_values_bytes(const GridSpec& window, int k, Lattice kind) {
+  const double nodes = double(window.cells[0] + 1) * double(window.cells[1] + 1) * double(window.cells[2] + 1);
+  return (kind == Lattice::bcc ? nodes / 4 : nodes) * (8.0 * k + 9);
 }
 
 /// Refuses, before the windows move, a rank whose peak will not fit in its
@@ -124,8 +132,8 @@ void refuse_window_beyond_share(const detail::MemoryShare& share, const SampledF
   GridSpec w = block.grid();
   w.cells[2] = window[1] - window[0];
   const double bytes = double(estimate_sample_memory(block.grid(), block.k(), block.layers())) +
-                       double(estimate_create_memory(w, block.k(), kind)) +
-                       kMeshBytesPerInterfaceTet * double(interface_tets);
+                       double(estimate_sample_memory(block.grid(), block.k(), window)) +
+                       node_values_bytes(w, block.k(), kind) + kMeshBytesPerInterfaceTet * double(interface_tets);
   detail::refuse_beyond_share(share, bytes,
                               vm::detail::cat("grid: slabs ", slabs[0], "..", slabs[1], " (layers ", window[0], "..",
                                               window[1], ") of ", grid_text(block.grid())));
@@ -224,7 +232,13 @@ MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const S
   release();
   MpiPeers peers(comm);
   SlabsMesh part;
-  const CreateStats mine = vm::detail::create_slabs(window, p.range, params, owned, peers, part);
+  // Every node of the window held: winners sure by the field's values need
+  // the neighbours' winners, which the window's edges lack.
+  const vm::detail::TetLattice lattice(grid, params.lattice);
+  const Layers layers = wanted[size_t(comm.rank())];
+  const vm::detail::NodeScope scope{lattice.window(layers[0], layers[1]), p.range[0], p.range[1]};
+  vm::detail::NodeValues values(window, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), nullptr, &scope);
+  const CreateStats mine = vm::detail::create_slabs(window, values, params, owned, peers, part);
   MeshPart out = number(comm, part, owned);
   out.domain = grid.domain;
   out.outside_phase = params.close ? int32_t(window.num_phases()) : -1;

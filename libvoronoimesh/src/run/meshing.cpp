@@ -3,6 +3,7 @@
 
 #include "voronoimesh/run/meshing.hpp"
 
+#include "core/clock.hpp"
 #include "core/memory.hpp"
 #include "core/staged_outputs.hpp"
 #include "core/text.hpp"
@@ -36,10 +37,6 @@ bool RunObserver::stop_requested() { return false; }
 namespace {
 
 using detail::cat;
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 void require_field(const Scene& scene) {
   if (!scene.field) throw InvalidInput("scene: no phase field");
@@ -219,7 +216,7 @@ Scene read_input(const std::string& path, const InputOptions& options, RunObserv
   begin(observer, Stage::read, "reading " + path + "...");
   const auto start = std::chrono::steady_clock::now();
   Scene scene = load_input(path, options);
-  if (observer) observer->input_read(path, scene, seconds_since(start));
+  if (observer) observer->input_read(path, scene, detail::seconds_since(start));
   for (const std::string& line : scene.notes)
     if (observer) observer->note(line);
   return scene;
@@ -251,7 +248,7 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* obse
   const auto limit = detail::thread_limit(o);
   const CreateParams params = create_params(scene, o);
   const std::string too_big =
-      detail::beyond_memory(double(estimate_create_memory(grid, o.top_k, params.lattice)),
+      detail::beyond_memory(double(estimate_create_memory(grid, params.lattice)),
                             cat("a ", grid.cells[0], "x", grid.cells[1], "x", grid.cells[2], " grid"));
   if (!too_big.empty()) throw InvalidOption("grid", too_big);
 
@@ -261,13 +258,10 @@ NodeMesh create_mesh(const Scene& scene, const MeshOptions& o, RunObserver* obse
   // The bcc lattice reads a quarter of the grid's nodes: only those are sampled.
   const SampledNodes sampled = params.lattice == Lattice::bcc ? SampledNodes::bcc : SampledNodes::all;
   begin(observer, Stage::sample, cat("sampling ", SampledField::count_nodes(grid, sampled), " grid nodes..."));
-  const auto start = std::chrono::steady_clock::now();
-  const SampledField samples = SampledField::sample(*scene.field, grid, o.top_k, sampled);
-  report.sampling_seconds = seconds_since(start);
-
-  begin(observer, Stage::create, "creating the mesh...");
   NodeMesh mesh;
-  report.stats = create_initial_mesh(samples, params, mesh);
+  report.stats = create_initial_mesh(*scene.field, grid, o.top_k, params, mesh,
+                                     [&] { begin(observer, Stage::create, "creating the mesh..."); });
+  report.sampling_seconds = report.stats.sampling_seconds;
   name_phases(mesh, *phases_of_mesh(mesh, scene.field));
   if (o.validate && !report.stats.validated) require_valid(mesh, "the created mesh");
   report.nodes = mesh.num_nodes();

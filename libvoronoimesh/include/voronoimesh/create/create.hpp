@@ -6,6 +6,7 @@
 #include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <cstdint>
+#include <functional>
 
 namespace vm {
 
@@ -40,11 +41,15 @@ struct CreateStats {
   uint64_t coincident_pairs = 0;   ///< couples of triangles on the same three points, resolved
   uint64_t degenerate_cuts = 0;    ///< ties the perturbation could not order (should stay 0)
   uint64_t box_triangles = 0;      ///< triangles on the box faces (with close)
-  uint64_t snapped_nodes = 0;      ///< lattice nodes whose values snapping changed
+  uint64_t snapped_nodes = 0;      ///< lattice nodes near interfaces whose values snapping changed
   uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
   uint64_t untied_nodes = 0;       ///< nodes whose ties in the data were broken because they pinched a phase
   int repair_rounds = 0;           ///< extra extractions that undoing snapping and ties needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
+  /// Wall time of sampling the field, where create samples it itself (create_initial_mesh() from a PhaseField).
+  double sampling_seconds = 0;
+  /// Lattice nodes whose values create held, where it samples the field itself: those near interfaces.
+  uint64_t held_nodes = 0;
   double check_seconds = 0;        ///< of which validating the result and undoing pinches
   /// The mesh returned passed validate() inside create (which validates every
   /// mesh it makes, to find pinches): callers need not validate it again.
@@ -70,19 +75,19 @@ constexpr double kUntieFraction = 1e-3;
 /// @return `grid`, with even cell counts for bcc; unchanged for cube6
 GridSpec grid_for_lattice(const GridSpec& grid, Lattice lattice);
 
-/// Bytes that sampling `grid` with `k` phases per node and creating the mesh
-/// will need at least (field samples of the lattice's nodes, SampledNodes::bcc
-/// for the bcc lattice; lattice node values; the mesh itself is
-/// usually far smaller). Used to refuse impossible sizes before starting.
+/// Bytes that create_initial_mesh() from a PhaseField on `grid` will need at
+/// least: each lattice node's winner and lead over the second phase while it
+/// finds the nodes near interfaces. The values of those nodes (8 B per phase
+/// kept, k per node) and the mesh, both far smaller on most inputs, depend on
+/// the field and are not counted. Used to refuse impossible sizes before starting.
 /// @param grid    the grid to sample (from grid_for_lattice())
-/// @param k       phases kept per grid node
 /// @param lattice the background tetrahedra
 /// @return the bytes, saturated at UINT64_MAX
-uint64_t estimate_create_memory(const GridSpec& grid, int k, Lattice lattice);
+uint64_t estimate_create_memory(const GridSpec& grid, Lattice lattice);
 
 /// Bytes that sampling grid layers layers[0]..layers[1] of `grid` with `k`
-/// phases per node takes (SampledField::sample()): the first part of
-/// estimate_create_memory(), for one rank's block of a distributed create.
+/// phases per node takes (SampledField::sample()), for one rank's block of a
+/// distributed create.
 /// @param grid   the whole grid
 /// @param k      phases kept per grid node
 /// @param layers the first and last grid layer (along z) of the block, inclusive
@@ -101,6 +106,22 @@ uint64_t estimate_sample_memory(const GridSpec& grid, int k, std::array<int32_t,
 /// @throws InvalidInput for a snap outside [0, 0.5] (InvalidOption "snap") or an odd grid with bcc
 CreateStats create_initial_mesh(const SampledField& field, const CreateParams& params,
                                 NodeMesh& out);
+
+/// As create_initial_mesh() from samples, sampling `field` on `grid` itself with
+/// `k` phases per node (SampledField::sample()), the same mesh without holding
+/// the samples of every node: it reads the field once at every lattice node for
+/// the winning phase, and again near interfaces for the values it cuts (memory:
+/// about 8 B per lattice node, and k, ids and values, near interfaces only).
+/// @param field   the phase functions
+/// @param grid    the grid to sample them on (from grid_for_lattice())
+/// @param k       phases kept per node, in [1, 16]
+/// @param params  the lattice, snapping threshold and whether to close the domain
+/// @param out     receives the mesh, as create_initial_mesh() from samples
+/// @param sampled if given, called once the field is sampled, before the mesh is cut (progress)
+/// @return what create did, with sampling_seconds and held_nodes set
+/// @throws InvalidInput as create_initial_mesh() from samples and SampledField::sample()
+CreateStats create_initial_mesh(const PhaseField& field, const GridSpec& grid, int k, const CreateParams& params,
+                                NodeMesh& out, const std::function<void()>& sampled = {});
 
 /// Sets mesh.phase_names, mesh.phase_labels (left empty when every label is
 /// the phase id) and mesh.phase_colors (empty when no phase has a colour) from
