@@ -1,5 +1,6 @@
 // core/pooled_lists.hpp: keep_lists(), which carries the crossing index's
-// neighbour lists over a renumbering without copying them.
+// neighbour lists over a renumbering without copying them, and map_items() by
+// ranges of lists, which the index maps in parallel.
 
 #include "voronoimesh/core/pooled_lists.hpp"
 
@@ -38,6 +39,21 @@ TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
   EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{1}));
   EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{7, 9, 11}));
   EXPECT_EQ(items(lists, 2), (std::vector<int32_t>{5}));
+}
+
+TEST(PooledLists, map_items_of_a_range_of_lists_leaves_the_others) {
+  PooledLists<int32_t> lists;
+  lists.assign(std::vector<uint32_t>{2, 2, 2, 2});
+  int32_t next = 0;
+  for (size_t l = 0; l < 4; ++l)
+    for (int32_t& x : lists.at(l)) x = next++; // 0 1 | 2 3 | 4 5 | 6 7
+  lists.map_items([](int32_t x) { return x % 2 ? 10 * x : -1; }, 1, 3);
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{0, 1}));
+  EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{30}));
+  EXPECT_EQ(items(lists, 2), (std::vector<int32_t>{50}));
+  EXPECT_EQ(items(lists, 3), (std::vector<int32_t>{6, 7}));
+  lists.map_items([](int32_t x) { return x + 1; }, 3, 99); // past the end: clamped
+  EXPECT_EQ(items(lists, 3), (std::vector<int32_t>{7, 8}));
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -123,10 +124,15 @@ public:
       if (from[i] >= 0) kept[i] = range_[size_t(from[i])];
     range_ = std::move(kept);
   }
-  /// Replaces every item x by map(x), dropping those mapped to an id < 0.
-  /// @param map a function from T to T
-  template <class Map> void map_items(Map&& map) {
-    for (Range& r : range_) {
+  /// Replaces every item x of lists first..last-1 (all by default) by map(x),
+  /// dropping those mapped to an id < 0. Lists share no items: callers may map
+  /// disjoint ranges of lists in parallel.
+  /// @param map   a function from T to T
+  /// @param first the first list to map
+  /// @param last  one past the last list to map (clamped to count())
+  template <class Map> void map_items(Map&& map, size_t first = 0, size_t last = SIZE_MAX) {
+    for (size_t list = first; list < std::min(last, range_.size()); ++list) {
+      Range& r = range_[list];
       uint32_t kept = 0;
       for (uint32_t i = 0; i < r.size; ++i) {
         const T item = map(pool_[r.begin + i]);
