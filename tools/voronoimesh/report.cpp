@@ -41,13 +41,12 @@ void Report::input_read(const std::string&, const vm::Scene& scene, double secon
 void Report::created(const vm::CreateReport& r) {
   char line[384];
   std::snprintf(line, sizeof line,
-                "create: grid %dx%dx%d (%s), %zu vertices, %zu triangles; sampling %.3f s (values held at %llu "
-                "nodes near interfaces), create %.3f s (%llu tets, %llu cut; check %.3f s); snapping undone at %llu "
+                "create: grid %dx%dx%d (%s), %zu vertices, %zu triangles; sampling %.3f s, create %.3f s "
+                "(%llu tets, %llu cut, values held at %llu nodes near them; check %.3f s); snapping undone at %llu "
                 "nodes",
                 r.grid.cells[0], r.grid.cells[1], r.grid.cells[2], r.lattice == vm::Lattice::cube6 ? "cube6" : "bcc",
-                r.nodes, r.triangles, r.sampling_seconds, (unsigned long long)r.stats.held_nodes, r.stats.seconds,
-                (unsigned long long)r.stats.tets_visited,
-                (unsigned long long)r.stats.tets_cut, r.stats.check_seconds,
+                r.nodes, r.triangles, r.sampling_seconds, r.stats.seconds, (unsigned long long)r.stats.tets_visited,
+                (unsigned long long)r.stats.tets_cut, (unsigned long long)r.stats.held_nodes, r.stats.check_seconds,
                 (unsigned long long)r.stats.unsnapped_nodes);
   say(line);
 }

@@ -493,7 +493,8 @@ CreateStats create_whole(const detail::NodeSource& source, const detail::TetLatt
                          detail::NodeValues& values, const CreateParams& params, NodeMesh& out) {
   detail::CreatePeers alone;
   SlabsMesh part;
-  const CreateStats stats = detail::create_slabs(source, values, params, {0, lattice.num_slabs() - 1}, alone, part);
+  CreateStats stats = detail::create_slabs(source, values, params, {0, lattice.num_slabs() - 1}, alone, part);
+  stats.held_nodes = uint64_t(values.held_nodes());
   out = NodeMesh{};
   out.domain = source.grid().domain;
   out.outside_phase = params.close ? int32_t(source.num_phases()) : -1;
@@ -530,7 +531,6 @@ CreateStats create_initial_mesh(const PhaseField& field, const GridSpec& grid, i
   if (sampled) sampled();
   CreateStats stats = create_whole(source, lattice, values, params, out);
   stats.sampling_seconds = sampling;
-  stats.held_nodes = uint64_t(values.held_nodes());
   return stats;
 }
 

@@ -210,7 +210,7 @@ CreateStats sum_stats(Comm& comm, const CreateStats& mine) {
   for (uint64_t CreateStats::*field :
        {&CreateStats::tets_visited, &CreateStats::tets_cut, &CreateStats::polygons, &CreateStats::collapsed_polygons,
         &CreateStats::dropped_triangles, &CreateStats::coincident_pairs, &CreateStats::degenerate_cuts,
-        &CreateStats::box_triangles, &CreateStats::snapped_nodes})
+        &CreateStats::box_triangles, &CreateStats::snapped_nodes, &CreateStats::held_nodes})
     s.*field = comm.sum(mine.*field);
   s.seconds = comm.max(mine.seconds);
   s.check_seconds = comm.max(mine.check_seconds);
@@ -238,7 +238,8 @@ MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const S
   const Layers layers = wanted[size_t(comm.rank())];
   const vm::detail::NodeScope scope{lattice.window(layers[0], layers[1]), p.range[0], p.range[1]};
   vm::detail::NodeValues values(window, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), nullptr, &scope);
-  const CreateStats mine = vm::detail::create_slabs(window, values, params, owned, peers, part);
+  CreateStats mine = vm::detail::create_slabs(window, values, params, owned, peers, part);
+  mine.held_nodes = uint64_t(values.held_nodes());
   MeshPart out = number(comm, part, owned);
   out.domain = grid.domain;
   out.outside_phase = params.close ? int32_t(window.num_phases()) : -1;

@@ -48,7 +48,8 @@ struct CreateStats {
   double seconds = 0;              ///< wall time of create (sampling excluded)
   /// Wall time of sampling the field, where create samples it itself (create_initial_mesh() from a PhaseField).
   double sampling_seconds = 0;
-  /// Lattice nodes whose values create held, where it samples the field itself: those near interfaces.
+  /// Lattice nodes whose values create held: those near interfaces (a distributed create: every node
+  /// of each rank's window, summed over the ranks).
   uint64_t held_nodes = 0;
   double check_seconds = 0;        ///< of which validating the result and undoing pinches
   /// The mesh returned passed validate() inside create (which validates every
@@ -118,7 +119,7 @@ CreateStats create_initial_mesh(const SampledField& field, const CreateParams& p
 /// @param params  the lattice, snapping threshold and whether to close the domain
 /// @param out     receives the mesh, as create_initial_mesh() from samples
 /// @param sampled if given, called once the field is sampled, before the mesh is cut (progress)
-/// @return what create did, with sampling_seconds and held_nodes set
+/// @return what create did, with sampling_seconds set
 /// @throws InvalidInput as create_initial_mesh() from samples and SampledField::sample()
 CreateStats create_initial_mesh(const PhaseField& field, const GridSpec& grid, int k, const CreateParams& params,
                                 NodeMesh& out, const std::function<void()>& sampled = {});
