@@ -30,8 +30,9 @@ public:
 };
 
 /// Where a vertex of a part was made: bits for the slab below the owned ones,
-/// the owned slabs and the slab above them.
-enum VertexWhere : uint8_t { kBelowOwned = 1, kInOwned = 2, kAboveOwned = 4 };
+/// the owned slabs and the slab above them; and whether a slab cut in this
+/// repair round made it (its other slabs are as the last round left them).
+enum VertexWhere : uint8_t { kBelowOwned = 1, kInOwned = 2, kAboveOwned = 4, kRecut = 8 };
 
 /// What one rank's cut slabs produced, after resolving coincident triangles.
 /// Vertices are numbered by first appearance over the cut slabs in order, so
