@@ -6,6 +6,7 @@
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
 #include "create/limit_key_index.hpp"
+#include "create/slab_numbering.hpp"
 #include "create/node_values.hpp"
 #include "create/tet_cutter.hpp"
 #include "fields/node_sampling.hpp"
@@ -98,30 +99,6 @@ void cut_slab(const detail::TetLattice& lattice, const detail::NodeValues& value
   });
 }
 
-/// Numbers the limit points of slab `s` among those of `e` (adding the new
-/// ones), into `global`; marks where they were made.
-void ids_of_slab(const SlabResult& s, LimitKeyIndex& ids, SlabsMesh& e, uint8_t where, std::vector<int32_t>& global) {
-  global.resize(s.keys.size());
-  for (size_t k = 0; k < s.keys.size(); ++k) {
-    const auto [id, inserted] = ids.insert(s.keys[k], e.keys);
-    if (inserted) {
-      e.points.push_back(s.points[k]);
-      e.keys.push_back(s.keys[k]);
-      e.where.push_back(0);
-    }
-    e.where[size_t(id)] |= where;
-    global[k] = id;
-  }
-}
-
-void append_triangles(const SlabResult& s, const std::vector<int32_t>& global, SlabsMesh& e) {
-  for (size_t t = 0; t < s.triangles.size(); ++t) {
-    const auto& tri = s.triangles[t];
-    e.triangles.push_back({global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]});
-    e.pairs.push_back(s.pairs[t]);
-  }
-}
-
 /// Cuts the tetrahedra of the slabs cut[0]..cut[1] flagged in `recut` (in
 /// parallel, slab by slab; the others keep what an earlier round found, their
 /// nodes' values being unchanged) and numbers the limit points of those slabs
@@ -138,25 +115,22 @@ SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& v
     cut_slab(lattice, values, grid, s, outside, slabs[size_t(s)]);
   });
 
+  std::vector<const std::vector<LimitKey>*> slab_keys;
+  for (int slab = cut[0]; slab <= cut[1]; ++slab) slab_keys.push_back(&slabs[size_t(slab)].keys);
+  const detail::SlabNumbering numbering = detail::number_slabs(lattice, slab_keys, cut[0]);
+  const size_t n = size_t(cut[1] - cut[0] + 1), points = size_t(numbering.fresh[n]);
   SlabsMesh e;
-  LimitKeyIndex ids;
-  size_t keys = 0, triangles = 0;
-  for (int s = cut[0]; s <= cut[1]; ++s)
-    keys += slabs[size_t(s)].keys.size(), triangles += slabs[size_t(s)].triangles.size();
-  ids.reserve(keys);
-  e.points.reserve(keys);
-  e.keys.reserve(keys);
-  e.where.reserve(keys);
-  e.triangles.reserve(triangles);
-  e.pairs.reserve(triangles);
-  std::vector<int32_t> global;
-  for (int slab = cut[0]; slab <= cut[1]; ++slab) {
+  e.points.resize(points);
+  e.keys.resize(points);
+  e.where.assign(points, 0);
+  std::vector<size_t> first_triangle(n + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const int slab = cut[0] + int(i);
     const SlabResult& s = slabs[size_t(slab)];
+    first_triangle[i + 1] = first_triangle[i] + s.triangles.size();
     const uint8_t place = slab < owned[0]   ? detail::kBelowOwned
                           : slab > owned[1] ? detail::kAboveOwned
                                             : detail::kInOwned;
-    const uint8_t where = place | (recut[size_t(slab)] ? detail::kRecut : 0);
-    if (slab == owned[0]) e.owned_begin = e.triangles.size();
     if (place == detail::kInOwned) {
       stats.tets_visited += s.tets;
       stats.tets_cut += s.counters.tets_cut;
@@ -166,12 +140,31 @@ SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& v
       stats.dropped_triangles += s.dropped;
       stats.box_triangles += s.box_triangles;
     }
-    ids_of_slab(s, ids, e, where, global);
-    append_triangles(s, global, e);
-    if (slab == owned[0]) e.first_owned_slab = global;
-    if (slab == owned[1]) e.owned_end = e.triangles.size();
+    // Marks where each point was made, from every slab that holds it.
+    const uint8_t where = place | (recut[size_t(slab)] ? detail::kRecut : 0);
+    for (const int32_t id : numbering.global[i]) e.where[size_t(id)] |= where;
+    if (slab == owned[0]) e.owned_begin = first_triangle[i];
+    if (slab == owned[1]) e.owned_end = first_triangle[i + 1];
   }
-  if (cut[1] > owned[1]) e.slab_above = global;
+  e.triangles.resize(first_triangle[n]);
+  e.pairs.resize(first_triangle[n]);
+  // Each point is written by the slab where it first appears.
+  detail::parallel_for(size_t(0), n, [&](size_t i) {
+    const SlabResult& s = slabs[size_t(cut[0]) + i];
+    const std::vector<int32_t>& global = numbering.global[i];
+    for (size_t k = 0; k < s.keys.size(); ++k)
+      if (global[k] >= numbering.fresh[i] && global[k] < numbering.fresh[i + 1]) {
+        e.points[size_t(global[k])] = s.points[k];
+        e.keys[size_t(global[k])] = s.keys[k];
+      }
+    for (size_t t = 0; t < s.triangles.size(); ++t) {
+      const auto& tri = s.triangles[t];
+      e.triangles[first_triangle[i] + t] = {global[size_t(tri[0])], global[size_t(tri[1])], global[size_t(tri[2])]};
+      e.pairs[first_triangle[i] + t] = s.pairs[t];
+    }
+  });
+  e.first_owned_slab = numbering.global[size_t(owned[0] - cut[0])];
+  if (cut[1] > owned[1]) e.slab_above = numbering.global[n - 1];
   return e;
 }
 
@@ -416,7 +409,8 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
   double check_seconds = 0;
   for (int round = 0;; ++round) {
     CreateStats round_stats;
-    const bool every_slab_cut = std::all_of(recut.begin() + cut[0], recut.begin() + cut[1] + 1, [](char c) { return c; });
+    const bool every_slab_cut =
+        std::all_of(recut.begin() + cut[0], recut.begin() + cut[1] + 1, [](char c) { return c != 0; });
     part = extract(lattice, values, grid, params.close ? int32_t(field.num_phases()) : -1, recut, slabs, owned, cut,
                    round_stats);
     resolve_coincident_triangles(part, round_stats);

@@ -42,6 +42,30 @@ public:
     }
   }
 
+  /// Files `key` as id `id` without looking for it: for keys known to be
+  /// distinct, numbered by the caller (a slab's own keys, by position).
+  void add(const LimitKey& key, int32_t id) {
+    if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : 2 * slots_.size());
+    const uint32_t h = spread(LimitKeyHash{}(key));
+    const size_t mask = slots_.size() - 1;
+    size_t s = h & mask;
+    while (slots_[s].id >= 0) s = (s + 1) & mask;
+    slots_[s] = {h, id};
+    ++size_;
+  }
+
+  /// The id of `key` among `keys` (as insert() or add() numbered them), or -1 if absent.
+  int32_t find(const LimitKey& key, const std::vector<LimitKey>& keys) const {
+    if (slots_.empty()) return -1;
+    const uint32_t h = spread(LimitKeyHash{}(key));
+    const size_t mask = slots_.size() - 1;
+    for (size_t s = h & mask;; s = (s + 1) & mask) {
+      const Slot& slot = slots_[s];
+      if (slot.id < 0) return -1;
+      if (slot.hash == h && keys[size_t(slot.id)] == key) return slot.id;
+    }
+  }
+
 private:
   struct Slot {
     uint32_t hash = 0;
