@@ -6,8 +6,8 @@
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
 #include "create/limit_key_index.hpp"
-#include "create/slab_numbering.hpp"
 #include "create/node_values.hpp"
+#include "create/slab_numbering.hpp"
 #include "create/tet_cutter.hpp"
 #include "fields/node_sampling.hpp"
 #include "voronoimesh/check/validate.hpp"
@@ -427,7 +427,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
     std::vector<int64_t> nodes;
     size_t problems = 0;
     std::tie(nodes, problems) = offending_nodes(part, grid.domain, whole, !every_slab_cut);
-    check_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - check_start).count();
+    check_seconds += detail::seconds_since(check_start);
     nodes = peers.merge_nodes(std::move(nodes));
     if (peers.sum(problems) == 0) {
       stats.validated = true;
@@ -481,7 +481,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
     stats.unsnapped_nodes += unsnapped;
     stats.untied_nodes += untied;
   }
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.seconds = detail::seconds_since(start);
   stats.check_seconds = check_seconds;
   return stats;
 }

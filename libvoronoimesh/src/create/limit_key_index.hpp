@@ -30,16 +30,11 @@ public:
   std::pair<int32_t, bool> insert(const LimitKey& key, const std::vector<LimitKey>& keys) {
     if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : 2 * slots_.size());
     const uint32_t h = spread(LimitKeyHash{}(key));
-    const size_t mask = slots_.size() - 1;
-    for (size_t s = h & mask;; s = (s + 1) & mask) {
-      Slot& slot = slots_[s];
-      if (slot.id < 0) {
-        slot = {h, int32_t(keys.size())};
-        ++size_;
-        return {slot.id, true};
-      }
-      if (slot.hash == h && keys[size_t(slot.id)] == key) return {slot.id, false};
-    }
+    Slot& slot = slots_[slot_of(h, key, keys)];
+    if (slot.id >= 0) return {slot.id, false};
+    slot = {h, int32_t(keys.size())};
+    ++size_;
+    return {slot.id, true};
   }
 
   /// Files `key` as id `id` without looking for it: for keys known to be
@@ -47,23 +42,14 @@ public:
   void add(const LimitKey& key, int32_t id) {
     if (2 * (size_ + 1) > slots_.size()) rehash(slots_.empty() ? 16 : 2 * slots_.size());
     const uint32_t h = spread(LimitKeyHash{}(key));
-    const size_t mask = slots_.size() - 1;
-    size_t s = h & mask;
-    while (slots_[s].id >= 0) s = (s + 1) & mask;
-    slots_[s] = {h, id};
+    slots_[free_slot(h)] = {h, id};
     ++size_;
   }
 
   /// The id of `key` among `keys` (as insert() or add() numbered them), or -1 if absent.
   int32_t find(const LimitKey& key, const std::vector<LimitKey>& keys) const {
     if (slots_.empty()) return -1;
-    const uint32_t h = spread(LimitKeyHash{}(key));
-    const size_t mask = slots_.size() - 1;
-    for (size_t s = h & mask;; s = (s + 1) & mask) {
-      const Slot& slot = slots_[s];
-      if (slot.id < 0) return -1;
-      if (slot.hash == h && keys[size_t(slot.id)] == key) return slot.id;
-    }
+    return slots_[slot_of(spread(LimitKeyHash{}(key)), key, keys)].id;
   }
 
 private:
@@ -83,16 +69,27 @@ private:
     return uint32_t(h);
   }
 
+  /// The slot holding `key` (hash h), or the empty one where it would go.
+  size_t slot_of(uint32_t h, const LimitKey& key, const std::vector<LimitKey>& keys) const {
+    const size_t mask = slots_.size() - 1;
+    size_t s = h & mask;
+    while (slots_[s].id >= 0 && !(slots_[s].hash == h && keys[size_t(slots_[s].id)] == key)) s = (s + 1) & mask;
+    return s;
+  }
+
+  /// The first empty slot from hash h on.
+  size_t free_slot(uint32_t h) const {
+    const size_t mask = slots_.size() - 1;
+    size_t s = h & mask;
+    while (slots_[s].id >= 0) s = (s + 1) & mask;
+    return s;
+  }
+
   void rehash(size_t capacity) {
     std::vector<Slot> old(capacity);
     old.swap(slots_);
-    const size_t mask = capacity - 1;
     for (const Slot& slot : old)
-      if (slot.id >= 0) {
-        size_t s = slot.hash & mask;
-        while (slots_[s].id >= 0) s = (s + 1) & mask;
-        slots_[s] = slot;
-      }
+      if (slot.id >= 0) slots_[free_slot(slot.hash)] = slot;
   }
 
   std::vector<Slot> slots_;

@@ -38,8 +38,6 @@ public:
   int k() const { return k_; }                           ///< phases per node
   int num_phases() const { return num_phases_; }         ///< N, all phases of the field
   std::array<int32_t, 2> layers() const { return layers_; } ///< the grid layers it has samples of
-  /// The samples it holds, or nullptr when it evaluates the field.
-  const SampledField* samples() const { return samples_; }
   /// The field it evaluates, or nullptr when it holds samples.
   const PhaseField* field() const { return field_; }
 

@@ -249,8 +249,7 @@ uint64_t NodeValues::hold_nodes(const NodeSource& source, const TetLattice& latt
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
     std::erase_if(nodes, [&](int64_t id) { return slot_[size_t(id)] >= 0; }); // whole lattice: id = window index
     add_slots(nodes);
-    std::vector<int32_t> before(nodes.size());
-    for (size_t i = 0; i < nodes.size(); ++i) before[i] = label_[size_t(nodes[i])];
+    const std::vector<int32_t> before = labels_of(nodes);
     snapped += detail::parallel_reduce(
         tbb::blocked_range<size_t>(0, nodes.size(), 256), uint64_t(0),
         [&](const tbb::blocked_range<size_t>& r, uint64_t sum) {
@@ -264,22 +263,14 @@ uint64_t NodeValues::hold_nodes(const NodeSource& source, const TetLattice& latt
         std::plus<>());
     // A node not held had a sure winner, so this finds none: it keeps the rule
     // true should rounding ever disagree.
-    std::vector<int64_t> next;
-    for (size_t i = 0; i < nodes.size(); ++i)
-      if (label_[size_t(nodes[i])] != before[i])
-        lattice.for_each_neighbour(nodes[i], [&](int64_t n) { next.push_back(n); });
-    nodes = std::move(next);
+    nodes = around_new_winners(lattice, nodes, before);
   }
   return snapped;
 }
 
 void NodeValues::redo(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
                       std::span<const int64_t> nodes) {
-  std::vector<int32_t> before;
-  if (!slot_.empty()) {
-    before.resize(nodes.size());
-    for (size_t i = 0; i < nodes.size(); ++i) before[i] = label_[size_t(window_.local(nodes[i]))];
-  }
+  const std::vector<int32_t> before = slot_.empty() ? std::vector<int32_t>() : labels_of(nodes);
   // Snapped nodes gained minus those lost: each node is counted once before and once after.
   const int64_t gained = detail::parallel_reduce(
       tbb::blocked_range<size_t>(0, nodes.size(), 256), int64_t(0),
@@ -295,12 +286,21 @@ void NodeValues::redo(const NodeSource& source, const TetLattice& lattice, const
       },
       std::plus<>());
   snapped_nodes_ = uint64_t(int64_t(snapped_nodes_) + gained);
-  // A node whose winner changed now borders nodes a cut may read.
-  std::vector<int64_t> next;
-  for (size_t i = 0; i < before.size(); ++i)
-    if (label_[size_t(window_.local(nodes[i]))] != before[i])
-      lattice.for_each_neighbour(nodes[i], [&](int64_t n) { next.push_back(n); });
-  snapped_nodes_ += hold_nodes(source, lattice, repair, std::move(next));
+  if (!slot_.empty()) snapped_nodes_ += hold_nodes(source, lattice, repair, around_new_winners(lattice, nodes, before));
+}
+
+std::vector<int32_t> NodeValues::labels_of(std::span<const int64_t> nodes) const {
+  std::vector<int32_t> labels(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) labels[i] = label(nodes[i]);
+  return labels;
+}
+
+std::vector<int64_t> NodeValues::around_new_winners(const TetLattice& lattice, std::span<const int64_t> nodes,
+                                                    const std::vector<int32_t>& before) const {
+  std::vector<int64_t> around;
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (label(nodes[i]) != before[i]) lattice.for_each_neighbour(nodes[i], [&](int64_t n) { around.push_back(n); });
+  return around;
 }
 
 void NodeValues::hold(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,

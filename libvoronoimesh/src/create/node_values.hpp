@@ -53,8 +53,8 @@ std::array<double, 2> lattice_value_range(const SampledField& field, const TetLa
 /// every other node is sure: it beats every other phase there by more than
 /// snapping and any repair level can change (hold_margin()), so the node's
 /// tetrahedra stay uncut and its values are never read. A repair that changes
-/// a node's winner holds its neighbours first. A label volume's liver keeps the
-/// values of one lattice node in twelve.
+/// a node's winner holds its neighbours first. On CGAL's liver 273,269 of 6.36M
+/// lattice nodes keep their values.
 class NodeValues {
 public:
   /// How much of create's repair a node gets (create/create.cpp), by level: 0 snaps its
@@ -144,6 +144,12 @@ private:
   /// how many snapped among them.
   uint64_t hold_nodes(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
                       std::vector<int64_t> nodes);
+  /// The winners of lattice nodes `nodes` before a change.
+  std::vector<int32_t> labels_of(std::span<const int64_t> nodes) const;
+  /// The neighbours of those of `nodes` whose winner is no longer `before`'s:
+  /// they now border nodes a cut may read.
+  std::vector<int64_t> around_new_winners(const TetLattice& lattice, std::span<const int64_t> nodes,
+                                          const std::vector<int32_t>& before) const;
   /// Fills the node with lattice id `id`, window index `local`, from what is
   /// sampled there, `at`, at repair level `level`; returns whether snapping
   /// changed its values.
