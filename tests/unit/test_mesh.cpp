@@ -42,6 +42,49 @@ bool mesh_checker_ok(const OMesh& om) {
   return OpenMesh::Utils::MeshCheckerT<OMesh>(om).check(OpenMesh::Utils::MeshCheckerT<OMesh>::CHECK_ALL, log);
 }
 
+/// A random triangle soup of a few nodes on a small integer grid, with random
+/// pairs of three phases: most are refused, the rest are odd meshes.
+NodeMesh random_soup(std::mt19937& rng) {
+  NodeMesh m;
+  const int nodes = 4 + int(rng() % 4);
+  for (int i = 0; i < nodes; ++i) m.points.emplace_back(double(rng() % 7), double(rng() % 7), double(rng() % 7));
+  const int tris = 1 + int(rng() % 14);
+  for (int t = 0; t < tris; ++t) {
+    std::array<int32_t, 3> tri{};
+    for (auto& v : tri) v = int32_t(rng() % uint32_t(nodes));
+    const int32_t p = int32_t(rng() % 3);
+    m.triangles.push_back(tri);
+    m.pairs.push_back({p, p + 1 + int32_t(rng() % 2)});
+  }
+  return m;
+}
+
+/// Expects `om` to be linked as OpenMesh's add_face() links the same faces on
+/// the same vertices, added in face order: the same edges, each face's
+/// halfedges with the same opposite faces, every vertex as much on a boundary
+/// and with as many neighbours. Returns false on the first difference.
+bool linked_as_add_face_links(const OMesh& om) {
+  OMesh ref;
+  for (auto v : om.vertices()) ref.add_vertex(om.point(v));
+  for (auto f : om.faces()) {
+    std::vector<OMesh::VertexHandle> corners(om.fv_range(f).begin(), om.fv_range(f).end());
+    if (!ref.add_face(corners).is_valid()) return false;
+  }
+  if (ref.n_edges() != om.n_edges() || !mesh_checker_ok(om)) return false;
+  for (auto f : om.faces()) {
+    OMesh::HalfedgeHandle h = om.halfedge_handle(f), r = ref.halfedge_handle(OMesh::FaceHandle(f.idx()));
+    for (int k = 0; k < 3; ++k, h = om.next_halfedge_handle(h), r = ref.next_halfedge_handle(r))
+      if (om.to_vertex_handle(h) != ref.to_vertex_handle(r) ||
+          om.opposite_face_handle(h).idx() != ref.opposite_face_handle(r).idx())
+        return false;
+  }
+  for (auto v : om.vertices())
+    if (om.is_boundary(v) != ref.is_boundary(OMesh::VertexHandle(v.idx())) ||
+        om.valence(v) != ref.valence(OMesh::VertexHandle(v.idx())))
+      return false;
+  return true;
+}
+
 std::string topology_error(const NodeMesh& m) {
   try {
     InterfaceMesh::from_node_mesh(m);
@@ -213,17 +256,7 @@ TEST(InterfaceMesh, random_soups_never_crash_openmesh) {
   std::mt19937 rng(12345);
   size_t built = 0, refused = 0;
   for (int iter = 0; iter < 3000; ++iter) {
-    NodeMesh m;
-    const int nodes = 4 + int(rng() % 4);
-    for (int i = 0; i < nodes; ++i) m.points.emplace_back(double(rng() % 7), double(rng() % 7), double(rng() % 7));
-    const int tris = 1 + int(rng() % 14);
-    for (int t = 0; t < tris; ++t) {
-      std::array<int32_t, 3> tri{};
-      for (auto& v : tri) v = int32_t(rng() % uint32_t(nodes));
-      const int32_t p = int32_t(rng() % 3);
-      m.triangles.push_back(tri);
-      m.pairs.push_back({p, p + 1 + int32_t(rng() % 2)});
-    }
+    const NodeMesh m = random_soup(rng);
     try {
       const auto im = InterfaceMesh::from_node_mesh(m);
       (void)validate(im);
@@ -234,6 +267,25 @@ TEST(InterfaceMesh, random_soups_never_crash_openmesh) {
   }
   EXPECT_GT(built, 100u);
   EXPECT_GT(refused, 100u);
+}
+
+// The build links faces itself where every corner class is a fan it can
+// link alone (mesh/patch_connectivity.hpp), and through add_face() where not
+// (two unglued halfedges on the same two vertices, as in odd soups): either
+// way the mesh must be the one add_face() makes.
+TEST(InterfaceMesh, faces_are_linked_as_openmesh_add_face_links_them) {
+  std::mt19937 rng(2026);
+  size_t built = 0;
+  for (int iter = 0; iter < 20000; ++iter) {
+    const NodeMesh m = random_soup(rng);
+    if (!topology_error(m).empty()) continue;
+    ++built;
+    ASSERT_TRUE(linked_as_add_face_links(InterfaceMesh::from_node_mesh(m).omesh())) << "soup " << iter;
+  }
+  EXPECT_GT(built, 1000u);
+  for (const NodeMesh& m : {test::two_cubes(2), test::four_phase_point(), test::box_t_junction(4),
+                            test::block_grains(2, 2), test::four_spheres(12)})
+    EXPECT_TRUE(linked_as_add_face_links(InterfaceMesh::from_node_mesh(m).omesh()));
 }
 
 // The remesh pass asks NodeRings between rebuilds what it asked the

@@ -1,5 +1,7 @@
 #include "mesh/topology.hpp"
 
+#include "core/parallel.hpp"
+
 #include <algorithm>
 #include <utility>
 
@@ -22,25 +24,76 @@ NodeTriangles node_triangles(size_t num_nodes, const Triangles& tris, const std:
   return nt;
 }
 
+namespace {
+
+/// Nodes go in blocks of this many to the parallel table builds, each block's
+/// rows built on their own and laid end to end in node order afterwards, so a
+/// table is the same as one pass over the nodes would make.
+constexpr size_t kNodesPerBlock = 4096;
+
+/// Calls build(first, last, out) for each block of nodes [first, last), in
+/// parallel, and returns the blocks' outputs in node order.
+template <class Block, class Build> std::vector<Block> build_by_blocks(size_t num_nodes, const Build& build) {
+  std::vector<Block> blocks((num_nodes + kNodesPerBlock - 1) / kNodesPerBlock);
+  parallel_for_each_index(
+      blocks.size(),
+      [&](size_t b) { build(b * kNodesPerBlock, std::min(num_nodes, (b + 1) * kNodesPerBlock), blocks[b]); }, 1);
+  return blocks;
+}
+
+/// Where each block's rows and items start in the whole table (block sizes summed).
+template <class Block, class Rows, class Items>
+std::pair<std::vector<size_t>, std::vector<size_t>> block_starts(const std::vector<Block>& blocks, Rows rows,
+                                                                 Items items) {
+  std::vector<size_t> row(blocks.size() + 1, 0), item(blocks.size() + 1, 0);
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    row[b + 1] = row[b] + rows(blocks[b]);
+    item[b + 1] = item[b] + items(blocks[b]);
+  }
+  return {row, item};
+}
+
+} // namespace
+
 EdgeTable edge_table(const Triangles& tris, const NodeTriangles& nt) {
   const size_t num_nodes = nt.off.size() - 1;
-  EdgeTable et;
-  et.first.assign(num_nodes + 1, 0);
-  et.off.push_back(0);
-  et.he.reserve(nt.tri.size());
-  et.nodes.reserve(nt.tri.size() / 2);
-  EdgesAt local;
-  for (size_t a = 0; a < num_nodes; ++a) {
-    et.first[a] = int32_t(et.nodes.size());
-    local.gather(int32_t(a), tris, nt);
-    const auto base = int32_t(et.he.size());
-    for (size_t i = 0; i < local.size(); ++i) {
-      et.nodes.push_back({int32_t(a), local.other(i)});
-      et.off.push_back(base + local.halfedges_end(i));
+  struct Block {
+    std::vector<std::array<int32_t, 2>> nodes;
+    std::vector<int32_t> ends, he, first; // ends: where each edge's halfedges end in `he`
+  };
+  const auto blocks = build_by_blocks<Block>(num_nodes, [&](size_t lo, size_t hi, Block& out) {
+    EdgesAt local;
+    for (size_t a = lo; a < hi; ++a) {
+      out.first.push_back(int32_t(out.nodes.size()));
+      local.gather(int32_t(a), tris, nt);
+      const auto base = int32_t(out.he.size());
+      for (size_t i = 0; i < local.size(); ++i) {
+        out.nodes.push_back({int32_t(a), local.other(i)});
+        out.ends.push_back(base + local.halfedges_end(i));
+      }
+      out.he.insert(out.he.end(), local.halfedges().begin(), local.halfedges().end());
     }
-    et.he.insert(et.he.end(), local.halfedges().begin(), local.halfedges().end());
-  }
+  });
+  const auto [edge_start, he_start] = block_starts(
+      blocks, [](const Block& b) { return b.nodes.size(); }, [](const Block& b) { return b.he.size(); });
+  EdgeTable et;
+  et.nodes.resize(edge_start.back());
+  et.he.resize(he_start.back());
+  et.off.resize(et.nodes.size() + 1);
+  et.off[0] = 0;
+  et.first.resize(num_nodes + 1);
   et.first[num_nodes] = int32_t(et.nodes.size());
+  parallel_for_each_index(
+      blocks.size(),
+      [&](size_t b) {
+        const Block& block = blocks[b];
+        std::copy(block.nodes.begin(), block.nodes.end(), et.nodes.begin() + ptrdiff_t(edge_start[b]));
+        std::copy(block.he.begin(), block.he.end(), et.he.begin() + ptrdiff_t(he_start[b]));
+        for (size_t i = 0; i < block.ends.size(); ++i) et.off[edge_start[b] + i + 1] = int32_t(he_start[b]) + block.ends[i];
+        for (size_t i = 0; i < block.first.size(); ++i)
+          et.first[b * kNodesPerBlock + i] = int32_t(edge_start[b]) + block.first[i];
+      },
+      1);
   return et;
 }
 
@@ -82,21 +135,37 @@ int64_t EdgeTable::find(int32_t a, int32_t b) const {
 
 NodePhases node_phases(const NodeTriangles& nt, const std::vector<PhasePair>& pairs) {
   const size_t num_nodes = nt.off.size() - 1;
-  NodePhases np;
-  np.off.reserve(num_nodes + 1);
-  np.off.push_back(0);
-  std::vector<int32_t> local;
-  for (size_t n = 0; n < num_nodes; ++n) {
-    local.clear();
-    for (int32_t t : nt.of(n)) {
-      local.push_back(pairs[size_t(t)][0]);
-      local.push_back(pairs[size_t(t)][1]);
+  struct Block {
+    std::vector<int32_t> ends, phase; // ends: where each node's phases end in `phase`
+  };
+  const auto blocks = build_by_blocks<Block>(num_nodes, [&](size_t lo, size_t hi, Block& out) {
+    std::vector<int32_t> local;
+    for (size_t n = lo; n < hi; ++n) {
+      local.clear();
+      for (int32_t t : nt.of(n)) {
+        local.push_back(pairs[size_t(t)][0]);
+        local.push_back(pairs[size_t(t)][1]);
+      }
+      std::sort(local.begin(), local.end());
+      local.erase(std::unique(local.begin(), local.end()), local.end());
+      out.phase.insert(out.phase.end(), local.begin(), local.end());
+      out.ends.push_back(int32_t(out.phase.size()));
     }
-    std::sort(local.begin(), local.end());
-    local.erase(std::unique(local.begin(), local.end()), local.end());
-    np.phase.insert(np.phase.end(), local.begin(), local.end());
-    np.off.push_back(int32_t(np.phase.size()));
-  }
+  });
+  const auto [node_start, phase_start] = block_starts(
+      blocks, [](const Block& b) { return b.ends.size(); }, [](const Block& b) { return b.phase.size(); });
+  NodePhases np;
+  np.off.resize(num_nodes + 1);
+  np.off[0] = 0;
+  np.phase.resize(phase_start.back());
+  parallel_for_each_index(
+      blocks.size(),
+      [&](size_t b) {
+        const Block& block = blocks[b];
+        std::copy(block.phase.begin(), block.phase.end(), np.phase.begin() + ptrdiff_t(phase_start[b]));
+        for (size_t i = 0; i < block.ends.size(); ++i) np.off[node_start[b] + i + 1] = int32_t(phase_start[b]) + block.ends[i];
+      },
+      1);
   return np;
 }
 
