@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 namespace vm::detail {
 
@@ -30,35 +31,114 @@ bool joins_vertices_twice(const EdgeTable& et, size_t e, const CornerVertices& v
   return false;
 }
 
+/// Numbers the flagged items in order in parallel (blocks of a fixed size,
+/// counted, then numbered from their block's start): number[i] is the count
+/// of flagged items before i. Returns the count of all.
+int32_t number_flagged(const std::vector<uint8_t>& flagged, std::vector<int32_t>& number) {
+  constexpr size_t kBlock = 1 << 14;
+  const size_t n = flagged.size(), blocks = (n + kBlock - 1) / kBlock;
+  std::vector<int32_t> start(blocks + 1, 0);
+  parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        start[b + 1] = int32_t(std::count(flagged.begin() + ptrdiff_t(b * kBlock),
+                                          flagged.begin() + ptrdiff_t(std::min(n, (b + 1) * kBlock)), 1));
+      },
+      1);
+  for (size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  number.resize(n);
+  parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        int32_t next = start[b];
+        for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) number[i] = next, next += flagged[i];
+      },
+      1);
+  return start[blocks];
+}
+
 } // namespace
 
+std::vector<int32_t> glued_partners(const EdgeTable& et, const Triangles& tris, const std::vector<PhasePair>& pairs) {
+  std::vector<int32_t> partner(3 * tris.size(), -1);
+  parallel_for_each_index(et.size(), [&](size_t e) {
+    if (!is_patch_interior(et, e, tris, pairs)) return;
+    const auto hs = et.halfedges(e);
+    partner[size_t(hs[0])] = hs[1];
+    partner[size_t(hs[1])] = hs[0];
+  });
+  return partner;
+}
+
+void number_corner_classes(const NodeTriangles& nt, const Triangles& tris, const std::vector<int32_t>& partner,
+                           std::vector<int32_t>& vertex_of_corner, std::vector<int32_t>& copy_off) {
+  const size_t num_nodes = nt.off.size() - 1;
+  // Node by node: a union-find over the node's triangles (ascending, so a
+  // class's smallest index is its first triangle), joined where a halfedge at
+  // the node is glued. Each corner's class within its node is kept beside
+  // the node's triangle (corner_at, class_at), so that numbering them
+  // afterwards reads in order.
+  std::vector<int32_t> corner_at(nt.tri.size()), class_at(nt.tri.size());
+  copy_off.assign(num_nodes + 1, 0);
+  parallel_for(tbb::blocked_range<size_t>(0, num_nodes, 1024), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<int32_t> parent;
+    for (size_t n = range.begin(); n != range.end(); ++n) {
+      const auto ts = nt.of(n);
+      const auto at = size_t(nt.off[n]);
+      parent.resize(ts.size());
+      std::iota(parent.begin(), parent.end(), 0);
+      auto find = [&](int32_t i) {
+        while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+        return i;
+      };
+      for (size_t i = 0; i < ts.size(); ++i) {
+        const auto& tri = tris[size_t(ts[i])];
+        const int32_t c = 3 * ts[i] + int32_t(std::find(tri.begin(), tri.end(), int32_t(n)) - tri.begin());
+        corner_at[at + i] = c;
+        // The halfedges out of and into the node in this triangle.
+        for (const int32_t h : {c, c - c % 3 + (c % 3 + 2) % 3}) {
+          if (partner[size_t(h)] < 0) continue;
+          const auto j = int32_t(std::lower_bound(ts.begin(), ts.end(), partner[size_t(h)] / 3) - ts.begin());
+          const int32_t a = find(int32_t(i)), b = find(j);
+          parent[size_t(std::max(a, b))] = std::min(a, b);
+        }
+      }
+      int32_t classes = 0;
+      for (size_t i = 0; i < ts.size(); ++i) {
+        const int32_t r = find(int32_t(i));
+        class_at[at + i] = size_t(r) == i ? classes++ : class_at[at + size_t(r)];
+      }
+      copy_off[n + 1] = classes;
+    }
+  });
+  for (size_t n = 0; n < num_nodes; ++n) copy_off[n + 1] += copy_off[n];
+  vertex_of_corner.resize(3 * tris.size());
+  parallel_for_each_index(num_nodes, [&](size_t n) {
+    for (auto i = size_t(nt.off[n]); i < size_t(nt.off[n + 1]); ++i)
+      vertex_of_corner[size_t(corner_at[i])] = copy_off[n] + class_at[i];
+  });
+}
+
 bool connect_patch_faces(OMesh& mesh, const Triangles& tris, const std::vector<int32_t>& vertex_of_corner,
-                         const EdgeTable& et, const std::vector<uint8_t>& glued) {
+                         const EdgeTable& et, const std::vector<int32_t>& partner) {
   const CornerVertices v{vertex_of_corner};
   const size_t num_halfedges = 3 * tris.size(), num_vertices = mesh.n_vertices();
-  std::vector<int32_t> edge_of(num_halfedges);
   std::vector<uint8_t> twice(et.size(), 0);
   parallel_for_each_index(et.size(), [&](size_t e) {
-    for (int32_t h : et.halfedges(e)) edge_of[size_t(h)] = int32_t(e);
-    twice[e] = !glued[e] && joins_vertices_twice(et, e, v);
+    twice[e] = partner[size_t(et.halfedges(e)[0])] < 0 && joins_vertices_twice(et, e, v);
   });
   if (std::find(twice.begin(), twice.end(), 1) != twice.end()) return false;
 
   // OpenMesh halfedge of each triangle halfedge: add_face() makes a triangle's
   // missing edges in corner order, the first halfedge running its way, so a
-  // glued edge's second triangle takes the opposite one.
-  std::vector<int32_t> om_halfedge(num_halfedges), om_edge_of(et.size(), -1), first_halfedge;
-  first_halfedge.reserve(num_halfedges);
-  for (size_t h = 0; h < num_halfedges; ++h) {
-    int32_t& edge = om_edge_of[size_t(edge_of[h])];
-    if (glued[size_t(edge_of[h])] && edge >= 0) {
-      om_halfedge[h] = 2 * edge + 1;
-      continue;
-    }
-    edge = int32_t(first_halfedge.size());
-    om_halfedge[h] = 2 * edge;
-    first_halfedge.push_back(int32_t(h));
-  }
+  // glued edge belongs to its first halfedge and its partner takes the opposite.
+  std::vector<uint8_t> makes_edge(num_halfedges);
+  parallel_for_each_index(num_halfedges, [&](size_t h) { makes_edge[h] = partner[h] < 0 || int32_t(h) < partner[h]; });
+  std::vector<int32_t> edge_number, om_halfedge(num_halfedges);
+  const int32_t num_edges = number_flagged(makes_edge, edge_number);
+  parallel_for_each_index(num_halfedges, [&](size_t h) {
+    om_halfedge[h] = makes_edge[h] ? 2 * edge_number[h] : 2 * edge_number[size_t(partner[h])] + 1;
+  });
 
   // Boundary halfedges run opposite the unglued ones. A vertex whose fan is
   // open has one going out, where its boundary loop continues; a second one
@@ -67,18 +147,22 @@ bool connect_patch_faces(OMesh& mesh, const Triangles& tris, const std::vector<i
   std::vector<int32_t> boundary_out(num_vertices, -1);
   std::vector<uint8_t> boundary_in(num_vertices, 0);
   for (size_t h = 0; h < num_halfedges; ++h) {
-    if (glued[size_t(edge_of[h])]) continue;
+    if (partner[h] >= 0) continue;
     int32_t& out = boundary_out[size_t(v.to(int32_t(h)))];
     if (out >= 0 || boundary_in[size_t(v.from(int32_t(h)))]++) return false;
     out = om_halfedge[h] + 1;
   }
   for (size_t h = 0; h < num_halfedges; ++h)
-    if (!glued[size_t(edge_of[h])] && boundary_out[size_t(v.from(int32_t(h)))] < 0) return false;
+    if (partner[h] < 0 && boundary_out[size_t(v.from(int32_t(h)))] < 0) return false;
 
-  for (int32_t h : first_halfedge)
-    mesh.new_edge(OMesh::VertexHandle(v.from(h)), OMesh::VertexHandle(v.to(h)));
-  for (size_t t = 0; t < tris.size(); ++t) mesh.new_face();
+  // Edges and faces made all at once (one by one, each resized every property).
+  mesh.resize(num_vertices, size_t(num_edges), tris.size());
   auto he = [](int32_t h) { return OMesh::HalfedgeHandle(h); };
+  parallel_for_each_index(num_halfedges, [&](size_t h) {
+    if (!makes_edge[h]) return;
+    mesh.set_vertex_handle(he(om_halfedge[h]), OMesh::VertexHandle(v.to(int32_t(h))));
+    mesh.set_vertex_handle(he(om_halfedge[h] + 1), OMesh::VertexHandle(v.from(int32_t(h))));
+  });
   parallel_for_each_index(tris.size(), [&](size_t t) {
     const auto face = OMesh::FaceHandle(int(t));
     const int32_t* hs = &om_halfedge[3 * t];
@@ -89,7 +173,7 @@ bool connect_patch_faces(OMesh& mesh, const Triangles& tris, const std::vector<i
     }
   });
   parallel_for_each_index(num_halfedges, [&](size_t h) {
-    if (glued[size_t(edge_of[h])]) return;
+    if (partner[h] >= 0) return;
     // The boundary halfedge ends at corner h's vertex and goes on out of it.
     mesh.set_next_halfedge_handle(he(om_halfedge[h] + 1), he(boundary_out[size_t(v.from(int32_t(h)))]));
   });
