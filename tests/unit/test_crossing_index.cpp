@@ -6,6 +6,7 @@
 
 #include "check/crossing_index.hpp"
 #include "check/embedded_fans.hpp"
+#include "improve/node_merge.hpp"
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/improve/flip.hpp"
 
@@ -123,6 +124,58 @@ TEST(CrossingIndex, carries_over_a_renumbering_without_starting_again) {
   EXPECT_GE(index.refiled(), 1u);
   EXPECT_EQ(found, reference(kept_points, kept_triangles, {}));
   EXPECT_FALSE(found.empty()); // the shake made crossings to find
+}
+
+// A trial of edits (nodes moved, or merged into neighbours as collapses do)
+// checked through the index of the mesh before it must find the pairs a
+// search of the whole trial finds with the edited triangles involved.
+TEST(CrossingIndex, checks_a_trial_of_edits_as_a_search_of_the_whole_trial_would) {
+  const NodeMesh before = test::four_spheres(16);
+  const InterfaceMesh mesh = InterfaceMesh::from_node_mesh(before);
+  CrossingIndex index;
+  for (int call = 0; call < 3; ++call) index.crossings(before.points, before.triangles, {}, mesh.triangle_copies());
+  ASSERT_TRUE(index.refresh(before.points, before.triangles, mesh.triangle_copies()));
+  std::mt19937_64 rng(29);
+  size_t crossings = 0;
+  for (int trial_number = 0; trial_number < 12; ++trial_number) {
+    // A random few nodes merge into a neighbour, or move about a cell.
+    const bool merge = trial_number % 2 == 0;
+    std::vector<int32_t> into(before.num_nodes(), -1);
+    std::vector<Vec3> points = before.points;
+    std::uniform_int_distribution<size_t> pick(0, before.num_triangles() - 1);
+    std::vector<uint8_t> edited(before.num_nodes(), 0);
+    for (int e = 0; e < 12; ++e) {
+      const Triangle& tri = before.triangles[pick(rng)];
+      if (edited[size_t(tri[0])] || edited[size_t(tri[1])]) continue;
+      edited[size_t(tri[0])] = edited[size_t(tri[1])] = 1;
+      if (merge) into[size_t(tri[1])] = tri[0];
+      else points[size_t(tri[0])] += Vec3(0.05, -0.04, 0.03) * double(1 + e % 3);
+    }
+    NodeMesh trial;
+    std::vector<int32_t> turned, kept;
+    detail::merge_nodes(before, into, trial, turned, kept, &points);
+    // Involved: the trial's triangles at an edited node (a merge target or a moved node).
+    std::vector<uint8_t> involved(trial.num_triangles(), 0), left_out(before.num_triangles(), 0);
+    std::vector<Triangle> extra;
+    std::vector<int32_t> extra_id;
+    for (size_t t = 0; t < trial.num_triangles(); ++t)
+      for (int32_t v : trial.triangles[t]) involved[t] |= edited[size_t(v)];
+    for (size_t t = 0; t < trial.num_triangles(); ++t)
+      if (involved[t]) extra.push_back(trial.triangles[t]), extra_id.push_back(int32_t(t));
+    for (size_t t = 0; t < before.num_triangles(); ++t)
+      for (int32_t v : before.triangles[t]) left_out[t] |= edited[size_t(v)];
+    std::vector<int32_t> trial_of(before.num_triangles(), -1);
+    for (size_t t = 0; t < kept.size(); ++t) trial_of[size_t(kept[t])] = int32_t(t);
+    const auto found = index.crossings_with(points, before.triangles, extra, left_out);
+    std::vector<BoxPair> pairs;
+    for (const auto& [e, s] : found.with_mesh) pairs.push_back({extra_id[size_t(e)], trial_of[size_t(s)]});
+    for (const auto& [e, f] : found.among_extra) pairs.push_back({extra_id[size_t(e)], extra_id[size_t(f)]});
+    for (auto& p : pairs) p = {std::min(p[0], p[1]), std::max(p[0], p[1])};
+    std::sort(pairs.begin(), pairs.end());
+    EXPECT_EQ(pairs, reference(trial.points, trial.triangles, involved)) << "trial " << trial_number;
+    crossings += pairs.size();
+  }
+  EXPECT_GT(crossings, 0u); // the moves made crossings to find
 }
 
 // A remesh call rebuilds the mesh with some triangles and nodes kept (in

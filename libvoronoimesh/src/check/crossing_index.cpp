@@ -157,24 +157,14 @@ CrossingIndex::CellEntry CrossingIndex::cell_entry(int32_t t, const Filing& f) {
   return {t, {int32_t(f.first[0]), int32_t(f.first[1]), int32_t(f.first[2])}};
 }
 
-void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
-  const Filing& ft = filed_[size_t(t)];
-  const size_t before = out.size();
-  auto take = [&](int32_t s) {
-    int32_t fan = -1;
-    for (int32_t a : ft.fans)
-      if (a >= 0 && std::find(filed_[size_t(s)].fans.begin(), filed_[size_t(s)].fans.end(), a) !=
-                        filed_[size_t(s)].fans.end())
-        fan = a;
-    out.push_back({s, fan});
-  };
+template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int32_t skip, F&& f) const {
   for (int l = 0; l < kLevels; ++l) {
     if (level_count_[size_t(l)] == 0) continue;
-    const auto lo = cell_of(ft.box.lo, l), hi = cell_of(ft.box.hi, l);
+    const auto lo = cell_of(box.lo, l), hi = cell_of(box.hi, l);
     const int64_t visits = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-    if (visits > kMaxCellsVisited) { // a large triangle over a fine level: every triangle of it
+    if (visits > kMaxCellsVisited) { // a large box over a fine level: every triangle of it
       for (size_t s = 0; s < filed_.size(); ++s)
-        if (filed_[s].level == l && int32_t(s) != t && ft.box.overlaps(filed_[s].box)) take(int32_t(s));
+        if (filed_[s].level == l && int32_t(s) != skip && box.overlaps(filed_[s].box)) f(int32_t(s));
       continue;
     }
     for (int64_t i = lo[0]; i <= hi[0]; ++i)
@@ -183,17 +173,34 @@ void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
           const int64_t c = find(key(l, i, j, k));
           if (c < 0) continue;
           for (const CellEntry& s : cells_.at(size_t(c))) {
-            // s is filed in every cell of its filing box and t searches every
-            // cell of its own: s is taken in the cell of the overlap's lower corner.
-            if (s.id == t || std::max(lo[0], int64_t(s.first[0])) != i || std::max(lo[1], int64_t(s.first[1])) != j ||
-                std::max(lo[2], int64_t(s.first[2])) != k || !ft.box.overlaps(filed_[size_t(s.id)].box))
+            // s is filed in every cell of its filing box and the search visits
+            // every cell of `box`: s is taken in the cell of the overlap's lower corner.
+            if (s.id == skip || std::max(lo[0], int64_t(s.first[0])) != i || std::max(lo[1], int64_t(s.first[1])) != j ||
+                std::max(lo[2], int64_t(s.first[2])) != k || !box.overlaps(filed_[size_t(s.id)].box))
               continue;
-            take(s.id);
+            f(s.id);
           }
         }
   }
+}
+
+void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
+  const Filing& ft = filed_[size_t(t)];
+  const size_t before = out.size();
+  for_filed_meeting(ft.box, t, [&](int32_t s) {
+    int32_t fan = -1;
+    for (int32_t a : ft.fans)
+      if (a >= 0 && std::find(filed_[size_t(s)].fans.begin(), filed_[size_t(s)].fans.end(), a) !=
+                        filed_[size_t(s)].fans.end())
+        fan = a;
+    out.push_back({s, fan});
+  });
   std::sort(out.begin() + ptrdiff_t(before), out.end(),
             [](const Neighbour& a, const Neighbour& b) { return a.id < b.id; });
+}
+
+void CrossingIndex::filed_meeting(const Bounds& box, std::vector<int32_t>& out) const {
+  for_filed_meeting(box, -1, [&](int32_t s) { out.push_back(s); });
 }
 
 // ---------------------------------------------------------------------------
@@ -403,81 +410,6 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   });
 }
 
-void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
-                             std::span<const Triangle> corner_fans) {
-  last_triangles_.clear(); // without an index, the mesh must settle again
-  settled_calls_ = 0;
-  if (filed_.empty()) return;
-  std::vector<int32_t> new_triangle(filed_.size(), -1);
-  for (size_t t = 0; t < old_triangle.size(); ++t)
-    if (old_triangle[t] >= 0) new_triangle[size_t(old_triangle[t])] = int32_t(t);
-  // The number of old node and fan ids, in one parallel pass over the filings
-  // (grain maps renumber after the junction-sliver collapses of every iteration).
-  using Counts = std::array<int32_t, 2>;
-  const auto [filed_nodes, old_fans] = detail::parallel_reduce(
-      tbb::blocked_range<size_t>(0, filed_.size(), 4096), Counts{0, 0},
-      [&](const tbb::blocked_range<size_t>& r, Counts c) {
-        for (size_t t = r.begin(); t < r.end(); ++t) {
-          const Filing& f = filed_[t];
-          c = {std::max({c[0], f.nodes[0] + 1, f.nodes[1] + 1, f.nodes[2] + 1}),
-               std::max({c[1], f.fans[0] + 1, f.fans[1] + 1, f.fans[2] + 1})};
-        }
-        return c;
-      },
-      [](const Counts& a, const Counts& b) { return Counts{std::max(a[0], b[0]), std::max(a[1], b[1])}; });
-  int32_t old_nodes = filed_nodes;
-  for (int32_t n : old_node) old_nodes = std::max(old_nodes, n + 1);
-  std::vector<int32_t> new_node(size_t(old_nodes), -1);
-  for (size_t n = 0; n < old_node.size(); ++n)
-    if (old_node[n] >= 0) new_node[size_t(old_node[n])] = int32_t(n);
-  // Old fan ids to new ones, through the corners of kept triangles; a fan
-  // that went two ways maps to none (its triangles are filed again).
-  constexpr int32_t kUnseen = -2;
-  std::vector<int32_t> new_fan(size_t(old_fans), kUnseen);
-  for (size_t t = 0; t < old_triangle.size() && !corner_fans.empty(); ++t)
-    for (size_t k = 0; k < 3 && old_triangle[t] >= 0; ++k) {
-      const int32_t old = filed_[size_t(old_triangle[t])].fans[k];
-      if (old < 0) continue;
-      int32_t& to = new_fan[size_t(old)];
-      to = to == kUnseen || to == corner_fans[t][k] ? corner_fans[t][k] : -1;
-    }
-  auto fan_of = [&](int32_t old) { return old < 0 || new_fan[size_t(old)] < 0 ? -1 : new_fan[size_t(old)]; };
-
-  std::vector<Filing> filed(old_triangle.size()); // new triangles: not filed
-  detail::parallel_for(tbb::blocked_range<size_t>(0, filed.size(), 4096), [&](const auto& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t) {
-      if (old_triangle[t] < 0) continue;
-      filed[t] = filed_[size_t(old_triangle[t])];
-      for (int32_t& n : filed[t].nodes) n = new_node[size_t(n)];
-      for (int32_t& f : filed[t].fans) f = fan_of(f);
-    }
-  });
-  filed_ = std::move(filed);
-  level_count_.assign(kLevels, 0);
-  for (const Filing& f : filed_)
-    if (f.level >= 0) ++level_count_[size_t(f.level)];
-  // List by list in parallel: grain maps renumber after the junction-sliver
-  // collapses of every iteration.
-  detail::parallel_for(tbb::blocked_range<size_t>(0, cells_.count(), 1024), [&](const auto& lists) {
-    cells_.map_items(
-        [&](CellEntry e) {
-          e.id = new_triangle[size_t(e.id)];
-          return e;
-        },
-        lists.begin(), lists.end());
-  });
-  // Lists by new triangle: each old list where it is, mapped (ids keep their
-  // order). Copying them all cost time and memory on grain maps, which collapse
-  // junction slivers in every iteration (1,000 grains at 128^3, 20 iterations,
-  // 2 threads: 83 s and 2.26 GB peak with the copy, 72 s and 2.0 GB without).
-  near_.keep_lists(old_triangle);
-  detail::parallel_for(tbb::blocked_range<size_t>(0, near_.count(), 1024), [&](const auto& lists) {
-    near_.map_items([&](Neighbour s) { return Neighbour{new_triangle[size_t(s.id)], fan_of(s.fan)}; }, lists.begin(),
-                    lists.end());
-  });
-  fans_stale_ = true;
-}
-
 std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                             std::span<const uint8_t> involved) {
   filed_.clear();
@@ -493,28 +425,45 @@ std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::s
   return find_self_intersections(mesh, std::numeric_limits<size_t>::max(), involved).pairs;
 }
 
+std::vector<int32_t> CrossingIndex::find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                               std::span<const Triangle> corner_fans, bool& anew) {
+  const size_t n = triangles.size();
+  boxes_.resize(n);
+  detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
+  std::vector<int32_t> stale;
+  anew = filed_.size() != n || n == 0;
+  if (anew) return stale;
+  std::vector<uint8_t> is_stale(n);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
+    is_stale[t] = filed_[t].nodes != triangles[t] || filed_[t].fans != fans || !contains(filed_[t].box, boxes_[t]);
+  });
+  for (size_t t = 0; t < n; ++t)
+    if (is_stale[t]) stale.push_back(int32_t(t));
+  for (size_t i = 0; i < stale.size() && !anew; ++i)
+    anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
+  return stale;
+}
+
+bool CrossingIndex::refresh(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                            std::span<const Triangle> corner_fans) {
+  bool anew = false;
+  const std::vector<int32_t> stale = find_stale(points, triangles, corner_fans, anew);
+  // Where crossings() would check anew, leave that to it.
+  if (anew || kDropShare * stale.size() > triangles.size()) return false;
+  if (!stale.empty()) refile(stale, triangles, corner_fans);
+  return true;
+}
+
 std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                               std::span<const uint8_t> involved, std::span<const Triangle> corner_fans) {
   const size_t n = triangles.size();
   refiled_ = 0;
   rebuilt_ = false;
-  boxes_.resize(n);
-  detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
   // Up to date first: triangles with other nodes or fans, or out of their
   // filing box, are filed again.
-  std::vector<int32_t> stale;
-  bool anew = filed_.size() != n || n == 0;
-  if (!anew) {
-    std::vector<uint8_t> is_stale(n);
-    detail::parallel_for_each_index(n, [&](size_t t) {
-      const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
-      is_stale[t] = filed_[t].nodes != triangles[t] || filed_[t].fans != fans || !contains(filed_[t].box, boxes_[t]);
-    });
-    for (size_t t = 0; t < n; ++t)
-      if (is_stale[t]) stale.push_back(int32_t(t));
-    for (size_t i = 0; i < stale.size() && !anew; ++i)
-      anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
-  }
+  bool anew = false;
+  const std::vector<int32_t> stale = find_stale(points, triangles, corner_fans, anew);
   if (!anew && kDropShare * stale.size() > n) {
     settled_calls_ = 0;
     return one_off(points, triangles, involved);

@@ -62,6 +62,28 @@ public:
   void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
                 std::span<const Triangle> corner_fans);
 
+  /// Brings the index up to date with the mesh, as crossings() does first,
+  /// where it keeps one and few triangles changed: then true, and
+  /// crossings_with() may be asked about edits to this mesh. False where
+  /// crossings() would check the mesh anew (the index is left as it was).
+  bool refresh(std::span<const Vec3> points, std::span<const Triangle> triangles,
+               std::span<const Triangle> corner_fans);
+
+  /// Crossings of a trial of edits (improve/node_merge.hpp) with the mesh the
+  /// last refresh() saw: `extra` are the trial's triangles at the edits (node
+  /// ids into `points`, the trial's nodes, which differ from the mesh's only at
+  /// nodes of extra triangles), `left_out` flags the mesh's triangles they
+  /// replace. Each extra triangle is tested, exactly, against every mesh
+  /// triangle not left out whose box overlaps its own, and against the other
+  /// extra ones: the pairs find_self_intersections() would report on the
+  /// trial with the extra triangles involved, in the time of a search around
+  /// them. Pairs are {extra index, mesh triangle} and {extra index, extra index}.
+  struct TrialCrossings {
+    std::vector<BoxPair> with_mesh, among_extra;
+  };
+  TrialCrossings crossings_with(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                std::span<const Triangle> extra, std::span<const uint8_t> left_out) const;
+
   /// Whether the last call answered through the index (or, while the mesh
   /// changed too much between calls to keep one, with a one-off check);
   /// triangles it filed again, and whether it built the index anew (for tests
@@ -114,6 +136,15 @@ private:
                                std::span<const uint8_t> involved);
   /// Appends t's list, sorted by id.
   void near(int32_t t, std::vector<Neighbour>& out) const;
+  /// Calls f(s) once for each filed triangle s but `skip` whose filing box meets `box`.
+  template <class F> void for_filed_meeting(const Bounds& box, int32_t skip, F&& f) const;
+  /// Appends the filed triangles whose filing box meets `box`.
+  void filed_meeting(const Bounds& box, std::vector<int32_t>& out) const;
+  /// Sets boxes_ for the mesh now and returns the triangles whose filing is
+  /// stale; `anew` when the index cannot be mended (none kept, another
+  /// triangle count, or a stale box beyond the grid).
+  std::vector<int32_t> find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                  std::span<const Triangle> corner_fans, bool& anew);
 
   double cell_size_ = 0;                   ///< level 0; level l has cells 2^l times as large
   std::vector<double> inverse_cell_size_;  ///< by level

@@ -134,6 +134,9 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   // worse sliver beside it always came first and always failed. So once, the
   // batch is chosen again without the collapses that failed, if that lets any
   // other in, and tried on the mesh as it was.
+  // In one process, the guard's index finds the crossings around the merges.
+  const detail::CrossingIndex* index =
+      params.guard && params.guard_crossings && !peers ? params.guard->index_for(mesh) : nullptr;
   std::vector<uint8_t> passed_over(slivers.size(), 0), made;
   std::vector<size_t> from, tried;
   NodeMesh m;
@@ -148,7 +151,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     // A failure can only be at a node some collapse claims (its a, b and rings).
     const std::unordered_multimap<int64_t, int32_t> blame(claimed.begin(), claimed.end());
     const size_t trial_done =
-        merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept, {}, &made);
+        merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept, {}, &made, index);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order
     bool any_failed = false;

@@ -30,6 +30,10 @@ std::vector<std::array<int32_t, 2>> CrossingGuard::crossings(const InterfaceMesh
   return index_->crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
 }
 
+const detail::CrossingIndex* CrossingGuard::index_for(const InterfaceMesh& mesh) {
+  return index_ && index_->refresh(mesh.positions(), mesh.triangles(), mesh.triangle_copies()) ? index_.get() : nullptr;
+}
+
 void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face,
                                std::span<const int32_t> old_node) {
   if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());

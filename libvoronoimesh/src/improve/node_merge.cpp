@@ -2,6 +2,8 @@
 
 #include "improve/collapse_peers.hpp"
 
+#include "check/crossing_index.hpp"
+
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/validate.hpp"
 
@@ -14,6 +16,33 @@ namespace {
 Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   const Vec3& a = m.points[size_t(t[0])];
   return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
+}
+
+/// find_merge_failures()'s crossings through the index of `before`, the mesh
+/// the trial was merged from: the trial's triangles at targets (`involved`)
+/// against the triangles of `before` that no merge touched, and each other.
+/// Appends the nodes of both triangles of each crossing pair.
+void report_trial_crossings(const NodeMesh& trial, std::span<const uint8_t> involved, const NodeMesh& before,
+                            const std::vector<int32_t>& into, const CrossingIndex& index, std::vector<int32_t>& nodes) {
+  std::vector<Triangle> extra;
+  for (size_t t = 0; t < trial.num_triangles(); ++t)
+    if (involved[t]) extra.push_back(trial.triangles[t]);
+  // What the extra triangles replace: every triangle at a merged node or a
+  // target (the targets are the nodes the merged ones go into).
+  std::vector<uint8_t> at_merge(before.num_nodes(), 0), left_out(before.num_triangles(), 0);
+  for (size_t b = 0; b < into.size(); ++b)
+    if (into[b] >= 0) at_merge[b] = 1, at_merge[size_t(into[b])] = 1;
+  for (size_t t = 0; t < before.num_triangles(); ++t)
+    for (int32_t v : before.triangles[t]) left_out[t] |= at_merge[size_t(v)];
+  const CrossingIndex::TrialCrossings found = index.crossings_with(trial.points, before.triangles, extra, left_out);
+  for (const auto& [e, s] : found.with_mesh) {
+    nodes.insert(nodes.end(), extra[size_t(e)].begin(), extra[size_t(e)].end());
+    nodes.insert(nodes.end(), before.triangles[size_t(s)].begin(), before.triangles[size_t(s)].end());
+  }
+  for (const auto& [e, f] : found.among_extra) {
+    nodes.insert(nodes.end(), extra[size_t(e)].begin(), extra[size_t(e)].end());
+    nodes.insert(nodes.end(), extra[size_t(f)].begin(), extra[size_t(f)].end());
+  }
 }
 
 } // namespace
@@ -55,7 +84,8 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
 }
 
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed) {
+                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed,
+                         const NodeMesh* before, const CrossingIndex* index) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -87,6 +117,10 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   std::vector<uint8_t> involved(trial.num_triangles(), 0), searched;
   for (size_t t = 0; t < trial.num_triangles(); ++t)
     for (int32_t v : trial.triangles[t]) involved[t] |= target[size_t(v)];
+  if (index && before) {
+    report_trial_crossings(trial, involved, *before, into, *index, nodes);
+    return true;
+  }
   if (!changed.empty()) {
     searched.assign(trial.num_triangles(), 0);
     for (size_t t = 0; t < trial.num_triangles(); ++t)
@@ -104,7 +138,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made) {
+                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
@@ -137,7 +171,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     // merged mesh validated (by every rank, if any rank saw them).
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
     if (!blamed) {
-      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed);
+      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index);
       changed.assign(m.num_nodes(), 0);
     }
     if (peers) blamed = !peers->any(!blamed);

@@ -17,6 +17,7 @@
 namespace vm::detail {
 
 class CollapsePeers;
+class CrossingIndex; // check/crossing_index.hpp
 
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
 /// triangles that lose a corner disappear. With `points`, the nodes of `out`
@@ -39,8 +40,13 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 /// retries a batch whose last trial's crossings were all reported, one flag per
 /// node set where that trial differed (the ends of the collapses dropped since):
 /// then only crossings with a triangle at a flagged node are searched for.
+/// `index`: null, or an index up to date with `before`, the mesh `trial` was
+/// merged from (CrossingIndex::refresh()), through which the crossings of the
+/// triangles at targets are found (the same pairs, found around them instead
+/// of in a search of the whole trial).
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {});
+                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
+                         const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr);
 
 /// Makes as many of the collapses `chosen` (b -> a, as node ids; no two share a
 /// triangle) as pass, all at once: after each merge of the active ones, the
@@ -57,10 +63,13 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 /// @param kept_triangles set to the old index of each triangle of the merged mesh
 /// @param moved_to       empty, or where each collapse's a goes (not finite: it stays)
 /// @param made           if given, set to one flag per collapse of `chosen`: made or not
+/// @param index          null, or the guard's index up to date with `m` (CrossingGuard::index_for()), to
+///                       find crossings around the merges instead of in the whole merged mesh
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
                      const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr);
+                     std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
+                     const CrossingIndex* index = nullptr);
 
 } // namespace vm::detail

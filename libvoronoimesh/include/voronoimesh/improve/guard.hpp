@@ -99,6 +99,13 @@ public:
   /// @return the crossing pairs of face ids
   std::vector<std::array<int32_t, 2>> crossings(const InterfaceMesh& mesh, std::span<const uint8_t> involved);
 
+  /// The guard's index, up to date with `mesh`, for checking a trial of edits
+  /// to it (CrossingIndex::crossings_with(), as the junction-sliver collapses
+  /// do); null while the guard keeps no index (then check the trial whole).
+  /// @param mesh the mesh, as of its last InterfaceMesh::topology_changed()
+  /// @return the index, or null
+  const detail::CrossingIndex* index_for(const InterfaceMesh& mesh);
+
   /// Tells the guard that `mesh` was rebuilt from the mesh it last saw, keeping
   /// some of its faces and nodes (a collapse, a remesh), so that its index carries over.
   /// Without this call it would notice the change by itself and build its
