@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace vm::detail {
 
@@ -120,7 +121,7 @@ template <class F> void CrossingIndex::for_cells(const Filing& f, F&& f_of_key) 
 int64_t CrossingIndex::find(uint64_t k) const {
   const size_t mask = keys_.size() - 1;
   for (size_t s = mix(k) & mask;; s = (s + 1) & mask) {
-    if (keys_[s] == k) return cell_of_slot_[s];
+    if (keys_[s] == k) return cell_of_key_[s];
     if (keys_[s] == kEmpty) return -1;
   }
 }
@@ -130,26 +131,26 @@ size_t CrossingIndex::find_or_add(uint64_t k) {
   const size_t mask = keys_.size() - 1;
   size_t s = mix(k) & mask;
   for (; keys_[s] != kEmpty; s = (s + 1) & mask)
-    if (keys_[s] == k) return cell_of_slot_[s];
+    if (keys_[s] == k) return cell_of_key_[s];
   keys_[s] = k;
-  cell_of_slot_[s] = uint32_t(cells_.count());
+  cell_of_key_[s] = uint32_t(cells_.count());
   return cells_.add_list();
 }
 
 void CrossingIndex::grow_table() {
   const std::vector<uint64_t> old_keys = std::move(keys_);
-  const std::vector<uint32_t> old_cells = std::move(cell_of_slot_);
+  const std::vector<uint32_t> old_cells = std::move(cell_of_key_);
   size_t capacity = 64;
   while (capacity < 4 * (cells_.count() + 1)) capacity *= 2;
   keys_.assign(capacity, kEmpty);
-  cell_of_slot_.assign(capacity, 0);
+  cell_of_key_.assign(capacity, 0);
   const size_t mask = capacity - 1;
   for (size_t s = 0; s < old_keys.size(); ++s) {
     if (old_keys[s] == kEmpty) continue;
     size_t slot = mix(old_keys[s]) & mask;
     while (keys_[slot] != kEmpty) slot = (slot + 1) & mask;
     keys_[slot] = old_keys[s];
-    cell_of_slot_[slot] = old_cells[s];
+    cell_of_key_[slot] = old_cells[s];
   }
 }
 
@@ -184,19 +185,29 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
   }
 }
 
-void CrossingIndex::near(int32_t t, std::vector<Neighbour>& out) const {
-  const Filing& ft = filed_[size_t(t)];
+uint32_t CrossingIndex::shared_corner(const Triangle& a, const Triangle& b) {
+  uint32_t corner = kNoCorner;
+  for (uint32_t k = 0; k < 3; ++k)
+    if (a[k] >= 0 && std::find(b.begin(), b.end(), a[k]) != b.end()) corner = k;
+  return corner;
+}
+
+void CrossingIndex::near(int32_t slot, std::vector<Neighbour>& out) const {
+  const Filing& f = filed_[size_t(slot)];
   const size_t before = out.size();
-  for_filed_meeting(ft.box, t, [&](int32_t s) {
-    int32_t fan = -1;
-    for (int32_t a : ft.fans)
-      if (a >= 0 && std::find(filed_[size_t(s)].fans.begin(), filed_[size_t(s)].fans.end(), a) !=
-                        filed_[size_t(s)].fans.end())
-        fan = a;
-    out.push_back({s, fan});
-  });
+  for_filed_meeting(f.box, slot, [&](int32_t s) { out.push_back({s, shared_corner(f.fans, filed_[size_t(s)].fans)}); });
   std::sort(out.begin() + ptrdiff_t(before), out.end(),
             [](const Neighbour& a, const Neighbour& b) { return a.id < b.id; });
+}
+
+void CrossingIndex::free_slot(int32_t slot) {
+  Filing& f = filed_[size_t(slot)];
+  for_cells(f, [&](uint64_t k) { cells_.erase_id(size_t(find(k)), slot); });
+  for (const Neighbour& s : near_.at(size_t(slot))) near_.erase_id(size_t(s.id), slot);
+  near_.clear(size_t(slot));
+  if (f.level >= 0) --level_count_[size_t(f.level)];
+  f = Filing{};
+  triangle_of_[size_t(slot)] = -1;
 }
 
 void CrossingIndex::filed_meeting(const Bounds& box, std::vector<int32_t>& out) const {
@@ -236,9 +247,12 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   fans_stale_ = false;
   set_grid();
   fans_.build(triangles, corner_fans);
+  slot_of_.resize(n);
+  std::iota(slot_of_.begin(), slot_of_.end(), 0);
+  triangle_of_ = slot_of_;
 
   // The cells, from every triangle's (key, id) entries sorted.
-  filed_.resize(n);
+  filed_.assign(n, Filing{});
   std::vector<uint32_t> offset(n + 1, 0);
   detail::parallel_for_each_index(n, [&](size_t t) {
     filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
@@ -259,7 +273,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   detail::parallel_sort(entries.begin(), entries.end(),
                         [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
   keys_.clear();
-  cell_of_slot_.clear();
+  cell_of_key_.clear();
   cells_ = {};
   level_count_.assign(kLevels, 0);
   std::vector<size_t> first;
@@ -314,26 +328,25 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
 void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
                            std::span<const Triangle> corner_fans) {
   // After a flip pass a tenth of the triangles are stale, each near ~40 others.
-  // Most of what they touch only changes in place: a cell the new filing keeps,
-  // an entry in the list of a neighbour it keeps. That is done in parallel
-  // (each entry is written by the task of its own triangle); what comes and
-  // goes is collected per triangle and applied in id order, so the index never
-  // depends on the threads.
+  // Most of what they touch only changes in place: a cell the new filing keeps.
+  // That is done in parallel (each entry is written by the task of its own
+  // triangle); what comes and goes is collected per triangle and applied in
+  // order, so the index never depends on the threads.
   const size_t m = stale.size();
-  std::vector<uint8_t> is_stale(filed_.size(), 0);
-  for (int32_t t : stale) is_stale[size_t(t)] = 1;
+  std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
+  for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
   std::vector<Filing> fresh(m);
   struct Edits {
     std::vector<uint64_t> left, entered; // cells
-    std::vector<Neighbour> lost, gained; // triangles that stay, with the fan shared now
+    std::vector<int32_t> lost, gained; // slots that stay
   };
   std::vector<Edits> edits(m);
   detail::parallel_for_each_index(m, [&](size_t i) {
-    const int32_t t = stale[i];
-    const Filing& old = filed_[size_t(t)];
+    const int32_t t = stale[i], slot = slot_of_[size_t(t)];
+    const Filing& old = filed_[size_t(slot)];
     fresh[i] = filing_for(boxes_[size_t(t)], triangles[size_t(t)],
                           corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)]);
-    // The cells both filings have (none across levels) keep t's entry, renewed.
+    // The cells both filings have (none across levels) keep the entry, renewed.
     std::array<int64_t, 3> lo{}, hi{};
     const auto old_last = cell_of(old.box.hi, old.level), new_last = cell_of(fresh[i].box.hi, fresh[i].level);
     for (size_t a = 0; a < 3; ++a)
@@ -353,20 +366,20 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
       }
       // Other tasks read only the ids of the entries this one renews.
       for (CellEntry& e : cells_.at(size_t(find(k))))
-        if (e.id == t) e.first = cell_entry(t, fresh[i]).first;
+        if (e.id == slot) e.first = cell_entry(slot, fresh[i]).first;
     });
   });
   std::vector<int32_t> changed; // other nodes or fans: the fans around them change
   std::vector<Triangle> old_fans;
   for (size_t i = 0; i < m; ++i) {
-    const int32_t t = stale[i];
-    const Filing& old = filed_[size_t(t)];
+    const int32_t t = stale[i], slot = slot_of_[size_t(t)];
+    const Filing& old = filed_[size_t(slot)];
     if (fresh[i].fans != old.fans || fresh[i].nodes != old.nodes) changed.push_back(t), old_fans.push_back(old.fans);
-    for (uint64_t k : edits[i].left) cells_.erase_id(size_t(find(k)), t);
+    for (uint64_t k : edits[i].left) cells_.erase_id(size_t(find(k)), slot);
     if (old.level >= 0) --level_count_[size_t(old.level)];
     ++level_count_[size_t(fresh[i].level)];
-    filed_[size_t(t)] = fresh[i];
-    for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(t, fresh[i]));
+    filed_[size_t(slot)] = fresh[i];
+    for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(slot, fresh[i]));
   }
   if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
 
@@ -374,49 +387,55 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   detail::parallel_for_each_index(
       m,
       [&](size_t i) {
-        const int32_t t = stale[i];
-        near(t, found[i]);
-        // The old list against the new, both sorted by id.
-        const auto old = near_.at(size_t(t));
+        const int32_t slot = slot_of_[size_t(stale[i])];
+        near(slot, found[i]);
+        // The old list against the new, both sorted by id; stale neighbours
+        // write their own lists. A neighbour kept has its entry for this slot
+        // renewed here (no other task writes it): the corner they share may differ.
+        const auto old = near_.at(size_t(slot));
         size_t o = 0;
         for (const Neighbour& s : found[i]) {
           for (; o < old.size() && old[o].id < s.id; ++o)
-            if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o]);
+            if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o].id);
           const bool kept = o < old.size() && old[o].id == s.id;
           o += kept;
           if (is_stale[size_t(s.id)]) continue;
           if (!kept) {
-            edits[i].gained.push_back(s);
+            edits[i].gained.push_back(s.id);
             continue;
           }
           const auto list = near_.at(size_t(s.id));
-          const auto mine = std::lower_bound(list.begin(), list.end(), t,
+          const auto mine = std::lower_bound(list.begin(), list.end(), slot,
                                              [](const Neighbour& x, int32_t id) { return x.id < id; });
-          mine->fan = s.fan;
+          mine->corner = shared_corner(filed_[size_t(s.id)].fans, filed_[size_t(slot)].fans);
         }
         for (; o < old.size(); ++o)
-          if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o]);
+          if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o].id);
       },
       16);
   for (size_t i = 0; i < m; ++i) {
-    const int32_t t = stale[i];
-    for (const Neighbour& s : edits[i].lost) near_.erase_id(size_t(s.id), t);
-    for (const Neighbour& s : edits[i].gained) near_.insert_by_id(size_t(s.id), {t, s.fan});
-    near_.reserve(size_t(t), found[i].size());
+    const int32_t slot = slot_of_[size_t(stale[i])];
+    for (int32_t s : edits[i].lost) near_.erase_id(size_t(s), slot);
+    for (int32_t s : edits[i].gained)
+      near_.insert_by_id(size_t(s), {slot, shared_corner(filed_[size_t(s)].fans, filed_[size_t(slot)].fans)});
+    near_.reserve(size_t(slot), found[i].size());
   }
   detail::parallel_for_each_index(m, [&](size_t i) {
-    near_.resize(size_t(stale[i]), found[i].size());
-    std::copy(found[i].begin(), found[i].end(), near_.at(size_t(stale[i])).begin());
+    const auto slot = size_t(slot_of_[size_t(stale[i])]);
+    near_.resize(slot, found[i].size());
+    std::copy(found[i].begin(), found[i].end(), near_.at(slot).begin());
   });
 }
 
 std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                             std::span<const uint8_t> involved) {
   filed_.clear();
+  slot_of_.clear();
+  triangle_of_.clear();
   cells_ = {};
   near_ = {};
   keys_.clear();
-  cell_of_slot_.clear();
+  cell_of_key_.clear();
   last_triangles_.assign(triangles.begin(), triangles.end());
   last_boxes_ = boxes_;
   NodeMesh mesh;
@@ -431,12 +450,13 @@ std::vector<int32_t> CrossingIndex::find_stale(std::span<const Vec3> points, std
   boxes_.resize(n);
   detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
   std::vector<int32_t> stale;
-  anew = filed_.size() != n || n == 0;
+  anew = filed_.empty() || slot_of_.size() != n || n == 0;
   if (anew) return stale;
   std::vector<uint8_t> is_stale(n);
   detail::parallel_for_each_index(n, [&](size_t t) {
     const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
-    is_stale[t] = filed_[t].nodes != triangles[t] || filed_[t].fans != fans || !contains(filed_[t].box, boxes_[t]);
+    const Filing& f = filed_[size_t(slot_of_[t])];
+    is_stale[t] = f.nodes != triangles[t] || f.fans != fans || !contains(f.box, boxes_[t]);
   });
   for (size_t t = 0; t < n; ++t)
     if (is_stale[t]) stale.push_back(int32_t(t));
@@ -504,16 +524,17 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     return a;
   };
   const FanCertificates fans(points, triangles, fans_);
-  auto test = [&](int32_t t, const Neighbour& s, std::vector<BoxPair>& out) {
-    if (s.fan >= 0 && fans.embedded(s.fan)) return; // they meet properly
-    if (!boxes_[size_t(t)].overlaps(boxes_[size_t(s.id)])) return;
-    if (intersect_improperly(points, triangles[size_t(t)], triangles[size_t(s.id)], axis_of(t), axis_of(s.id)))
-      out.push_back({std::min(t, s.id), std::max(t, s.id)});
+  // s: the other triangle; corner: t's corner in a fan they share (Neighbour).
+  auto test = [&](int32_t t, int32_t s, uint32_t corner, std::vector<BoxPair>& out) {
+    if (corner != kNoCorner && fans.embedded(corner_fans[size_t(t)][corner])) return; // they meet properly
+    if (!boxes_[size_t(t)].overlaps(boxes_[size_t(s)])) return;
+    if (intersect_improperly(points, triangles[size_t(t)], triangles[size_t(s)], axis_of(t), axis_of(s)))
+      out.push_back({std::min(t, s), std::max(t, s)});
   };
   // Each pair once: where most triangles are involved, a pair of two involved
-  // ones from the lower id (the upper part of its sorted list) and a pair with
-  // an idle one from the idle one; where few are, every pair from its involved
-  // ones (the lower id if both are).
+  // ones from the lower slot (the upper part of its sorted list) and a pair
+  // with an idle one from the idle one; where few are, every pair from its
+  // involved ones (the lower slot if both are).
   auto is_involved = [&](int32_t t) { return involved.empty() || involved[size_t(t)]; };
   size_t involved_count = 0;
   for (size_t t = 0; t < n; ++t) involved_count += is_involved(int32_t(t));
@@ -522,19 +543,21 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
   detail::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found_of_thread.local();
     for (auto t = int32_t(r.begin()); t != int32_t(r.end()); ++t) {
-      const std::span<const Neighbour> list = near_.at(size_t(t));
+      const int32_t slot = slot_of_[size_t(t)];
+      const std::span<const Neighbour> list = near_.at(size_t(slot));
+      auto triangle = [&](const Neighbour& s) { return triangle_of_[size_t(s.id)]; };
       if (!is_involved(t)) {
         if (from_idle)
           for (const Neighbour& s : list)
-            if (is_involved(s.id)) test(t, s, out);
+            if (is_involved(triangle(s))) test(t, triangle(s), s.corner, out);
       } else if (from_idle) {
-        const auto upper = std::upper_bound(list.begin(), list.end(), t,
+        const auto upper = std::upper_bound(list.begin(), list.end(), slot,
                                             [](int32_t id, const Neighbour& s) { return id < s.id; });
         for (auto s = upper; s != list.end(); ++s)
-          if (is_involved(s->id)) test(t, *s, out);
+          if (is_involved(triangle(*s))) test(t, triangle(*s), s->corner, out);
       } else {
         for (const Neighbour& s : list)
-          if (!is_involved(s.id) || s.id > t) test(t, s, out);
+          if (!is_involved(triangle(s)) || s.id > slot) test(t, triangle(s), s.corner, out);
       }
     }
   });

@@ -1,6 +1,7 @@
 /// @file check/crossing_index_renumber.cpp
 /// CrossingIndex::renumber(): carrying the index over to a mesh rebuilt from
-/// the one it knows (collapses, remeshing), without filing it anew.
+/// the one it knows (collapses, remeshing), without filing it anew: only the
+/// slot maps and the filings' node and fan ids change.
 
 #include "check/crossing_index.hpp"
 
@@ -17,17 +18,14 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   last_triangles_.clear(); // without an index, the mesh must settle again
   settled_calls_ = 0;
   if (filed_.empty()) return;
-  std::vector<int32_t> new_triangle(filed_.size(), -1);
-  for (size_t t = 0; t < old_triangle.size(); ++t)
-    if (old_triangle[t] >= 0) new_triangle[size_t(old_triangle[t])] = int32_t(t);
   // The number of old node and fan ids, in one parallel pass over the filings
   // (grain maps renumber after the junction-sliver collapses of every iteration).
   using Counts = std::array<int32_t, 2>;
   const auto [filed_nodes, old_fans] = detail::parallel_reduce(
       tbb::blocked_range<size_t>(0, filed_.size(), 4096), Counts{0, 0},
       [&](const tbb::blocked_range<size_t>& r, Counts c) {
-        for (size_t t = r.begin(); t < r.end(); ++t) {
-          const Filing& f = filed_[t];
+        for (size_t slot = r.begin(); slot < r.end(); ++slot) {
+          const Filing& f = filed_[slot];
           c = {std::max({c[0], f.nodes[0] + 1, f.nodes[1] + 1, f.nodes[2] + 1}),
                std::max({c[1], f.fans[0] + 1, f.fans[1] + 1, f.fans[2] + 1})};
         }
@@ -45,44 +43,40 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   std::vector<int32_t> new_fan(size_t(old_fans), kUnseen);
   for (size_t t = 0; t < old_triangle.size() && !corner_fans.empty(); ++t)
     for (size_t k = 0; k < 3 && old_triangle[t] >= 0; ++k) {
-      const int32_t old = filed_[size_t(old_triangle[t])].fans[k];
+      const int32_t old = filed_[size_t(slot_of_[size_t(old_triangle[t])])].fans[k];
       if (old < 0) continue;
       int32_t& to = new_fan[size_t(old)];
       to = to == kUnseen || to == corner_fans[t][k] ? corner_fans[t][k] : -1;
     }
   auto fan_of = [&](int32_t old) { return old < 0 || new_fan[size_t(old)] < 0 ? -1 : new_fan[size_t(old)]; };
 
-  std::vector<Filing> filed(old_triangle.size()); // new triangles: not filed
-  detail::parallel_for(tbb::blocked_range<size_t>(0, filed.size(), 4096), [&](const auto& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t) {
-      if (old_triangle[t] < 0) continue;
-      filed[t] = filed_[size_t(old_triangle[t])];
-      for (int32_t& n : filed[t].nodes) n = new_node[size_t(n)];
-      for (int32_t& f : filed[t].fans) f = fan_of(f);
+  // Triangles gone free their slots; kept ones keep theirs, so the cells and
+  // lists stay as they are; new ones take free slots, lowest first, then new
+  // ones (not filed: they are filed at the next call).
+  std::vector<uint8_t> kept(slot_of_.size(), 0);
+  for (int32_t old : old_triangle)
+    if (old >= 0) kept[size_t(old)] = 1;
+  for (size_t old = 0; old < slot_of_.size(); ++old)
+    if (!kept[old]) free_slot(slot_of_[old]);
+  std::vector<int32_t> slot_of(old_triangle.size());
+  size_t next_free = 0;
+  for (size_t t = 0; t < old_triangle.size(); ++t) {
+    if (old_triangle[t] >= 0) {
+      slot_of[t] = slot_of_[size_t(old_triangle[t])];
+      continue;
     }
-  });
-  filed_ = std::move(filed);
-  level_count_.assign(level_count_.size(), 0);
-  for (const Filing& f : filed_)
-    if (f.level >= 0) ++level_count_[size_t(f.level)];
-  // List by list in parallel: grain maps renumber after the junction-sliver
-  // collapses of every iteration.
-  detail::parallel_for(tbb::blocked_range<size_t>(0, cells_.count(), 1024), [&](const auto& lists) {
-    cells_.map_items(
-        [&](CellEntry e) {
-          e.id = new_triangle[size_t(e.id)];
-          return e;
-        },
-        lists.begin(), lists.end());
-  });
-  // Lists by new triangle: each old list where it is, mapped (ids keep their
-  // order). Copying them all cost time and memory on grain maps, which collapse
-  // junction slivers in every iteration (1,000 grains at 128^3, 20 iterations,
-  // 2 threads: 83 s and 2.26 GB peak with the copy, 72 s and 2.0 GB without).
-  near_.keep_lists(old_triangle);
-  detail::parallel_for(tbb::blocked_range<size_t>(0, near_.count(), 1024), [&](const auto& lists) {
-    near_.map_items([&](Neighbour s) { return Neighbour{new_triangle[size_t(s.id)], fan_of(s.fan)}; }, lists.begin(),
-                    lists.end());
+    while (next_free < triangle_of_.size() && triangle_of_[next_free] >= 0) ++next_free;
+    if (next_free == triangle_of_.size()) filed_.emplace_back(), triangle_of_.push_back(-1), near_.add_list();
+    slot_of[t] = int32_t(next_free++);
+  }
+  slot_of_ = std::move(slot_of);
+  std::fill(triangle_of_.begin(), triangle_of_.end(), -1);
+  for (size_t t = 0; t < slot_of_.size(); ++t) triangle_of_[size_t(slot_of_[t])] = int32_t(t);
+  detail::parallel_for(tbb::blocked_range<size_t>(0, filed_.size(), 4096), [&](const auto& r) {
+    for (size_t slot = r.begin(); slot < r.end(); ++slot) {
+      for (int32_t& n : filed_[slot].nodes) n = n < 0 ? -1 : new_node[size_t(n)];
+      for (int32_t& f : filed_[slot].fans) f = fan_of(f);
+    }
   });
   fans_stale_ = true;
 }

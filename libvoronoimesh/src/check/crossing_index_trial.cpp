@@ -27,6 +27,7 @@ CrossingIndex::TrialCrossings CrossingIndex::crossings_with(std::span<const Vec3
       [&](size_t e) {
         std::vector<int32_t> near;
         filed_meeting(box[e], near);
+        for (int32_t& slot : near) slot = triangle_of_[size_t(slot)];
         std::sort(near.begin(), near.end());
         for (int32_t s : near) {
           if (left_out[size_t(s)] || !box[e].overlaps(boxes_[size_t(s)])) continue;
