@@ -176,8 +176,9 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
           for (const CellEntry& s : cells_.at(size_t(c))) {
             // s is filed in every cell of its filing box and the search visits
             // every cell of `box`: s is taken in the cell of the overlap's lower corner.
-            if (s.id == skip || std::max(lo[0], int64_t(s.first[0])) != i || std::max(lo[1], int64_t(s.first[1])) != j ||
-                std::max(lo[2], int64_t(s.first[2])) != k || !box.overlaps(filed_[size_t(s.id)].box))
+            if (s.id == skip || std::max(lo[0], int64_t(s.first[0])) != i ||
+                std::max(lo[1], int64_t(s.first[1])) != j || std::max(lo[2], int64_t(s.first[2])) != k ||
+                !box.overlaps(filed_[size_t(s.id)].box))
               continue;
             f(s.id);
           }

@@ -89,7 +89,8 @@ EdgeTable edge_table(const Triangles& tris, const NodeTriangles& nt) {
         const Block& block = blocks[b];
         std::copy(block.nodes.begin(), block.nodes.end(), et.nodes.begin() + ptrdiff_t(edge_start[b]));
         std::copy(block.he.begin(), block.he.end(), et.he.begin() + ptrdiff_t(he_start[b]));
-        for (size_t i = 0; i < block.ends.size(); ++i) et.off[edge_start[b] + i + 1] = int32_t(he_start[b]) + block.ends[i];
+        for (size_t i = 0; i < block.ends.size(); ++i)
+          et.off[edge_start[b] + i + 1] = int32_t(he_start[b]) + block.ends[i];
         for (size_t i = 0; i < block.first.size(); ++i)
           et.first[b * kNodesPerBlock + i] = int32_t(edge_start[b]) + block.first[i];
       },
@@ -163,7 +164,8 @@ NodePhases node_phases(const NodeTriangles& nt, const std::vector<PhasePair>& pa
       [&](size_t b) {
         const Block& block = blocks[b];
         std::copy(block.phase.begin(), block.phase.end(), np.phase.begin() + ptrdiff_t(phase_start[b]));
-        for (size_t i = 0; i < block.ends.size(); ++i) np.off[node_start[b] + i + 1] = int32_t(phase_start[b]) + block.ends[i];
+        for (size_t i = 0; i < block.ends.size(); ++i)
+          np.off[node_start[b] + i + 1] = int32_t(phase_start[b]) + block.ends[i];
       },
       1);
   return np;
