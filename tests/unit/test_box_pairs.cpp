@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 
 namespace {
 
@@ -28,30 +29,62 @@ std::vector<Bounds> random_boxes(std::mt19937_64& rng, size_t n) {
   return boxes;
 }
 
+/// Boxes of about one size filling a cube, as a mesh's triangles fill their
+/// grid, and a few larger ones (higher grid levels).
+std::vector<Bounds> even_boxes(std::mt19937_64& rng, size_t n) {
+  std::uniform_real_distribution<double> u(0, 0.5), size(0.01, 0.03);
+  std::vector<Bounds> boxes;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 lo(u(rng), u(rng), u(rng));
+    boxes.push_back({lo, lo + Vec3(size(rng), size(rng), size(rng))});
+  }
+  for (size_t i = 0; i < 10; ++i) {
+    const Vec3 lo(u(rng), u(rng), u(rng));
+    boxes.push_back({lo, lo + 10 * Vec3(size(rng), size(rng), size(rng))});
+  }
+  return boxes;
+}
+
 std::vector<BoxPair> sorted(std::vector<BoxPair> pairs) {
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
+/// Checks overlapping_box_pairs() against brute force on `boxes`, with every
+/// tenth box involved, none and all; at least `least_involved` pairs involved.
+void expect_every_pair_once(std::mt19937_64& rng, const std::vector<Bounds>& boxes, size_t least_involved) {
+  std::vector<uint8_t> involved(boxes.size());
+  for (auto& f : involved) f = rng() % 10 == 0;
+  std::vector<BoxPair> all, some;
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (size_t j = i + 1; j < boxes.size(); ++j)
+      if (boxes[i].overlaps(boxes[j])) {
+        all.push_back({int32_t(i), int32_t(j)});
+        if (involved[i] || involved[j]) some.push_back({int32_t(i), int32_t(j)});
+      }
+  ASSERT_GT(all.size(), some.size());
+  ASSERT_GT(some.size(), least_involved);
+  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes)), all);
+  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), some);
+  std::fill(involved.begin(), involved.end(), 1);
+  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), all);
+}
+
 TEST(BoxPairs, every_overlapping_pair_once_with_or_without_involved_boxes) {
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 4; ++trial) {
-    const std::vector<Bounds> boxes = random_boxes(rng, 600);
-    std::vector<uint8_t> involved(boxes.size());
-    for (auto& f : involved) f = rng() % 10 == 0;
-    std::vector<BoxPair> all, some;
-    for (size_t i = 0; i < boxes.size(); ++i)
-      for (size_t j = i + 1; j < boxes.size(); ++j)
-        if (boxes[i].overlaps(boxes[j])) {
-          all.push_back({int32_t(i), int32_t(j)});
-          if (involved[i] || involved[j]) some.push_back({int32_t(i), int32_t(j)});
-        }
-    ASSERT_GT(all.size(), some.size());
-    ASSERT_GT(some.size(), 10u);
-    EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes)), all) << "trial " << trial;
-    EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), some) << "trial " << trial;
-    std::fill(involved.begin(), involved.end(), 1);
-    EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), all) << "trial " << trial;
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    expect_every_pair_once(rng, random_boxes(rng, 600), 10);
+  }
+}
+
+// Boxes that fill their grid have their cells counted, not sorted by
+// comparison (sort_by_cell): the same pairs.
+TEST(BoxPairs, every_overlapping_pair_once_where_boxes_fill_the_grid) {
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 3; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    expect_every_pair_once(rng, even_boxes(rng, 3000), 100);
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -97,10 +98,22 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
         for (int64_t k = k0; k <= k1; ++k) f(key(i, j, k));
     return true;
   };
-  std::vector<uint64_t> covered;
+  // The flagged triangles' cells, listed and sorted in parallel (a serial sort
+  // of them was most of a check after a flip pass on 1M triangles).
+  std::vector<int32_t> flagged_ids;
   for (size_t t = 0; t < nt; ++t)
-    if (flagged[t]) cells(box_of(t), [&](uint64_t k) { covered.push_back(k); });
-  std::sort(covered.begin(), covered.end());
+    if (flagged[t]) flagged_ids.push_back(int32_t(t));
+  std::vector<size_t> offset(flagged_ids.size() + 1, 0);
+  detail::parallel_for(size_t(0), flagged_ids.size(), [&](size_t i) {
+    cells(box_of(size_t(flagged_ids[i])), [&](uint64_t) { ++offset[i + 1]; });
+  });
+  for (size_t i = 0; i < flagged_ids.size(); ++i) offset[i + 1] += offset[i];
+  std::vector<uint64_t> covered(offset.back());
+  detail::parallel_for(size_t(0), flagged_ids.size(), [&](size_t i) {
+    size_t at = offset[i];
+    cells(box_of(size_t(flagged_ids[i])), [&](uint64_t k) { covered[at++] = k; });
+  });
+  detail::parallel_sort(covered.begin(), covered.end(), std::less<uint64_t>());
   covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
   std::vector<uint8_t> keep(nt, 0);
   detail::parallel_for(size_t(0), nt, [&](size_t t) {
