@@ -3,20 +3,12 @@
 /// Counts and quality measures of an interface mesh.
 
 #include "voronoimesh/mesh/node_mesh.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include <optional>
 #include <string>
 
 namespace vm {
-
-/// Triangle quality q = 4 sqrt(3) area / (sum of squared edge lengths); 1 for an
-/// equilateral triangle, 0 for a degenerate one (paper sect. 4.3). Bit for bit
-/// the same for any order of the corners.
-/// @param a first corner
-/// @param b second corner
-/// @param c third corner
-/// @return q in [0, 1]; 0 also when a coordinate is not finite
-double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// Counts and quality measures of a mesh (compute_stats()).
 struct MeshStats {
