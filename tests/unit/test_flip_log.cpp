@@ -7,6 +7,7 @@
 #include "improve/flip_log.hpp"
 #include "improve/flip_recheck.hpp"
 #include "voronoimesh/improve/guard.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include "fixtures.hpp"
 
@@ -88,6 +89,48 @@ TEST(FlipLog, undo_gives_back_the_mesh_bit_for_bit) {
     EXPECT_TRUE(log.empty());
     EXPECT_EQ(connectivity(mesh), before);
   }
+}
+
+/// triangle_quality() of every face, computed anew.
+std::vector<double> fresh_qualities(const InterfaceMesh& mesh) {
+  std::vector<double> q;
+  for (const auto& t : mesh.triangles())
+    q.push_back(triangle_quality(mesh.positions()[size_t(t[0])], mesh.positions()[size_t(t[1])],
+                                 mesh.positions()[size_t(t[2])]));
+  return q;
+}
+
+// The qualities the mesh keeps (InterfaceMesh::qualities()) are those of its
+// faces now after every kind of change: moves, nodes put back, flips and their undo.
+TEST(FlipLog, the_mesh_keeps_its_face_qualities_current_through_moves_flips_and_undo) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int step = 0; step < 3; ++step) {
+    SCOPED_TRACE(step);
+    ASSERT_EQ(mesh.qualities(), fresh_qualities(mesh));
+    const std::vector<Vec3> before = mesh.positions();
+    std::vector<Vec3> delta(mesh.num_nodes());
+    for (auto& d : delta) d = 0.2 / 16 * Vec3(u(rng), u(rng), u(rng));
+    mesh.move_nodes(delta);
+    ASSERT_EQ(mesh.qualities(), fresh_qualities(mesh));
+    std::vector<int32_t> back;
+    for (int32_t n = 0; n < int32_t(mesh.num_nodes()); n += 7) back.push_back(n);
+    std::vector<Vec3> where;
+    for (int32_t n : back) where.push_back(before[size_t(n)]);
+    mesh.place_nodes(back, where);
+    ASSERT_EQ(mesh.qualities(), fresh_qualities(mesh));
+    FlipLog log;
+    auto edges = shuffled_edges(mesh, rng);
+    edges.resize(edges.size() / 4);
+    flip_some(mesh, log, edges);
+    ASSERT_GT(log.size(), 100u);
+    ASSERT_EQ(mesh.qualities(), fresh_qualities(mesh));
+    if (step != 1) log.undo(mesh);
+    ASSERT_EQ(mesh.qualities(), fresh_qualities(mesh));
+  }
+  mesh.topology_changed();
+  EXPECT_EQ(mesh.qualities(), fresh_qualities(mesh));
 }
 
 /// The crossing pairs with a face in `flipped`, sorted.

@@ -26,13 +26,7 @@ using detail::FlipPeers;
 /// Quality of every face, kept current across flips.
 class FaceQuality {
 public:
-  explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.omesh().n_faces()) {
-    const auto& pos = mesh.positions();
-    detail::parallel_for_each_index(q_.size(), [&](size_t f) {
-      const auto& c = mesh.triangles()[f]; // current: flips update it when they end
-      q_[f] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
-    });
-  }
+  explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.qualities()) {}
   /// Quality as it was, for the same mesh.
   FaceQuality(const InterfaceMesh& mesh, std::vector<double> q) : mesh_(mesh), q_(std::move(q)) {}
   const std::vector<double>& values() const { return q_; }

@@ -1,6 +1,5 @@
 #include "voronoimesh/improve/guard.hpp"
 
-#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/improve/project.hpp"
 
@@ -88,12 +87,17 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     detail::parallel_for_each_index(involved.size(), [&](size_t t) {
       const auto& tri = triangles[t];
       involved[t] = changed[size_t(tri[0])] | changed[size_t(tri[1])] | changed[size_t(tri[2])];
-      spoilt[t] = below_floor[t] = 0;
+      spoilt[t] = 0;
       if (!involved[t]) return;
       const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
       spoilt[t] = normal(points, tri).dot(normal(before, tri)) <= 0 || has_zero_area(a, b, c);
-      below_floor[t] = quality_floor > 0 && triangle_quality(a, b, c) < quality_floor;
     });
+    if (quality_floor > 0) {
+      const std::vector<double>& quality = mesh.qualities(); // kept by place_nodes() between rounds
+      detail::parallel_for_each_index(involved.size(), [&](size_t t) {
+        below_floor[t] = involved[t] && quality[t] < quality_floor;
+      });
+    }
     detail::parallel_for_each_index(watched.size(),
                                     [&](size_t i) { turned[i] = agreed[i] && !agrees(size_t(watched[i])); });
     ++report.rounds;

@@ -1,7 +1,6 @@
 #include "voronoimesh/improve/pipeline.hpp"
 
 #include "core/text.hpp"
-#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/core/errors.hpp"
 
 #include "core/fixed_point_sum.hpp"
@@ -96,11 +95,10 @@ std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   // Qualities lie in [0, 1]; a fixed-point sum makes the mean independent of the
   // face order (core/fixed_point_sum.hpp), as the stopping rule must be.
   std::vector<detail::FixedPointSum> sum(chunks, detail::FixedPointSum(1.0));
-  const auto& pos = mesh.positions();
+  const std::vector<double>& quality = mesh.qualities();
   detail::parallel_for(size_t(0), chunks, [&](size_t c) {
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
-      const auto& t = mesh.triangles()[f];
-      const double q = triangle_quality(pos[size_t(t[0])], pos[size_t(t[1])], pos[size_t(t[2])]);
+      const double q = quality[f];
       lo[c] = std::min(lo[c], q);
       sum[c].add(q);
     }

@@ -13,6 +13,7 @@
 #include "mesh/patch_connectivity.hpp"
 #include "mesh/topology.hpp"
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -182,6 +183,7 @@ void InterfaceMesh::build_adjacency() {
   triangles_.resize(mesh_.n_faces());
   triangle_copies_.resize(mesh_.n_faces());
   detail::parallel_for_each_index(triangles_.size(), [&](size_t f) { read_face(f); });
+  quality_current_ = false;
 }
 
 void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
@@ -193,6 +195,7 @@ void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
   nodes.reserve(6 * faces.size());
   for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
   detail::parallel_for_each_index(faces.size(), [&](size_t i) { read_face(size_t(faces[i])); });
+  update_qualities(faces);
   for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -226,6 +229,7 @@ void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
     pos_[n] += delta[n];
     for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
   });
+  quality_current_ = false;
 }
 
 void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions) {
@@ -233,6 +237,37 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
     const auto n = size_t(nodes[i]);
     pos_[n] = positions[i];
     for (int32_t c : copies(int32_t(n))) mesh_.set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+  });
+  if (!quality_current_) return;
+  std::vector<int32_t> faces;
+  for (int32_t n : nodes)
+    for (int32_t c : copies(n))
+      for (auto f : mesh_.vf_range(OMesh::VertexHandle(c))) faces.push_back(f.idx());
+  update_qualities(faces);
+}
+
+double InterfaceMesh::quality_of(size_t f) const {
+  const auto& t = triangles_[f];
+  return triangle_quality(pos_[size_t(t[0])], pos_[size_t(t[1])], pos_[size_t(t[2])]);
+}
+
+const std::vector<double>& InterfaceMesh::qualities() const {
+  if (quality_current_) return quality_;
+  quality_.resize(triangles_.size());
+  detail::parallel_for_each_index(quality_.size(), [&](size_t f) { quality_[f] = quality_of(f); });
+  quality_current_ = true;
+  return quality_;
+}
+
+void InterfaceMesh::update_qualities(std::span<const int32_t> faces) {
+  if (!quality_current_) return;
+  // A face at two placed nodes is listed twice: each is computed once, by one task.
+  std::vector<int32_t> unique(faces.begin(), faces.end());
+  std::sort(unique.begin(), unique.end());
+  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+  detail::parallel_for_each_index(unique.size(), [&](size_t i) {
+    const auto f = size_t(unique[i]);
+    quality_[f] = quality_of(f);
   });
 }
 

@@ -68,6 +68,13 @@ public:
 
   /// Node positions (authoritative; OpenMesh points mirror them).
   const std::vector<Vec3>& positions() const { return pos_; }
+  /// triangle_quality() of every face (by OpenMesh face index), as of the
+  /// positions now and the faces as triangles() has them. The guard's commit,
+  /// the flip pass and the pipeline's stopping rule each ask it every
+  /// iteration: it is computed in full only after moves (move_nodes()) or a
+  /// rebuild of the adjacency, and kept up to date through place_nodes() and
+  /// faces_changed(). Not to be asked from two threads at once.
+  const std::vector<double>& qualities() const;
 
   // --- For the improvement passes ---------------------------------------------
 
@@ -151,6 +158,10 @@ private:
   std::vector<int32_t> copy_off_, copy_v_;
   detail::PooledLists<int32_t> adj_; ///< each node's neighbours, sorted
   std::vector<std::array<int32_t, 3>> triangles_, triangle_copies_;
+  mutable std::vector<double> quality_; ///< qualities(), when quality_current_
+  mutable bool quality_current_ = false;
+  void update_qualities(std::span<const int32_t> faces); ///< of these faces, if the rest are current
+  double quality_of(size_t f) const;                      ///< triangle_quality() of face f now
   std::vector<uint8_t> box_;
   Box domain_;
   std::vector<std::string> names_;
