@@ -58,6 +58,9 @@ uint64_t mix(uint64_t x) { // splitmix64's finaliser
   return x ^ (x >> 31);
 }
 
+/// a == b, inline (std::array's == calls memcmp: 4% of a steady-state iteration on 1M triangles).
+bool same(const Triangle& a, const Triangle& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+
 bool contains(const Bounds& outer, const Bounds& inner) {
   return (outer.lo.array() <= inner.lo.array()).all() && (inner.hi.array() <= outer.hi.array()).all();
 }
@@ -375,7 +378,8 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   for (size_t i = 0; i < m; ++i) {
     const int32_t t = stale[i], slot = slot_of_[size_t(t)];
     const Filing& old = filed_[size_t(slot)];
-    if (fresh[i].fans != old.fans || fresh[i].nodes != old.nodes) changed.push_back(t), old_fans.push_back(old.fans);
+    if (!same(fresh[i].fans, old.fans) || !same(fresh[i].nodes, old.nodes))
+      changed.push_back(t), old_fans.push_back(old.fans);
     for (uint64_t k : edits[i].left) cells_.erase_id(size_t(find(k)), slot);
     if (old.level >= 0) --level_count_[size_t(old.level)];
     ++level_count_[size_t(fresh[i].level)];
@@ -457,7 +461,7 @@ std::vector<int32_t> CrossingIndex::find_stale(std::span<const Vec3> points, std
   detail::parallel_for_each_index(n, [&](size_t t) {
     const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
     const Filing& f = filed_[size_t(slot_of_[t])];
-    is_stale[t] = f.nodes != triangles[t] || f.fans != fans || !contains(f.box, boxes_[t]);
+    is_stale[t] = !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
   });
   for (size_t t = 0; t < n; ++t)
     if (is_stale[t]) stale.push_back(int32_t(t));
@@ -498,7 +502,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
       for (size_t t = 0; t < n; ++t) {
         const Bounds& last = last_boxes_[t];
         const double skin = kSkin * kCellFactor * (last.hi - last.lo).maxCoeff();
-        changed += last_triangles_[t] != triangles[t] ||
+        changed += !same(last_triangles_[t], triangles[t]) ||
                    !contains(Bounds{(last.lo.array() - skin).matrix(), (last.hi.array() + skin).matrix()}, boxes_[t]);
       }
     }

@@ -83,7 +83,11 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   const auto& pos = mesh.positions();
   const Vec3 &vi = pos[size_t(nodes[0])], &vj = pos[size_t(nodes[1])], &vk = pos[size_t(nodes[2])],
              &vl = pos[size_t(nodes[3])];
-  const double after = std::min(triangle_quality(vi, vl, vk), triangle_quality(vl, vj, vk));
+  // Most edges judged do not gain: one new triangle no better than the pair
+  // now says so without the other's quality.
+  const double first = triangle_quality(vi, vl, vk);
+  if (first <= before && !ear) return -1;
+  const double after = std::min(first, triangle_quality(vl, vj, vk));
   if (after <= before && !ear) return -1;
   // An ear flips even when that lowers the pair's quality, but never into a
   // triangle validate() calls zero-area (three nodes on one line, as planes
