@@ -17,31 +17,41 @@
 namespace vm {
 namespace {
 
+/// Junction nodes within this share of a sliver's longest edge of the target
+/// merge into it with the sliver's collapse (find_slivers()).
+constexpr double kHuddle = 0.1;
+
 using detail::CollapsePeers;
 using detail::SliverCollapse;
 using detail::drop_unused_nodes;
 using detail::merge_passing;
 
 /// The collapses of one batch, chosen from the `slivers` (sorted worst first,
-/// ties by triangle) but the `passed_over` ones, at most `max` of them, that
-/// share no triangle: each claims its two nodes and their rings. `claimed`
-/// gets the collapse claiming each id, `from` the sliver of each collapse.
+/// ties by triangle, then b) but the `passed_over` ones, at most `max` of them,
+/// that share no triangle: each claims its two nodes and their rings. The
+/// collapses of one sliver (its b and the nodes huddled round its a, see
+/// find_slivers()) are chosen together, and each id a group claims blames all
+/// of them: they fail together. `claimed` gets the collapses claiming each id,
+/// `from` the sliver of each collapse.
 std::vector<std::pair<int64_t, int64_t>> choose(const std::vector<SliverCollapse>& slivers,
                                                 const std::vector<uint8_t>& passed_over, int max,
-                                                std::unordered_map<int64_t, int32_t>& claimed,
+                                                std::unordered_multimap<int64_t, int32_t>& claimed,
                                                 std::vector<size_t>& from) {
   claimed.clear();
   from.clear();
   std::vector<std::pair<int64_t, int64_t>> chosen;
-  for (size_t i = 0; i < slivers.size(); ++i) {
+  for (size_t i = 0, end = 0; i < slivers.size(); i = end) {
+    for (end = i + 1; end < slivers.size() && slivers[end].triangle == slivers[i].triangle;) ++end;
     const SliverCollapse& s = slivers[i];
     if (int(chosen.size()) >= max) break;
     if (s.a < 0 || passed_over[i] ||
         std::any_of(s.claims.begin(), s.claims.end(), [&](int64_t n) { return claimed.count(n); }))
       continue;
-    for (int64_t n : s.claims) claimed[n] = int32_t(chosen.size());
-    chosen.push_back({s.a, s.b});
-    from.push_back(i);
+    for (size_t j = i; j < end; ++j) {
+      for (int64_t n : s.claims) claimed.emplace(n, int32_t(chosen.size()));
+      chosen.push_back({slivers[j].a, slivers[j].b});
+      from.push_back(j);
+    }
   }
   return chosen;
 }
@@ -105,14 +115,34 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     // A collapse that leaves a triangle no better than the sliver would trade
     // one sliver for another (voronoi30 at grid 48 with collapse_below=0.15:
     // min q 0.065 -> 0.012), and the quality floor cannot undo it.
-    if (a >= 0 && quality_after_collapse(mesh, b, a) > q) {
-      s.a = node_ids[size_t(a)];
-      s.b = node_ids[size_t(b)];
-      for (int32_t n : {a, b}) {
-        s.claims.push_back(node_ids[size_t(n)]);
-        for (int32_t w : mesh.neighbours(n)) s.claims.push_back(node_ids[size_t(w)]);
-      }
+    if (a < 0 || quality_after_collapse(mesh, b, a) <= q) {
+      slivers.push_back(std::move(s));
+      continue;
     }
+    // Junction nodes huddled round a (closer than a tenth of the sliver's
+    // longest edge, with their constraints among a's) merge into a with b:
+    // where quadruple points and curve nodes bunch, b alone would fold the
+    // cluster's faces onto each other (30 Voronoi cells: a 5-phase point with a
+    // curve node 0.01 h and a quadruple point 0.03 h from it, duplicate
+    // triangles whichever merged alone; min q 0.039, which no pass could mend).
+    std::vector<int32_t> merged{b};
+    const double huddle = std::pow(kHuddle, 2) * std::max({(pos[size_t(c[0])] - pos[size_t(c[1])]).squaredNorm(),
+                                                           (pos[size_t(c[1])] - pos[size_t(c[2])]).squaredNorm(),
+                                                           (pos[size_t(c[2])] - pos[size_t(c[0])]).squaredNorm()});
+    for (int32_t w : mesh.neighbours(a))
+      if (w != b && junction_order(mesh, w) >= 3 && (pos[size_t(w)] - pos[size_t(a)]).squaredNorm() <= huddle &&
+          mesh.constraints_within(w, a) && quality_after_collapse(mesh, w, a) > q)
+        merged.push_back(w);
+    s.a = node_ids[size_t(a)];
+    s.b = node_ids[size_t(b)];
+    for (int32_t n : merged) {
+      s.claims.push_back(node_ids[size_t(n)]);
+      for (int32_t w : mesh.neighbours(n)) s.claims.push_back(node_ids[size_t(w)]);
+    }
+    s.claims.push_back(node_ids[size_t(a)]);
+    for (int32_t w : mesh.neighbours(a)) s.claims.push_back(node_ids[size_t(w)]);
+    for (size_t k = 1; k < merged.size(); ++k)
+      slivers.push_back(SliverCollapse{q, s.triangle, s.a, node_ids[size_t(merged[k])], s.claims});
     slivers.push_back(std::move(s));
   }
   return slivers;
@@ -125,7 +155,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   if (peers) slivers = peers->all(slivers);
   if (slivers.empty()) return 0;
   std::sort(slivers.begin(), slivers.end(), [](const SliverCollapse& x, const SliverCollapse& y) {
-    return std::tie(x.quality, x.triangle) < std::tie(y.quality, y.triangle);
+    return std::tie(x.quality, x.triangle, x.b) < std::tie(y.quality, y.triangle, y.b);
   });
   // A collapse that fails (it would make a triangle cross another surface, or
   // the mesh invalid) still claimed its rings, keeping a neighbouring sliver's
@@ -143,13 +173,13 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   std::vector<int32_t> kept_triangles;
   size_t done = 0;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    std::unordered_map<int64_t, int32_t> claimed; // id -> the collapse claiming it
+    std::unordered_multimap<int64_t, int32_t> claimed; // id -> the collapses claiming it
     const auto chosen = choose(slivers, passed_over, params.max_collapses, claimed, from);
     if (attempt > 0 && std::includes(tried.begin(), tried.end(), from.begin(), from.end())) break;
     NodeMesh trial = mesh.to_node_mesh();
     std::vector<int32_t> trial_kept;
     // A failure can only be at a node some collapse claims (its a, b and rings).
-    const std::unordered_multimap<int64_t, int32_t> blame(claimed.begin(), claimed.end());
+    const std::unordered_multimap<int64_t, int32_t>& blame = claimed;
     const size_t trial_done =
         merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept, {}, &made, index);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
