@@ -4,6 +4,7 @@
 
 #include "check/box_pairs.hpp"
 
+#include "check/cell_sort.hpp"
 #include "core/parallel.hpp"
 
 #include <tbb/blocked_range.h>
@@ -110,39 +111,31 @@ private:
 };
 
 
-/// Sorts entries by cell key, and by triangle within a cell. Where the grid's
-/// cells up to `top_level` number no more than a few per entry, by counting
-/// them (a stable pass in triangle order: half the time of a parallel
-/// comparison sort of 2.7M entries, 1M triangles, on 2 threads); else by comparison.
+/// Sorts entries by cell key, and by triangle within a cell: by counting
+/// (check/cell_sort.hpp) where the grid's cells up to `top_level` are few
+/// enough, else by comparison.
 void sort_by_cell(std::vector<Entry>& entries, const Grid& grid, int top_level) {
-  constexpr uint64_t kCellsPerEntry = 4;
   std::vector<uint64_t> level_start(size_t(top_level) + 2, 0);
   std::vector<std::array<int64_t, 3>> cells(size_t(top_level) + 1);
   for (int l = 0; l <= top_level; ++l) {
     cells[size_t(l)] = grid.cells(l);
     const auto& c = cells[size_t(l)];
     level_start[size_t(l) + 1] = level_start[size_t(l)] + uint64_t(c[0]) * uint64_t(c[1]) * uint64_t(c[2]);
-    if (level_start[size_t(l) + 1] > kCellsPerEntry * entries.size() + 1024) {
+    if (!counting_pays(level_start[size_t(l) + 1], entries.size())) {
       detail::parallel_sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
         return x.key != y.key ? x.key < y.key : x.tri < y.tri;
       });
       return;
     }
   }
-  // Dense cell ids in key order: by level, then i, j, k.
+  // Dense cell ids in key order: by level, then i, j, k; entries are in triangle order.
   constexpr uint64_t mask = (uint64_t(1) << kAxisBits) - 1;
-  auto dense = [&](uint64_t key) {
-    const auto l = size_t(key >> (3 * kAxisBits));
+  sort_by_counting(entries, level_start.back(), [&](const Entry& e) {
+    const auto l = size_t(e.key >> (3 * kAxisBits));
     const auto& c = cells[l];
-    const uint64_t i = (key >> (2 * kAxisBits)) & mask, j = (key >> kAxisBits) & mask, k = key & mask;
+    const uint64_t i = (e.key >> (2 * kAxisBits)) & mask, j = (e.key >> kAxisBits) & mask, k = e.key & mask;
     return level_start[l] + (i * uint64_t(c[1]) + j) * uint64_t(c[2]) + k;
-  };
-  std::vector<uint32_t> start(level_start.back() + 1, 0);
-  for (const Entry& e : entries) ++start[dense(e.key) + 1];
-  for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-  std::vector<Entry> sorted(entries.size());
-  for (const Entry& e : entries) sorted[start[dense(e.key)]++] = e; // entries are in triangle order
-  entries.swap(sorted);
+  });
 }
 
 } // namespace

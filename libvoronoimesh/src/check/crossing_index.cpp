@@ -113,14 +113,6 @@ CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangl
   return f;
 }
 
-template <class F> void CrossingIndex::for_cells(const Filing& f, F&& f_of_key) const {
-  if (f.level < 0) return;
-  const auto last = cell_of(f.box.hi, f.level);
-  for (int64_t i = f.first[0]; i <= last[0]; ++i)
-    for (int64_t j = f.first[1]; j <= last[1]; ++j)
-      for (int64_t k = f.first[2]; k <= last[2]; ++k) f_of_key(key(f.level, i, j, k));
-}
-
 int64_t CrossingIndex::find(uint64_t k) const {
   const size_t mask = keys_.size() - 1;
   for (size_t s = mix(k) & mask;; s = (s + 1) & mask) {
@@ -130,7 +122,7 @@ int64_t CrossingIndex::find(uint64_t k) const {
 }
 
 size_t CrossingIndex::find_or_add(uint64_t k) {
-  if (2 * (cells_.count() + 1) > keys_.size()) grow_table();
+  if (2 * (cells_.count() + 1) > keys_.size()) grow_table(cells_.count());
   const size_t mask = keys_.size() - 1;
   size_t s = mix(k) & mask;
   for (; keys_[s] != kEmpty; s = (s + 1) & mask)
@@ -140,11 +132,11 @@ size_t CrossingIndex::find_or_add(uint64_t k) {
   return cells_.add_list();
 }
 
-void CrossingIndex::grow_table() {
+void CrossingIndex::grow_table(size_t cells) {
   const std::vector<uint64_t> old_keys = std::move(keys_);
   const std::vector<uint32_t> old_cells = std::move(cell_of_key_);
   size_t capacity = 64;
-  while (capacity < 4 * (cells_.count() + 1)) capacity *= 2;
+  while (capacity < 4 * (cells + 1)) capacity *= 2;
   keys_.assign(capacity, kEmpty);
   cell_of_key_.assign(capacity, 0);
   const size_t mask = capacity - 1;
@@ -214,6 +206,23 @@ void CrossingIndex::free_slot(int32_t slot) {
   triangle_of_[size_t(slot)] = -1;
 }
 
+std::vector<int32_t> CrossingIndex::lists_unlike_search() const {
+  std::vector<int32_t> unlike;
+  std::vector<Neighbour> searched;
+  for (size_t slot = 0; slot < filed_.size(); ++slot) {
+    if (filed_[slot].level < 0) continue;
+    searched.clear();
+    near(int32_t(slot), searched);
+    const auto kept = near_.at(slot);
+    const bool same_lists = std::equal(kept.begin(), kept.end(), searched.begin(), searched.end(),
+                                       [](const Neighbour& a, const Neighbour& b) {
+                                         return a.id == b.id && a.corner == b.corner;
+                                       });
+    if (!same_lists) unlike.push_back(int32_t(slot));
+  }
+  return unlike;
+}
+
 void CrossingIndex::filed_meeting(const Bounds& box, std::vector<int32_t>& out) const {
   for_filed_meeting(box, -1, [&](int32_t s) { out.push_back(s); });
 }
@@ -243,90 +252,6 @@ void CrossingIndex::set_grid() {
   inverse_cell_size_.resize(kLevels);
   for (int l = 0; l < kLevels; ++l) inverse_cell_size_[size_t(l)] = 1 / std::ldexp(cell_size_, l);
   origin_ = n ? lo : Vec3::Zero();
-}
-
-void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
-  const size_t n = triangles.size();
-  rebuilt_ = true;
-  fans_stale_ = false;
-  set_grid();
-  fans_.build(triangles, corner_fans);
-  slot_of_.resize(n);
-  std::iota(slot_of_.begin(), slot_of_.end(), 0);
-  triangle_of_ = slot_of_;
-
-  // The cells, from every triangle's (key, id) entries sorted.
-  filed_.assign(n, Filing{});
-  std::vector<uint32_t> offset(n + 1, 0);
-  detail::parallel_for_each_index(n, [&](size_t t) {
-    filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
-    uint32_t cells = 0;
-    for_cells(filed_[t], [&](uint64_t) { ++cells; });
-    offset[t + 1] = cells;
-  });
-  for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
-  struct Entry {
-    uint64_t key;
-    int32_t tri;
-  };
-  std::vector<Entry> entries(offset[n]);
-  detail::parallel_for_each_index(n, [&](size_t t) {
-    uint32_t e = offset[t];
-    for_cells(filed_[t], [&](uint64_t k) { entries[e++] = {k, int32_t(t)}; });
-  });
-  detail::parallel_sort(entries.begin(), entries.end(),
-                        [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
-  keys_.clear();
-  cell_of_key_.clear();
-  cells_ = {};
-  level_count_.assign(kLevels, 0);
-  std::vector<size_t> first;
-  for (size_t e = 0; e < entries.size(); ++e)
-    if (e == 0 || entries[e].key != entries[e - 1].key) {
-      first.push_back(e);
-      find_or_add(entries[e].key); // cells numbered in key order
-    }
-  first.push_back(entries.size());
-  std::vector<uint32_t> sizes(first.size() - 1);
-  for (size_t c = 0; c < sizes.size(); ++c) sizes[c] = uint32_t(first[c + 1] - first[c]);
-  cells_.assign(sizes);
-  detail::parallel_for_each_index(sizes.size(), [&](size_t c) {
-    const auto filed = cells_.at(c);
-    for (size_t i = 0; i < filed.size(); ++i) {
-      const int32_t t = entries[first[c] + i].tri;
-      filed[i] = cell_entry(t, filed_[size_t(t)]);
-    }
-  });
-  for (const Filing& f : filed_) ++level_count_[size_t(f.level)];
-
-  // The lists, found in blocks of triangles (a fixed partition), then packed.
-  constexpr size_t kBlock = 1024;
-  const size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::vector<Neighbour>> found(blocks);
-  std::vector<uint32_t> count(n);
-  detail::parallel_for_each_index(
-      blocks,
-      [&](size_t b) {
-        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) {
-          const size_t before = found[b].size();
-          near(int32_t(t), found[b]);
-          count[t] = uint32_t(found[b].size() - before);
-        }
-      },
-      1);
-  near_ = {};
-  near_.assign(count);
-  detail::parallel_for_each_index(
-      blocks,
-      [&](size_t b) {
-        const Neighbour* from = found[b].data();
-        for (size_t t = b * kBlock; t < std::min(n, (b + 1) * kBlock); ++t) {
-          const auto list = near_.at(t);
-          std::copy_n(from, list.size(), list.begin());
-          from += list.size();
-        }
-      },
-      1);
 }
 
 void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,

@@ -89,6 +89,9 @@ public:
   /// triangles it filed again, and whether it built the index anew (for tests
   /// and benchmarks).
   bool indexed() const { return !filed_.empty(); }
+  /// The filed slots whose kept list differs from a search through the cells
+  /// now (for tests: none, in an index kept right through rebuilds and refiling).
+  std::vector<int32_t> lists_unlike_search() const;
   size_t refiled() const { return refiled_; }
   bool rebuilt() const { return rebuilt_; }
 
@@ -138,7 +141,7 @@ private:
   static CellEntry cell_entry(int32_t t, const Filing& f); ///< t's entry in each cell of its filing f
   int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none
   size_t find_or_add(uint64_t key);
-  void grow_table();
+  void grow_table(size_t cells); ///< room in keys_ for `cells` cells at a quarter load at most
   /// find_self_intersections() on the mesh as it is; drops the index.
   std::vector<BoxPair> one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                std::span<const uint8_t> involved);
@@ -184,5 +187,13 @@ private:
   size_t refiled_ = 0;
   bool rebuilt_ = false;
 };
+
+template <class F> void CrossingIndex::for_cells(const Filing& f, F&& f_of_key) const {
+  if (f.level < 0) return;
+  const auto last = cell_of(f.box.hi, f.level);
+  for (int64_t i = f.first[0]; i <= last[0]; ++i)
+    for (int64_t j = f.first[1]; j <= last[1]; ++j)
+      for (int64_t k = f.first[2]; k <= last[2]; ++k) f_of_key(key(f.level, i, j, k));
+}
 
 } // namespace vm::detail

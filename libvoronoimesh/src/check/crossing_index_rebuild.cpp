@@ -1,0 +1,136 @@
+/// @file check/crossing_index_rebuild.cpp
+/// CrossingIndex::rebuild(): filing every triangle anew, when the mesh has
+/// settled enough to keep an index (once a run, or after a large change).
+
+#include "check/crossing_index.hpp"
+
+#include "check/cell_sort.hpp"
+#include "core/parallel.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <numeric>
+
+namespace vm::detail {
+
+void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
+  const size_t n = triangles.size();
+  rebuilt_ = true;
+  fans_stale_ = false;
+  set_grid();
+  const size_t levels = inverse_cell_size_.size();
+  fans_.build(triangles, corner_fans);
+  slot_of_.resize(n);
+  std::iota(slot_of_.begin(), slot_of_.end(), 0);
+  triangle_of_ = slot_of_;
+
+  // The cells, from every triangle's (key, id) entries sorted.
+  filed_.assign(n, Filing{});
+  std::vector<uint32_t> offset(n + 1, 0);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
+    uint32_t cells = 0;
+    for_cells(filed_[t], [&](uint64_t) { ++cells; });
+    offset[t + 1] = cells;
+  });
+  for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
+  level_count_.assign(levels, 0);
+  Bounds reach{Vec3::Constant(std::numeric_limits<double>::infinity()),
+               Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Filing& f : filed_) {
+    ++level_count_[size_t(f.level)];
+    reach = {reach.lo.cwiseMin(f.box.lo), reach.hi.cwiseMax(f.box.hi)};
+  }
+  struct Entry {
+    uint64_t key;
+    int32_t tri;
+  };
+  std::vector<Entry> entries(offset[n]);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    uint32_t e = offset[t];
+    for_cells(filed_[t], [&](uint64_t k) { entries[e++] = {k, int32_t(t)}; });
+  });
+  // In key order (level, then i, j, k): by counting the cells the filing boxes
+  // reach in each level, where they are few enough (check/cell_sort.hpp).
+  std::vector<uint64_t> level_start(levels + 1, 0);
+  std::vector<std::array<int64_t, 3>> lowest(levels), across(levels);
+  for (size_t l = 0; l < levels; ++l) {
+    uint64_t cells = 0;
+    if (level_count_[l]) {
+      lowest[l] = cell_of(reach.lo, int(l));
+      const auto highest = cell_of(reach.hi, int(l));
+      for (size_t a = 0; a < 3; ++a) across[l][a] = highest[a] - lowest[l][a] + 1;
+      cells = uint64_t(across[l][0]) * uint64_t(across[l][1]) * uint64_t(across[l][2]);
+    }
+    level_start[l + 1] = level_start[l] + cells;
+  }
+  if (counting_pays(level_start.back(), entries.size())) {
+    sort_by_counting(entries, level_start.back(), [&](const Entry& e) {
+      const auto l = size_t(filed_[size_t(e.tri)].level);
+      const auto c = key_cell(e.key);
+      return level_start[l] + uint64_t(((c[0] - lowest[l][0]) * across[l][1] + c[1] - lowest[l][1]) * across[l][2] +
+                                        c[2] - lowest[l][2]);
+    });
+  } else {
+    detail::parallel_sort(entries.begin(), entries.end(),
+                          [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
+  }
+  std::vector<size_t> first;
+  for (size_t e = 0; e < entries.size(); ++e)
+    if (e == 0 || entries[e].key != entries[e - 1].key) first.push_back(e);
+  first.push_back(entries.size());
+  keys_.clear();
+  cell_of_key_.clear();
+  cells_ = {};
+  grow_table(first.size() - 1); // sized once, not grown by doubling as cells are added
+  for (size_t c = 0; c + 1 < first.size(); ++c) find_or_add(entries[first[c]].key); // cells numbered in key order
+  std::vector<uint32_t> sizes(first.size() - 1);
+  for (size_t c = 0; c < sizes.size(); ++c) sizes[c] = uint32_t(first[c + 1] - first[c]);
+  cells_.assign(sizes);
+  detail::parallel_for_each_index(sizes.size(), [&](size_t c) {
+    const auto filed = cells_.at(c);
+    for (size_t i = 0; i < filed.size(); ++i) {
+      const int32_t t = entries[first[c] + i].tri;
+      filed[i] = cell_entry(t, filed_[size_t(t)]);
+    }
+  });
+
+  // The lists: every pair of overlapping filing boxes, as near() would find
+  // each, but found all at once as a one-off check finds its candidates (a
+  // search through the cells per triangle took 1.0 of 1.7 s on 1M triangles),
+  // then dealt to both triangles' lists (in whatever order the threads deal
+  // them) and sorted.
+  const std::vector<BoxPair> pairs = [&] {
+    std::vector<Bounds> filing(n);
+    detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box; });
+    return overlapping_box_pairs(filing);
+  }();
+  std::vector<std::atomic<uint32_t>> dealt(n);
+  detail::parallel_for_each_index(n, [&](size_t t) { dealt[t].store(0, std::memory_order_relaxed); });
+  detail::parallel_for_each_index(pairs.size(), [&](size_t i) {
+    for (int32_t t : pairs[i]) dealt[size_t(t)].fetch_add(1, std::memory_order_relaxed);
+  });
+  std::vector<uint32_t> count(n);
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    count[t] = dealt[t].load(std::memory_order_relaxed);
+    dealt[t].store(0, std::memory_order_relaxed);
+  });
+  near_ = {};
+  near_.assign(count);
+  detail::parallel_for_each_index(pairs.size(), [&](size_t i) {
+    const auto [t, s] = pairs[i];
+    near_.at(size_t(t))[dealt[size_t(t)].fetch_add(1, std::memory_order_relaxed)] = {s, kNoCorner};
+    near_.at(size_t(s))[dealt[size_t(s)].fetch_add(1, std::memory_order_relaxed)] = {t, kNoCorner};
+  });
+  // Each list's fans read from a compact copy: from the filings they were a cache miss each.
+  std::vector<Triangle> fans(n);
+  detail::parallel_for_each_index(n, [&](size_t t) { fans[t] = filed_[t].fans; });
+  detail::parallel_for_each_index(n, [&](size_t t) {
+    const auto list = near_.at(t);
+    std::sort(list.begin(), list.end(), [](const Neighbour& a, const Neighbour& b) { return a.id < b.id; });
+    for (Neighbour& s : list) s.corner = shared_corner(fans[t], fans[size_t(s.id)]);
+  });
+}
+
+} // namespace vm::detail
