@@ -111,9 +111,8 @@ private:
 };
 
 
-/// Sorts entries by cell key, and by triangle within a cell: by counting
-/// (check/cell_sort.hpp) where the grid's cells up to `top_level` are few
-/// enough, else by comparison.
+/// Sorts entries by cell key, and by triangle within a cell
+/// (check/cell_sort.hpp): the cells up to `top_level` numbered densely.
 void sort_by_cell(std::vector<Entry>& entries, const Grid& grid, int top_level) {
   std::vector<uint64_t> level_start(size_t(top_level) + 2, 0);
   std::vector<std::array<int64_t, 3>> cells(size_t(top_level) + 1);
@@ -121,16 +120,10 @@ void sort_by_cell(std::vector<Entry>& entries, const Grid& grid, int top_level) 
     cells[size_t(l)] = grid.cells(l);
     const auto& c = cells[size_t(l)];
     level_start[size_t(l) + 1] = level_start[size_t(l)] + uint64_t(c[0]) * uint64_t(c[1]) * uint64_t(c[2]);
-    if (!counting_pays(level_start[size_t(l) + 1], entries.size())) {
-      detail::parallel_sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
-        return x.key != y.key ? x.key < y.key : x.tri < y.tri;
-      });
-      return;
-    }
   }
-  // Dense cell ids in key order: by level, then i, j, k; entries are in triangle order.
+  // Dense cell ids in key order: by level, then i, j, k.
   constexpr uint64_t mask = (uint64_t(1) << kAxisBits) - 1;
-  sort_by_counting(entries, level_start.back(), [&](const Entry& e) {
+  sort_by_cell_key(entries, level_start.back(), [&](const Entry& e) {
     const auto l = size_t(e.key >> (3 * kAxisBits));
     const auto& c = cells[l];
     const uint64_t i = (e.key >> (2 * kAxisBits)) & mask, j = (e.key >> kAxisBits) & mask, k = e.key & mask;
@@ -170,9 +163,10 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
   for (int8_t l : level) level_used[size_t(l)] = true;
 
   tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
-  auto consider = [&](std::vector<BoxPair>& out, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s) {
+  auto consider = [](std::vector<BoxPair>& out, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s,
+                      const Bounds& box_t, const Bounds& box_s) {
     if ((first_t | first_s) != 7) return; // not the pair's own cell
-    if (boxes[size_t(t)].overlaps(boxes[size_t(s)])) out.push_back({std::min(t, s), std::max(t, s)});
+    if (box_t.overlaps(box_s)) out.push_back({std::min(t, s), std::max(t, s)});
   };
   // Pairs of one level, in their common cell. A cell's boxes are read once,
   // into a local copy: its pairs read them up to a cell's count of times each,
@@ -190,11 +184,9 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
       for (size_t i = begin; i < end; ++i) {
         if (!entries[i].involved) continue;
         for (size_t j = involved.empty() ? i + 1 : begin; j < end; ++j)
-          if ((j > i || (j < i && !entries[j].involved)) && (entries[i].first | entries[j].first) == 7 &&
-              local[i - begin].overlaps(local[j - begin])) {
-            const int32_t t = entries[i].tri, s = entries[j].tri;
-            out.push_back({std::min(t, s), std::max(t, s)});
-          }
+          if (j > i || (j < i && !entries[j].involved))
+            consider(out, entries[i].tri, entries[j].tri, entries[i].first, entries[j].first, local[i - begin],
+                     local[j - begin]);
       }
     }
   });
@@ -209,7 +201,8 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
             auto lo = std::lower_bound(entries.begin(), entries.end(), key,
                                        [](const Entry& e, uint64_t k) { return e.key < k; });
             for (; lo != entries.end() && lo->key == key; ++lo)
-              if (is_involved(t) || lo->involved) consider(out, int32_t(t), lo->tri, first, lo->first);
+              if (is_involved(t) || lo->involved)
+                consider(out, int32_t(t), lo->tri, first, lo->first, boxes[t], boxes[size_t(lo->tri)]);
           });
         }
     });

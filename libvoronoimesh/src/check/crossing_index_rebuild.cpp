@@ -51,8 +51,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     uint32_t e = offset[t];
     for_cells(filed_[t], [&](uint64_t k) { entries[e++] = {k, int32_t(t)}; });
   });
-  // In key order (level, then i, j, k): by counting the cells the filing boxes
-  // reach in each level, where they are few enough (check/cell_sort.hpp).
+  // In key order (level, then i, j, k), the cells the filing boxes reach in
+  // each level numbered densely (check/cell_sort.hpp).
   std::vector<uint64_t> level_start(levels + 1, 0);
   std::vector<std::array<int64_t, 3>> lowest(levels), across(levels);
   for (size_t l = 0; l < levels; ++l) {
@@ -65,17 +65,12 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     }
     level_start[l + 1] = level_start[l] + cells;
   }
-  if (counting_pays(level_start.back(), entries.size())) {
-    sort_by_counting(entries, level_start.back(), [&](const Entry& e) {
-      const auto l = size_t(filed_[size_t(e.tri)].level);
-      const auto c = key_cell(e.key);
-      return level_start[l] + uint64_t(((c[0] - lowest[l][0]) * across[l][1] + c[1] - lowest[l][1]) * across[l][2] +
-                                        c[2] - lowest[l][2]);
-    });
-  } else {
-    detail::parallel_sort(entries.begin(), entries.end(),
-                          [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
-  }
+  sort_by_cell_key(entries, level_start.back(), [&](const Entry& e) {
+    const auto l = size_t(filed_[size_t(e.tri)].level);
+    const auto c = key_cell(e.key);
+    return level_start[l] + uint64_t(((c[0] - lowest[l][0]) * across[l][1] + c[1] - lowest[l][1]) * across[l][2] +
+                                      c[2] - lowest[l][2]);
+  });
   std::vector<size_t> first;
   for (size_t e = 0; e < entries.size(); ++e)
     if (e == 0 || entries[e].key != entries[e - 1].key) first.push_back(e);

@@ -58,8 +58,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   mesh.move_nodes(delta);
   std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
   detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
-  std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), spoilt(triangles.size()),
-      below_floor(triangles.size());
+  std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), spoilt(triangles.size());
   // The floor does not hold a node far from its surface or curve: a move that at
   // least halves the node's eq. 4 step (to first order, its distance from where
   // it belongs) goes ahead when that step was over kFarFromInterface of the
@@ -92,12 +91,6 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
       spoilt[t] = normal(points, tri).dot(normal(before, tri)) <= 0 || has_zero_area(a, b, c);
     });
-    if (quality_floor > 0) {
-      const std::vector<double>& quality = mesh.qualities(); // kept by place_nodes() between rounds
-      detail::parallel_for_each_index(involved.size(), [&](size_t t) {
-        below_floor[t] = involved[t] && quality[t] < quality_floor;
-      });
-    }
     detail::parallel_for_each_index(watched.size(),
                                     [&](size_t i) { turned[i] = agreed[i] && !agrees(size_t(watched[i])); });
     ++report.rounds;
@@ -117,10 +110,13 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     for (int32_t t : culprits)
       for (int32_t n : triangles[size_t(t)])
         if (moved[size_t(n)]) put_back(n);
-    for (size_t t = 0; t < below_floor.size(); ++t)
-      if (below_floor[t])
-        for (int32_t n : triangles[t])
-          if (moved[size_t(n)] && !closes_in(n, triangles[t])) put_back(n);
+    if (quality_floor > 0) {
+      const std::vector<double>& quality = mesh.qualities(); // kept by place_nodes() between rounds
+      for (size_t t = 0; t < involved.size(); ++t)
+        if (involved[t] && quality[t] < quality_floor)
+          for (int32_t n : triangles[t])
+            if (moved[size_t(n)] && !closes_in(n, triangles[t])) put_back(n);
+    }
     // Clean, or only what the mesh had before the move: done. Ranks go on while
     // any of them undoes something, with every rank's culprits put back here too.
     const bool any = agree ? agree(undo) : !undo.empty();
