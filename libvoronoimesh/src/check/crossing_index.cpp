@@ -4,6 +4,7 @@
 
 #include "check/crossing_index.hpp"
 
+#include "core/key_set.hpp"
 #include "core/parallel.hpp"
 #include "voronoimesh/check/intersections.hpp"
 
@@ -49,14 +50,6 @@ constexpr int64_t kMaxCellsVisited = 64;
 constexpr size_t kSettledShare = 6;
 constexpr int kSettledCalls = 2;
 constexpr size_t kDropShare = 2;
-
-uint64_t mix(uint64_t x) { // splitmix64's finaliser
-  x ^= x >> 30;
-  x *= 0xBF58476D1CE4E5B9ull;
-  x ^= x >> 27;
-  x *= 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 
 /// a == b, inline (std::array's == calls memcmp: 4% of a steady-state iteration on 1M triangles).
 bool same(const Triangle& a, const Triangle& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
@@ -115,7 +108,7 @@ CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangl
 
 int64_t CrossingIndex::find(uint64_t k) const {
   const size_t mask = keys_.size() - 1;
-  for (size_t s = mix(k) & mask;; s = (s + 1) & mask) {
+  for (size_t s = mix64(k) & mask;; s = (s + 1) & mask) {
     if (keys_[s] == k) return cell_of_key_[s];
     if (keys_[s] == kEmpty) return -1;
   }
@@ -124,7 +117,7 @@ int64_t CrossingIndex::find(uint64_t k) const {
 size_t CrossingIndex::find_or_add(uint64_t k) {
   if (2 * (cells_.count() + 1) > keys_.size()) grow_table(cells_.count());
   const size_t mask = keys_.size() - 1;
-  size_t s = mix(k) & mask;
+  size_t s = mix64(k) & mask;
   for (; keys_[s] != kEmpty; s = (s + 1) & mask)
     if (keys_[s] == k) return cell_of_key_[s];
   keys_[s] = k;
@@ -142,7 +135,7 @@ void CrossingIndex::grow_table(size_t cells) {
   const size_t mask = capacity - 1;
   for (size_t s = 0; s < old_keys.size(); ++s) {
     if (old_keys[s] == kEmpty) continue;
-    size_t slot = mix(old_keys[s]) & mask;
+    size_t slot = mix64(old_keys[s]) & mask;
     while (keys_[slot] != kEmpty) slot = (slot + 1) & mask;
     keys_[slot] = old_keys[s];
     cell_of_key_[slot] = old_cells[s];

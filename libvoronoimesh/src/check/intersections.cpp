@@ -9,6 +9,7 @@
 
 #include "check/box_pairs.hpp"
 #include "check/triangle_pair.hpp"
+#include "core/key_set.hpp"
 #include "core/parallel.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -98,8 +99,7 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
         for (int64_t k = k0; k <= k1; ++k) f(key(i, j, k));
     return true;
   };
-  // The flagged triangles' cells, listed and sorted in parallel (a serial sort
-  // of them was most of a check after a flip pass on 1M triangles).
+  // The flagged triangles' cells, listed in parallel.
   std::vector<int32_t> flagged_ids;
   for (size_t t = 0; t < nt; ++t)
     if (flagged[t]) flagged_ids.push_back(int32_t(t));
@@ -113,14 +113,13 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
     size_t at = offset[i];
     cells(box_of(size_t(flagged_ids[i])), [&](uint64_t k) { covered[at++] = k; });
   });
-  detail::parallel_sort(covered.begin(), covered.end(), std::less<uint64_t>());
-  covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
+  // Every triangle's cells are looked up: in a hash set, not a sorted list
+  // (its binary searches were the largest share of the liver's one-off checks).
+  const detail::KeySet covered_set(covered);
   std::vector<uint8_t> keep(nt, 0);
   detail::parallel_for(size_t(0), nt, [&](size_t t) {
     bool near = false;
-    const bool listed = cells(box_of(t), [&](uint64_t k) {
-      near = near || std::binary_search(covered.begin(), covered.end(), k);
-    });
+    const bool listed = cells(box_of(t), [&](uint64_t k) { near = near || covered_set.contains(k); });
     keep[t] = flagged[t] || !listed || near;
   });
   for (size_t t = 0; t < nt; ++t)
