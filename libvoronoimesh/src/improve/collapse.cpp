@@ -179,7 +179,8 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     NodeMesh trial = mesh.to_node_mesh();
     std::vector<int32_t> trial_kept;
     // A failure can only be at a node some collapse claims (its a, b and rings).
-    const std::unordered_multimap<int64_t, int32_t>& blame = claimed;
+    detail::Blame blame(claimed.begin(), claimed.end());
+    std::sort(blame.begin(), blame.end());
     const size_t trial_done =
         merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept, {}, &made, index);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;

@@ -135,9 +135,9 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   return true;
 }
 
-size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
-                     const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
-                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
+size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
+                     bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
+                     std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
@@ -186,7 +186,8 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     }
     size_t dropped = 0;
     for (int64_t id : failed_ids)
-      for (auto [c, end] = blame.equal_range(id); c != end; ++c)
+      for (auto c = std::lower_bound(blame.begin(), blame.end(), std::pair{id, std::numeric_limits<int32_t>::min()});
+           c != blame.end() && c->first == id; ++c)
         if (active[size_t(c->second)]) {
           active[size_t(c->second)] = 0, ++dropped;
           for (int64_t end_id : {chosen[size_t(c->second)].first, chosen[size_t(c->second)].second})

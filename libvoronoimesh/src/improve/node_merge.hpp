@@ -10,7 +10,6 @@
 
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -48,6 +47,13 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
                          const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr);
 
+/// Which collapses of a batch to drop for a failure at a node: (node id, index
+/// of the collapse in the batch) pairs, sorted. A flat list, not a hash
+/// multimap: the remesh pass blames each of its tens of thousands of
+/// collapses on a dozen nodes or so, and building and freeing the multimap
+/// cost half as much as checking the merge (the liver's first call).
+using Blame = std::vector<std::pair<int64_t, int32_t>>;
+
 /// Makes as many of the collapses `chosen` (b -> a, as node ids; no two share a
 /// triangle) as pass, all at once: after each merge of the active ones, the
 /// collapses blamed for a failing node (find_merge_failures()) are dropped and the
@@ -55,7 +61,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 /// failure that no collapse is blamed for keeps `m` as it was.
 /// @param m              the mesh, replaced by the merged one when anything was collapsed
 /// @param chosen         the collapses {a, b} as node ids
-/// @param blame          the indices in `chosen` of the collapses to drop for a failure at each node id
+/// @param blame          the indices in `chosen` of the collapses to drop for a failure at each node id, sorted
 ///                       (at least every collapse whose target's new ring the node is in, and the target)
 /// @param guard_crossings also fail merges after which a triangle at a target crosses another surface
 /// @param peers          in a distributed run, how the ranks agree; null in one process
@@ -66,9 +72,9 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 /// @param index          null, or the guard's index up to date with `m` (CrossingGuard::index_for()), to
 ///                       find crossings around the merges instead of in the whole merged mesh
 /// @return the number of collapses made (0: `m` unchanged)
-size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen,
-                     const std::unordered_multimap<int64_t, int32_t>& blame, bool guard_crossings, CollapsePeers* peers,
-                     std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
+size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
+                     bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
+                     std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
                      const CrossingIndex* index = nullptr);
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <numeric>
@@ -182,7 +183,7 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
 /// drop for it.
 std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh, std::span<const double> target,
                                                           std::span<const uint8_t> small, const RemeshParams& params,
-                                                          std::unordered_multimap<int64_t, int32_t>& blame,
+                                                          detail::Blame& blame,
                                                           std::vector<Vec3>& moved_to) {
   std::vector<std::optional<Candidate>> found(mesh.num_nodes());
   detail::parallel_for_each_index(mesh.num_nodes(),
@@ -206,12 +207,13 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
     }
     moved_to.push_back(c.merge ? Vec3(0.5 * (pos[size_t(c.a)] + pos[size_t(c.b)])) : Vec3::Constant(NAN));
     for (int32_t end : {c.a, c.b}) {
-      blame.emplace(end, id);
+      blame.emplace_back(end, id);
       for (int32_t n : mesh.neighbours(end))
-        if (n != c.a && n != c.b) blame.emplace(n, id);
+        if (n != c.a && n != c.b) blame.emplace_back(n, id);
     }
     chosen.push_back({c.a, c.b});
   }
+  detail::parallel_sort(blame.begin(), blame.end(), std::less<std::pair<int64_t, int32_t>>());
   return chosen;
 }
 
@@ -356,7 +358,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     const NodeRings rings(m);
     target = targets(m.points, rings.phases(), field, reference, params);
     target_current = true;
-    std::unordered_multimap<int64_t, int32_t> blame;
+    detail::Blame blame;
     std::vector<Vec3> moved_to;
     const auto chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
     if (chosen.empty()) break;
