@@ -23,57 +23,6 @@
 
 namespace vm {
 
-namespace {
-
-const char* const kSource = "interface mesh";
-
-std::string describe(size_t t, const std::array<int32_t, 3>& tri) {
-  return detail::cat("triangle ", t, " (", tri[0], ", ", tri[1], ", ", tri[2], ")");
-}
-
-/// Rejects what OpenMesh cannot take safely: a repeated vertex aborts inside
-/// libOpenMeshCore (openmesh-probe.md, pitfall 1), and pairs must fit Vec2s.
-void check_input(const NodeMesh& m) {
-  if (m.pairs.size() != m.triangles.size())
-    throw TopologyError(
-        located(kSource, detail::cat(m.triangles.size(), " triangles but ", m.pairs.size(), " phase pairs")));
-  if (m.points.size() > size_t(std::numeric_limits<int32_t>::max()) ||
-      m.triangles.size() > size_t(std::numeric_limits<int32_t>::max() / 3))
-    throw TopologyError(located(kSource, "too many nodes or triangles for 32-bit ids"));
-  const auto n = int64_t(m.points.size());
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    const auto& tri = m.triangles[t];
-    for (int32_t v : tri)
-      if (v < 0 || v >= n)
-        throw TopologyError(
-            located(kSource, detail::cat(describe(t, tri), ": node ", v, " out of range (", n, " nodes)")));
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      throw TopologyError(located(kSource, detail::cat(describe(t, tri), ": repeated node")));
-    const auto& p = m.pairs[t];
-    if (p[0] < 0 || p[0] >= p[1] || p[1] > std::numeric_limits<int16_t>::max())
-      throw TopologyError(located(kSource, detail::cat(describe(t, tri), ": bad phase pair (", p[0], ", ", p[1], ")")));
-  }
-}
-
-/// The faces of `m` added through OpenMesh's add_face(), for corner classes
-/// that connect_patch_faces() cannot link alone: 63 of the 15,420 meshes that
-/// 200k random soups make, and no build in default runs on the liver, the
-/// 60-grain volume, voronoi30, 100 and 1,000 grains (counted 2026-11-27). Every
-/// corner class is one fan, which OpenMesh has always accepted (no refusal in
-/// those soups); the check stays so that a future change fails loudly.
-void add_faces_one_by_one(OMesh& mesh, const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner) {
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    auto fh =
-        mesh.add_face(OMesh::VertexHandle(vertex_of_corner[3 * t]), OMesh::VertexHandle(vertex_of_corner[3 * t + 1]),
-                      OMesh::VertexHandle(vertex_of_corner[3 * t + 2]));
-    if (!fh.is_valid())
-      throw TopologyError(located(kSource, detail::cat("OpenMesh refused ", describe(t, m.triangles[t]),
-                                                       " (non-manifold or inconsistently oriented surface)")));
-  }
-}
-
-} // namespace
-
 int phase_count(const PhaseSet& s) {
   return int(std::count_if(s.begin(), s.end(), [](int16_t p) { return p >= 0; }));
 }
@@ -84,28 +33,18 @@ PhasePair InterfaceMesh::pair(OMesh::FaceHandle f) const {
 }
 
 InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
-  check_input(m);
+  detail::check_node_mesh(m);
   const auto& tris = m.triangles;
-  const size_t num_nodes = m.points.size(), num_tris = tris.size();
+  const size_t num_nodes = m.points.size();
 
   InterfaceMesh im;
-  im.pos_ = m.points;
-  im.domain_ = m.domain;
-  im.names_ = m.phase_names;
-  im.labels_ = m.phase_labels;
-  im.colors_ = m.phase_colors;
-  im.outside_ = m.outside_phase;
-
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
   const detail::EdgeTable et = detail::edge_table(tris, nt);
 
   // Phase sets (the first node with too many named, whichever thread saw it).
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
+  for (size_t n = 0; n < num_nodes; ++n) detail::check_phase_count(n, np.count(n));
   im.phases_.assign(num_nodes, PhaseSet{});
-  for (size_t n = 0; n < num_nodes; ++n)
-    if (np.count(n) > im.phases_[n].size())
-      throw TopologyError(
-          located(kSource, detail::cat("node ", n, ": ", np.count(n), " phases meet (at most 8 supported)")));
   detail::parallel_for_each_index(num_nodes, [&](size_t n) {
     im.phases_[n].fill(-1);
     std::copy(np.of(n).begin(), np.of(n).end(), im.phases_[n].begin());
@@ -116,21 +55,34 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   const std::vector<int32_t> partner = detail::glued_partners(et, tris, m.pairs);
   std::vector<int32_t> vertex_of_corner;
   detail::number_corner_classes(nt, tris, partner, vertex_of_corner, im.copy_off_);
-  const auto num_vertices = size_t(im.copy_off_[num_nodes]);
-  im.copy_v_.resize(num_vertices);
-  std::iota(im.copy_v_.begin(), im.copy_v_.end(), 0);
+  im.link(m, vertex_of_corner, partner, detail::some_edge_joins_vertices_twice(et, vertex_of_corner, partner));
+  im.build_adjacency();
+  return im;
+}
 
-  OMesh& mesh = im.mesh_;
-  mesh.add_property(im.node_, "node");
-  mesh.add_property(im.pair_, "pair");
-  mesh.property(im.node_).set_persistent(true);
-  mesh.property(im.pair_).set_persistent(true);
-  mesh.resize(num_vertices, 0, 0);
+void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner,
+                         const std::vector<int32_t>& partner, bool face_by_face) {
+  pos_ = m.points;
+  domain_ = m.domain;
+  names_ = m.phase_names;
+  labels_ = m.phase_labels;
+  colors_ = m.phase_colors;
+  outside_ = m.outside_phase;
+  const size_t num_nodes = m.points.size(), num_tris = m.triangles.size();
+  const auto num_vertices = size_t(copy_off_[num_nodes]);
+  copy_v_.resize(num_vertices);
+  std::iota(copy_v_.begin(), copy_v_.end(), 0);
+
+  mesh_.add_property(node_, "node");
+  mesh_.add_property(pair_, "pair");
+  mesh_.property(node_).set_persistent(true);
+  mesh_.property(pair_).set_persistent(true);
+  mesh_.resize(num_vertices, 0, 0);
   detail::parallel_for_each_index(num_nodes, [&](size_t n) {
-    for (int32_t v = im.copy_off_[n]; v < im.copy_off_[n + 1]; ++v) {
+    for (int32_t v = copy_off_[n]; v < copy_off_[n + 1]; ++v) {
       const auto vh = OMesh::VertexHandle(v);
-      mesh.set_point(vh, OMesh::Point(m.points[n].x(), m.points[n].y(), m.points[n].z()));
-      mesh.property(im.node_, vh) = int32_t(n);
+      mesh_.set_point(vh, OMesh::Point(m.points[n].x(), m.points[n].y(), m.points[n].z()));
+      mesh_.property(node_, vh) = int32_t(n);
     }
   });
 
@@ -139,15 +91,19 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   // on a 688k-triangle spatially ordered input: within noise (0.240 vs 0.245 s),
   // and it does not rescue a shuffled input either (0.63 vs 0.76 s), so it is
   // not worth keeping a permutation for the round trip.
-  if (!detail::connect_patch_faces(mesh, tris, vertex_of_corner, et, partner))
-    add_faces_one_by_one(mesh, m, vertex_of_corner);
+  face_by_face_ = face_by_face || !detail::connect_patch_faces(mesh_, m.triangles, vertex_of_corner, partner);
+  // Where connect_patch_faces() cannot link the classes alone: 63 of the 15,420
+  // meshes that 200k random soups make, and no build in default runs on the
+  // liver, the 60-grain volume, voronoi30, 100 and 1,000 grains (counted
+  // 2026-11-27). Every corner class is one fan, which OpenMesh has always
+  // accepted (no refusal in those soups); the check stays so that a future
+  // change fails loudly.
+  if (face_by_face_) detail::add_faces_one_by_one(mesh_, m, vertex_of_corner);
   detail::parallel_for_each_index(num_tris, [&](size_t t) {
     const auto& p = m.pairs[t];
-    mesh.property(im.pair_, OMesh::FaceHandle(int(t))) = OpenMesh::Vec2s(int16_t(p[0]), int16_t(p[1]));
+    mesh_.property(pair_, OMesh::FaceHandle(int(t))) = OpenMesh::Vec2s(int16_t(p[0]), int16_t(p[1]));
   });
-  im.build_adjacency();
-  im.find_box_faces();
-  return im;
+  find_box_faces();
 }
 
 size_t InterfaceMesh::ring_of(size_t v, int32_t* out) const {

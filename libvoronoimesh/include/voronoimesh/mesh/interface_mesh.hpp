@@ -45,6 +45,20 @@ public:
   ///         mesh), naming the triangle; also for a node id out of range, a repeated node, a bad phase
   ///         pair, a pair count that differs from the triangle count, or more than 8 phases at a node
   static InterfaceMesh from_node_mesh(const NodeMesh& m);
+  /// The patch-split mesh of `m`, an edit of this mesh (merged, dropped and
+  /// added nodes and triangles, as the collapses and the remesh pass make on
+  /// to_node_mesh()): what from_node_mesh(m) returns, with the work for the
+  /// nodes whose triangles did not change carried over from this mesh (their
+  /// phases, corner classes, glued edges and neighbours) instead of done again.
+  /// This mesh's triangles() must be current.
+  /// @param m            the edited mesh
+  /// @param triangle_was the triangle of this mesh each triangle of `m` was, -1 for a new one
+  /// @param node_was     the node of this mesh each node of `m` was, -1 for a new one; both increasing
+  ///                     where not -1 (the order of what is kept is kept)
+  /// @return as from_node_mesh(m)
+  /// @throws TopologyError as from_node_mesh(m)
+  InterfaceMesh from_edited(const NodeMesh& m, std::span<const int32_t> triangle_was,
+                            std::span<const int32_t> node_was) const;
   /// The node-level mesh back (node order and triangle order preserved).
   NodeMesh to_node_mesh() const;
 
@@ -142,6 +156,13 @@ public:
   bool has_phase(int32_t n, int32_t p) const;
 
 private:
+  /// The nodes, the OpenMesh vertices (copy_off_ set) and faces of `m`: face t
+  /// is triangle t, with the vertex of each corner (3t + k) and the glued
+  /// partner of each halfedge as given; through add_face() one by one when
+  /// `face_by_face` (detail::some_edge_joins_vertices_twice()) or when the
+  /// classes cannot be linked otherwise.
+  void link(const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner, const std::vector<int32_t>& partner,
+            bool face_by_face);
   void build_adjacency();
   size_t valence_of(size_t v) const; ///< summed over its copies
   /// The nodes next to node v over all its copies, sorted, written to `out`
@@ -168,6 +189,9 @@ private:
   std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
   std::vector<std::optional<Rgb>> colors_; // NodeMesh::phase_colors, likewise
   int32_t outside_ = -1;
+  /// Linked by add_face() one by one (link()): from_edited() then builds
+  /// anew, as the flag of the edited mesh depends on all of it.
+  bool face_by_face_ = false;
 };
 
 template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {
