@@ -137,20 +137,20 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
     }
   });
   std::atomic<bool> lost{false}; // a clean edge glued to a triangle that went: no edit of this mesh
-  detail::parallel_for_each_index(mesh_.n_edges(), [&](size_t e) {
-    const auto h = mesh_.halfedge_handle(OMesh::EdgeHandle(int(e)), 0), o = mesh_.opposite_halfedge_handle(h);
-    if (mesh_.is_boundary(h) || mesh_.is_boundary(o)) return; // not glued
-    const int32_t t = triangle_now[size_t(mesh_.face_handle(h).idx())];
-    const int32_t s = triangle_now[size_t(mesh_.face_handle(o).idx())];
-    const int k = corner_of(mesh_, h);
+  detail::parallel_for_each_index(mesh_->n_edges(), [&](size_t e) {
+    const auto h = mesh_->halfedge_handle(OMesh::EdgeHandle(int(e)), 0), o = mesh_->opposite_halfedge_handle(h);
+    if (mesh_->is_boundary(h) || mesh_->is_boundary(o)) return; // not glued
+    const int32_t t = triangle_now[size_t(mesh_->face_handle(h).idx())];
+    const int32_t s = triangle_now[size_t(mesh_->face_handle(o).idx())];
+    const int k = corner_of(*mesh_, h);
     if (t < 0) return;
     if (dirty[size_t(tris[size_t(t)][size_t(k)])] || dirty[size_t(tris[size_t(t)][size_t((k + 1) % 3)])]) return;
     if (s < 0) {
       lost = true;
       return;
     }
-    partner[3 * size_t(t) + size_t(k)] = 3 * s + corner_of(mesh_, o);
-    partner[3 * size_t(s) + size_t(corner_of(mesh_, o))] = 3 * t + k;
+    partner[3 * size_t(t) + size_t(k)] = 3 * s + corner_of(*mesh_, o);
+    partner[3 * size_t(s) + size_t(corner_of(*mesh_, o))] = 3 * t + k;
   });
   if (lost) return from_node_mesh(m);
 
@@ -167,7 +167,7 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
           dirty_nodes[i], at_dirty.of(i), tris, partner, parent, &corner_at[first], &class_at[first]);
     }
   });
-  std::vector<int32_t> class_of_copy(mesh_.n_vertices(), -1);
+  std::vector<int32_t> class_of_copy(mesh_->n_vertices(), -1);
   detail::parallel_for_each_index(nodes, [&](size_t n) {
     if (dirty[n]) return;
     const auto copies_then = copies(node_was[n]);
@@ -179,7 +179,7 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
     std::vector<std::pair<int32_t, int32_t>> by_first; // (first triangle now, copy)
     for (int32_t c : copies_then) {
       int32_t first = std::numeric_limits<int32_t>::max();
-      for (auto f : mesh_.vf_range(OMesh::VertexHandle(c))) first = std::min(first, triangle_now[size_t(f.idx())]);
+      for (auto f : mesh_->vf_range(OMesh::VertexHandle(c))) first = std::min(first, triangle_now[size_t(f.idx())]);
       by_first.emplace_back(first, c);
     }
     std::sort(by_first.begin(), by_first.end());

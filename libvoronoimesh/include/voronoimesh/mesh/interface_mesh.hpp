@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -25,6 +26,32 @@ namespace vm {
 struct MeshTraits : public OpenMesh::DefaultTraitsDouble {};
 /// The OpenMesh triangle mesh type of InterfaceMesh (double-precision points).
 using OMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+namespace detail {
+
+/// An OMesh on the heap: copied deeply, moved by its pointer. OpenMesh's
+/// kernels declare destructors, so an OMesh has no move operations: held by
+/// value, every move of an InterfaceMesh (each `mesh = rebuilt` after an edit)
+/// copied all of OpenMesh's arrays, 18 ms at 1.4M triangles.
+class HeapMesh {
+public:
+  HeapMesh() : mesh_(std::make_unique<OMesh>()) {}
+  HeapMesh(const HeapMesh& other) : mesh_(std::make_unique<OMesh>(*other.mesh_)) {}
+  HeapMesh(HeapMesh&&) noexcept = default;
+  HeapMesh& operator=(const HeapMesh& other) {
+    if (this != &other) mesh_ = std::make_unique<OMesh>(*other.mesh_);
+    return *this;
+  }
+  HeapMesh& operator=(HeapMesh&&) noexcept = default;
+  ~HeapMesh() = default;
+  OMesh& operator*() const { return *mesh_; }
+  OMesh* operator->() const { return mesh_.get(); }
+
+private:
+  std::unique_ptr<OMesh> mesh_;
+};
+
+} // namespace detail
 
 /// Sorted phase ids of a node, -1 padded. Nodes where more than 8 phases meet
 /// are refused (TopologyError).
@@ -63,13 +90,13 @@ public:
   NodeMesh to_node_mesh() const;
 
   size_t num_nodes() const { return pos_.size(); }         ///< nodes (geometric points)
-  size_t num_triangles() const { return mesh_.n_faces(); } ///< triangles of every patch
+  size_t num_triangles() const { return mesh_->n_faces(); } ///< triangles of every patch
 
   /// The patch-split OpenMesh mesh, read-only.
-  const OMesh& omesh() const { return mesh_; }
+  const OMesh& omesh() const { return *mesh_; }
   /// Node of an OpenMesh vertex (copy).
   /// @param v an OpenMesh vertex of omesh()
-  int32_t node(OMesh::VertexHandle v) const { return mesh_.property(node_, v); }
+  int32_t node(OMesh::VertexHandle v) const { return mesh_->property(node_, v); }
   /// Phase pair of an OpenMesh face.
   /// @param f an OpenMesh face of omesh()
   PhasePair pair(OMesh::FaceHandle f) const;
@@ -103,7 +130,7 @@ public:
   void place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions);
   /// The OpenMesh mesh, for topology changes (flips). Call faces_changed() or
   /// topology_changed() afterwards.
-  OMesh& omesh_for_topology() { return mesh_; }
+  OMesh& omesh_for_topology() { return *mesh_; }
   /// Rebuilds the node adjacency and triangles() after topology changes.
   void topology_changed() { build_adjacency(); }
   /// After local topology changes (flips) that changed only `faces`: updates
@@ -171,7 +198,7 @@ private:
   void read_face(size_t f); ///< triangles_[f] and triangle_copies_[f] from OpenMesh
   void find_box_faces();
 
-  OMesh mesh_;
+  detail::HeapMesh mesh_;
   OpenMesh::VPropHandleT<int32_t> node_;
   OpenMesh::FPropHandleT<OpenMesh::Vec2s> pair_;
   std::vector<Vec3> pos_;
@@ -197,10 +224,10 @@ private:
 template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {
   for (int32_t c : copies(n)) {
     const auto v = OMesh::VertexHandle(c);
-    for (auto h : mesh_.voh_range(v)) {
-      if (mesh_.is_boundary(h)) continue;
-      const auto next = mesh_.next_halfedge_handle(h);
-      f(node(mesh_.to_vertex_handle(h)), node(mesh_.to_vertex_handle(next)));
+    for (auto h : mesh_->voh_range(v)) {
+      if (mesh_->is_boundary(h)) continue;
+      const auto next = mesh_->next_halfedge_handle(h);
+      f(node(mesh_->to_vertex_handle(h)), node(mesh_->to_vertex_handle(next)));
     }
   }
 }
