@@ -169,6 +169,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
       params.guard && params.guard_crossings && !peers ? params.guard->index_for(mesh) : nullptr;
   std::vector<uint8_t> passed_over(slivers.size(), 0), made;
   std::vector<size_t> from, tried;
+  const NodeMesh before = mesh.to_node_mesh();
   NodeMesh m;
   std::vector<int32_t> kept_triangles;
   size_t done = 0;
@@ -176,7 +177,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     std::unordered_multimap<int64_t, int32_t> claimed; // id -> the collapses claiming it
     const auto chosen = choose(slivers, passed_over, params.max_collapses, claimed, from);
     if (attempt > 0 && std::includes(tried.begin(), tried.end(), from.begin(), from.end())) break;
-    NodeMesh trial = mesh.to_node_mesh();
+    NodeMesh trial = before;
     std::vector<int32_t> trial_kept;
     // A failure can only be at a node some collapse claims (its a, b and rings).
     detail::Blame blame(claimed.begin(), claimed.end());

@@ -180,10 +180,15 @@ void InterfaceMesh::find_box_faces() {
   box_ = detail::box_faces_of(pos_, domain_);
 }
 
+void InterfaceMesh::mirror_position(size_t n) {
+  const OMesh::Point p(pos_[n].x(), pos_[n].y(), pos_[n].z());
+  for (int32_t c : copies(int32_t(n))) mesh_->set_point(OMesh::VertexHandle(c), p);
+}
+
 void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
   detail::parallel_for_each_index(pos_.size(), [&](size_t n) {
     pos_[n] += delta[n];
-    for (int32_t c : copies(int32_t(n))) mesh_->set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+    mirror_position(n);
   });
   quality_current_ = false;
 }
@@ -192,7 +197,7 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
   detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
     const auto n = size_t(nodes[i]);
     pos_[n] = positions[i];
-    for (int32_t c : copies(int32_t(n))) mesh_->set_point(OMesh::VertexHandle(c), OMesh::Point(pos_[n].x(), pos_[n].y(), pos_[n].z()));
+    mirror_position(n);
   });
   if (!quality_current_) return;
   std::vector<int32_t> faces;
@@ -240,12 +245,13 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
   m.phase_labels = labels_;
   m.phase_colors = colors_;
   m.outside_phase = outside_;
-  m.triangles.reserve(mesh_->n_faces());
-  m.pairs.reserve(mesh_->n_faces());
-  for (auto fh : mesh_->faces()) {
-    m.triangles.push_back(face_nodes(fh));
-    m.pairs.push_back(pair(fh));
-  }
+  // Read from OpenMesh, not triangles(): between flips that may be stale.
+  m.triangles.resize(mesh_->n_faces());
+  m.pairs.resize(mesh_->n_faces());
+  detail::parallel_for_each_index(m.triangles.size(), [&](size_t f) {
+    m.triangles[f] = face_nodes(OMesh::FaceHandle(int(f)));
+    m.pairs[f] = pair(OMesh::FaceHandle(int(f)));
+  });
   return m;
 }
 

@@ -195,7 +195,8 @@ private:
   /// The nodes next to node v over all its copies, sorted, written to `out`
   /// (room for valence_of(v)); returns how many.
   size_t ring_of(size_t v, int32_t* out) const;
-  void read_face(size_t f); ///< triangles_[f] and triangle_copies_[f] from OpenMesh
+  void read_face(size_t f);       ///< triangles_[f] and triangle_copies_[f] from OpenMesh
+  void mirror_position(size_t n); ///< node n's position into the points of its copies
   void find_box_faces();
 
   detail::HeapMesh mesh_;
