@@ -99,13 +99,15 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   const Vec3 old = (vj - vi).cross(vk - vi) + (vl - vi).cross(vj - vi);
   if (n3.dot(old) <= 0 || n4.dot(old) <= 0) return -1;
   // OpenMesh only sees this patch; the new edge must not exist in another one
-  // (openmesh-probe.md, pitfall 2).
+  // (openmesh-probe.md, pitfall 2). Asked of every patch, this is all that
+  // OpenMesh's is_flip_ok() asks besides the boundary test above (no new edge
+  // between the opposite copies, which are no one vertex), so that is not
+  // asked again (it was 3.7% of a run on 1,000 grains).
   if (nodes[2] == nodes[3] || mesh.adjacent(nodes[2], nodes[3])) return -1;
   // An edge along a box edge (its nodes share box faces of two axes) is a crease
   // of a closed domain's outside surface: flipping it would cut the box corner.
   const uint8_t common = mesh.box_faces()[size_t(nodes[0])] & mesh.box_faces()[size_t(nodes[1])];
   if (((common & 3) != 0) + ((common & 12) != 0) + ((common & 48) != 0) >= 2) return -1;
-  if (!om.is_flip_ok(eh)) return -1;
   return ear ? 1 + (after - before) : after - before;
 }
 

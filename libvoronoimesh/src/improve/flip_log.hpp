@@ -21,7 +21,7 @@ namespace vm::detail {
 
 class FlipLog {
 public:
-  /// Flips `edge` of `mesh`'s OpenMesh (the caller checked is_flip_ok) and logs
+  /// Flips `edge` of `mesh`'s OpenMesh (the caller checked that it may: flip_gain()) and logs
   /// it with its nodes before the flip. triangles() is not updated here.
   void flip(InterfaceMesh& mesh, OMesh::EdgeHandle edge, const std::array<int32_t, 2>& nodes);
   /// Undoes every logged flip, last first, updates the mesh's triangles and
