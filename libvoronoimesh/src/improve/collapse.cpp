@@ -82,18 +82,21 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
   // Two corners on junctions can be an edge along a junction (a triple curve
   // with nodes bunched where a tiny face ends), which no flip may touch; a
   // sliver with fewer is the flips' to mend.
-  std::vector<uint8_t> is_sliver(triangles.size(), 0);
+  const std::vector<double>& quality = mesh.qualities(); // kept current through the flips
+  std::vector<uint8_t> on_junction(mesh.num_nodes()), is_sliver(triangles.size(), 0);
+  detail::parallel_for_each_index(mesh.num_nodes(),
+                                  [&](size_t n) { on_junction[n] = junction_order(mesh, int32_t(n)) >= 3; });
   detail::parallel_for_each_index(triangles.size(), [&](size_t f) {
     const std::array<int32_t, 3>& c = triangles[f];
-    if (std::count_if(c.begin(), c.end(), [&](int32_t v) { return junction_order(mesh, v) >= 3; }) < 2) return;
-    is_sliver[f] = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]) < params.below_quality;
+    is_sliver[f] = on_junction[size_t(c[0])] + on_junction[size_t(c[1])] + on_junction[size_t(c[2])] >= 2 &&
+                   quality[f] < params.below_quality;
   });
   std::vector<SliverCollapse> slivers;
   for (size_t face = 0; face < triangles.size(); ++face) {
     if (!is_sliver[face]) continue;
     const std::array<int32_t, 3>& c = triangles[face];
     if (peers && !peers->answers_for(*std::min_element(c.begin(), c.end()))) continue;
-    const double q = triangle_quality(pos[size_t(c[0])], pos[size_t(c[1])], pos[size_t(c[2])]);
+    const double q = quality[face];
     // The edge (b -> a) to collapse: the shortest whose b has its constraints
     // among a's, judged with the original phases; or whose ends are two
     // corners on the same box faces (quadruple points closer than the mesh
