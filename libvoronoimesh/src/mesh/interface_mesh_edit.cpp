@@ -24,6 +24,9 @@ namespace vm {
 
 namespace {
 
+/// from_edited() builds anew when more than one node in this many changed.
+constexpr size_t kWholeBuildShare = 3;
+
 /// The corner k of its face that halfedge h leaves (the halfedge from corner k
 /// to corner k + 1): the face keeps the one from corner 2 to corner 0 (face_nodes()).
 int corner_of(const OMesh& mesh, OMesh::HalfedgeHandle h) {
@@ -101,6 +104,10 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
     }
   for (size_t w = 0; w < triangle_now.size(); ++w)
     if (triangle_now[w] < 0) dirty_old(int32_t(w));
+  // Where most nodes changed, the whole-mesh tables are cheaper than going
+  // node by node (the liver's first remesh call, nearly every node dirty:
+  // 42 ms this way, 29 ms from_node_mesh()).
+  if (kWholeBuildShare * size_t(std::count(dirty.begin(), dirty.end(), 1)) > nodes) return from_node_mesh(m);
 
   // The dirty nodes and their triangles (ascending, as node_triangles() has them).
   std::vector<int32_t> dirty_nodes, dirty_index(nodes, -1);
