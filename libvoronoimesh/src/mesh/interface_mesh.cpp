@@ -6,20 +6,14 @@
 
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
-
 #include "core/parallel.hpp"
-#include "core/text.hpp"
 #include "mesh/node_rings.hpp"
 #include "mesh/patch_connectivity.hpp"
 #include "mesh/topology.hpp"
-#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <numeric>
-#include <string>
 
 namespace vm {
 
@@ -41,7 +35,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
   const detail::EdgeTable et = detail::edge_table(tris, nt);
 
-  // Phase sets (the first node with too many named, whichever thread saw it).
+  // Phase sets (the first node with too many named).
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   for (size_t n = 0; n < num_nodes; ++n) detail::check_phase_count(n, np.count(n));
   im.phases_.assign(num_nodes, PhaseSet{});

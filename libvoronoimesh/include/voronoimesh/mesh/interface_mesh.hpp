@@ -77,11 +77,13 @@ public:
   /// to_node_mesh()): what from_node_mesh(m) returns, with the work for the
   /// nodes whose triangles did not change carried over from this mesh (their
   /// phases, corner classes, glued edges and neighbours) instead of done again.
-  /// This mesh's triangles() must be current.
+  /// This mesh's triangles() and triangle_copies() must be current. Where more
+  /// than a third of the nodes changed, or the maps are no edit of this mesh,
+  /// it is from_node_mesh(m).
   /// @param m            the edited mesh
   /// @param triangle_was the triangle of this mesh each triangle of `m` was, -1 for a new one
-  /// @param node_was     the node of this mesh each node of `m` was, -1 for a new one; both increasing
-  ///                     where not -1 (the order of what is kept is kept)
+  /// @param node_was     the node of this mesh each node of `m` was, -1 for a new one; increasing where
+  ///                     not -1 (the order of the nodes kept is kept)
   /// @return as from_node_mesh(m)
   /// @throws TopologyError as from_node_mesh(m)
   InterfaceMesh from_edited(const NodeMesh& m, std::span<const int32_t> triangle_was,
