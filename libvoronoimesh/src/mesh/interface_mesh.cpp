@@ -140,15 +140,20 @@ void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
   std::vector<int32_t> faces(changed.begin(), changed.end());
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  // The nodes the faces had and have: their rings changed.
+  // The nodes the faces had and have: their rings changed. Gathered once
+  // each by a flag (sorting six per face was a quarter of a call after the
+  // flips of an iteration on 1,000 grains); any order will do.
+  std::vector<uint8_t> seen(pos_.size(), 0);
   std::vector<int32_t> nodes;
-  nodes.reserve(6 * faces.size());
-  for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
+  auto gather = [&] {
+    for (int32_t f : faces)
+      for (int32_t v : triangles_[size_t(f)])
+        if (!seen[size_t(v)]) seen[size_t(v)] = 1, nodes.push_back(v);
+  };
+  gather();
   detail::parallel_for_each_index(faces.size(), [&](size_t i) { read_face(size_t(faces[i])); });
   update_qualities(faces);
-  for (int32_t f : faces) nodes.insert(nodes.end(), triangles_[size_t(f)].begin(), triangles_[size_t(f)].end());
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  gather();
   // As build_adjacency() does for all: room for each ring made first, then
   // the rings (walking the OpenMesh rings is most of the work) found in parallel
   // straight into their lists.
