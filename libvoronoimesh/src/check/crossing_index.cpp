@@ -32,7 +32,6 @@ constexpr int kAxisBits = 19;               // bits of a cell coordinate, biased
 constexpr int64_t kBias = int64_t(1) << 17; // room below the grid's origin
 constexpr int64_t kLimit = int64_t(1) << kAxisBits;
 constexpr int kLevels = 24;
-constexpr uint64_t kEmpty = ~uint64_t(0);
 // A triangle searching a finer level visits at most this many cells; beyond,
 // it tests every triangle of that level instead.
 constexpr int64_t kMaxCellsVisited = 64;
@@ -107,19 +106,14 @@ CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangl
 }
 
 int64_t CrossingIndex::find(uint64_t k) const {
-  const size_t mask = keys_.size() - 1;
-  for (size_t s = mix64(k) & mask;; s = (s + 1) & mask) {
-    if (keys_[s] == k) return cell_of_key_[s];
-    if (keys_[s] == kEmpty) return -1;
-  }
+  const size_t s = slot_of(keys_, k);
+  return keys_[s] == k ? int64_t(cell_of_key_[s]) : -1;
 }
 
 size_t CrossingIndex::find_or_add(uint64_t k) {
   if (2 * (cells_.count() + 1) > keys_.size()) grow_table(cells_.count());
-  const size_t mask = keys_.size() - 1;
-  size_t s = mix64(k) & mask;
-  for (; keys_[s] != kEmpty; s = (s + 1) & mask)
-    if (keys_[s] == k) return cell_of_key_[s];
+  const size_t s = slot_of(keys_, k);
+  if (keys_[s] == k) return cell_of_key_[s];
   keys_[s] = k;
   cell_of_key_[s] = uint32_t(cells_.count());
   return cells_.add_list();
@@ -130,13 +124,11 @@ void CrossingIndex::grow_table(size_t cells) {
   const std::vector<uint32_t> old_cells = std::move(cell_of_key_);
   size_t capacity = 64;
   while (capacity < 4 * (cells + 1)) capacity *= 2;
-  keys_.assign(capacity, kEmpty);
+  keys_.assign(capacity, kFreeSlot);
   cell_of_key_.assign(capacity, 0);
-  const size_t mask = capacity - 1;
   for (size_t s = 0; s < old_keys.size(); ++s) {
-    if (old_keys[s] == kEmpty) continue;
-    size_t slot = mix64(old_keys[s]) & mask;
-    while (keys_[slot] != kEmpty) slot = (slot + 1) & mask;
+    if (old_keys[s] == kFreeSlot) continue;
+    const size_t slot = slot_of(keys_, old_keys[s]);
     keys_[slot] = old_keys[s];
     cell_of_key_[slot] = old_cells[s];
   }

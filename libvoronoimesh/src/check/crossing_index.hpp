@@ -173,7 +173,7 @@ private:
   std::vector<Filing> filed_;        ///< by slot
   std::vector<Bounds> boxes_;          ///< each triangle's box now
   std::vector<int32_t> level_count_;   ///< triangles filed in each level
-  std::vector<uint64_t> keys_;         ///< open addressing, kEmpty where free
+  std::vector<uint64_t> keys_;         ///< open addressing, kFreeSlot where free (core/key_set.hpp)
   std::vector<uint32_t> cell_of_key_; ///< the cells_ list of each key in keys_
   PooledLists<CellEntry> cells_;             ///< the triangles filed in each cell
   PooledLists<Neighbour> near_;              ///< by slot: the slots whose filing boxes meet its own, sorted
