@@ -75,8 +75,8 @@ double quality_after_collapse(const InterfaceMesh& mesh, int32_t b, int32_t a) {
 std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers* peers,
                                          std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids) {
   // Found on the faces so that the common case (none) costs two parallel
-  // passes (nodes, then faces) and no copy. Face f is triangle f of to_node_mesh() (triangles() is
-  // current: the flips before updated it).
+  // passes (nodes, then faces) and no copy. Face f is triangle f of
+  // to_node_mesh() (triangles() is current: the flips before updated it).
   const auto& pos = mesh.positions();
   const auto& triangles = mesh.triangles();
   // Two corners on junctions can be an edge along a junction (a triple curve

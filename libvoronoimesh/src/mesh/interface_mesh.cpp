@@ -38,11 +38,8 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   // Phase sets (the first node with too many named).
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   for (size_t n = 0; n < num_nodes; ++n) detail::check_phase_count(n, np.count(n));
-  im.phases_.assign(num_nodes, PhaseSet{});
-  detail::parallel_for_each_index(num_nodes, [&](size_t n) {
-    im.phases_[n].fill(-1);
-    std::copy(np.of(n).begin(), np.of(n).end(), im.phases_[n].begin());
-  });
+  im.phases_.resize(num_nodes);
+  detail::parallel_for_each_index(num_nodes, [&](size_t n) { im.phases_[n] = detail::phase_set(np.of(n)); });
 
   // One OpenMesh vertex per corner class, numbered by node so each node's
   // copies are contiguous.
@@ -203,6 +200,9 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
   for (int32_t n : nodes)
     for (int32_t c : copies(n))
       for (auto f : mesh_->vf_range(OMesh::VertexHandle(c))) faces.push_back(f.idx());
+  // A face at two placed nodes is listed twice: each is computed once, by one task.
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   update_qualities(faces);
 }
 
@@ -221,12 +221,8 @@ const std::vector<double>& InterfaceMesh::qualities() const {
 
 void InterfaceMesh::update_qualities(std::span<const int32_t> faces) {
   if (!quality_current_) return;
-  // A face at two placed nodes is listed twice: each is computed once, by one task.
-  std::vector<int32_t> unique(faces.begin(), faces.end());
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  detail::parallel_for_each_index(unique.size(), [&](size_t i) {
-    const auto f = size_t(unique[i]);
+  detail::parallel_for_each_index(faces.size(), [&](size_t i) {
+    const auto f = size_t(faces[i]);
     quality_[f] = quality_of(f);
   });
 }

@@ -12,6 +12,8 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "core/parallel.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
 #include "mesh/patch_connectivity.hpp"
 #include "mesh/topology.hpp"
 
@@ -130,7 +132,10 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
   // Glued partners: an edge at a dirty node from its triangles (each edge by
   // one end: a clean one's dirty end, else the lower), the others as this
   // mesh glues them (their triangles are all kept as they were), edge by edge.
+  // Unglued edges at dirty nodes with more than one halfedge are kept: they
+  // may join two vertices twice, which only add_face() links.
   std::vector<int32_t> partner(3 * faces, -1);
+  tbb::enumerable_thread_specific<std::vector<std::vector<int32_t>>> unglued;
   detail::parallel_for(tbb::blocked_range<size_t>(0, dirty_nodes.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<std::pair<int32_t, int32_t>> at;
     std::vector<int32_t> hs;
@@ -138,8 +143,11 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
       const int32_t d = dirty_nodes[i];
       halfedges_at(d, at_dirty.of(i), tris, at);
       for_each_edge(at, hs, [&](int32_t x, std::span<const int32_t> edge) {
-        if ((!dirty[size_t(x)] || x > d) && detail::is_patch_interior(edge, tris, m.pairs))
+        if (dirty[size_t(x)] && x < d) return; // x's
+        if (detail::is_patch_interior(edge, tris, m.pairs))
           partner[size_t(edge[0])] = edge[1], partner[size_t(edge[1])] = edge[0];
+        else if (edge.size() > 1)
+          unglued.local().emplace_back(edge.begin(), edge.end());
       });
     }
   });
@@ -208,35 +216,17 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
   // Phase sets: a clean node's as here, a dirty one's from its triangles (the
   // first node with too many named, as from_node_mesh() would: clean ones
   // cannot have too many).
+  const detail::NodePhases dirty_phases = detail::node_phases(at_dirty, m.pairs);
+  for (size_t i = 0; i < dirty_nodes.size(); ++i)
+    detail::check_phase_count(size_t(dirty_nodes[i]), dirty_phases.count(i));
   im.phases_.resize(nodes);
-  std::vector<size_t> phase_count_at(dirty_nodes.size());
-  std::atomic<bool> twice{false};
-  detail::parallel_for(tbb::blocked_range<size_t>(0, dirty_nodes.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-    std::vector<int32_t> seen, hs;
-    std::vector<std::pair<int32_t, int32_t>> at;
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      seen.clear();
-      for (int32_t t : at_dirty.of(i)) seen.insert(seen.end(), m.pairs[size_t(t)].begin(), m.pairs[size_t(t)].end());
-      std::sort(seen.begin(), seen.end());
-      seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-      phase_count_at[i] = seen.size();
-      PhaseSet& s = im.phases_[size_t(dirty_nodes[i])];
-      s.fill(-1);
-      for (size_t p = 0; p < std::min(seen.size(), s.size()); ++p) s[p] = int16_t(seen[p]);
-      // An edge at it that only add_face() can link (then all of them are linked so).
-      const int32_t d = dirty_nodes[i];
-      halfedges_at(d, at_dirty.of(i), tris, at);
-      for_each_edge(at, hs, [&](int32_t x, std::span<const int32_t> edge) {
-        if ((!dirty[size_t(x)] || x > d) && partner[size_t(edge[0])] < 0 &&
-            detail::joins_vertices_twice(edge, vertex_of_corner))
-          twice = true;
-      });
-    }
-  });
-  for (size_t i = 0; i < dirty_nodes.size(); ++i) detail::check_phase_count(size_t(dirty_nodes[i]), phase_count_at[i]);
   detail::parallel_for_each_index(nodes, [&](size_t n) {
-    if (!dirty[n]) im.phases_[n] = phases_[size_t(node_was[n])];
+    im.phases_[n] =
+        dirty[n] ? detail::phase_set(dirty_phases.of(size_t(dirty_index[n]))) : phases_[size_t(node_was[n])];
   });
+  bool twice = false;
+  for (const auto& edges : unglued)
+    for (const auto& edge : edges) twice = twice || detail::joins_vertices_twice(edge, vertex_of_corner);
 
   im.link(m, vertex_of_corner, partner, twice);
 

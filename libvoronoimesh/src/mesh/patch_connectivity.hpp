@@ -10,7 +10,9 @@
 #include "mesh/topology.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace vm::detail {
@@ -29,6 +31,15 @@ void check_node_mesh(const NodeMesh& m);
 /// Throws TopologyError when more phases meet at node n (`count`) than a
 /// PhaseSet holds.
 void check_phase_count(size_t n, size_t count);
+
+/// The PhaseSet of a node's distinct phases, sorted (NodePhases::of()), at
+/// most as many as it holds (check_phase_count()).
+inline PhaseSet phase_set(std::span<const int32_t> phases) {
+  PhaseSet s;
+  s.fill(-1);
+  std::copy(phases.begin(), phases.end(), s.begin());
+  return s;
+}
 
 /// The corner classes of node n, whose triangles (ascending) are `ts`:
 /// corner_at[i] gets n's corner (3t + k) in ts[i] and class_at[i] its class,

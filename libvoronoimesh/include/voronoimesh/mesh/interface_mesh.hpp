@@ -211,7 +211,7 @@ private:
   std::vector<std::array<int32_t, 3>> triangles_, triangle_copies_;
   mutable std::vector<double> quality_; ///< qualities(), when quality_current_
   mutable bool quality_current_ = false;
-  void update_qualities(std::span<const int32_t> faces); ///< of these faces, if the rest are current
+  void update_qualities(std::span<const int32_t> faces); ///< of these distinct faces, if the rest are current
   double quality_of(size_t f) const;                      ///< triangle_quality() of face f now
   std::vector<uint8_t> box_;
   Box domain_;
