@@ -19,9 +19,10 @@ namespace vm::test {
 
 namespace {
 
-/// The checks that hold for every mesh at every stage; appends a failure
-/// naming `stage` and returns false when one fails.
-bool valid_and_unintersected(const NodeMesh& m, const std::string& stage, CaseResult& r) {
+/// The checks that hold for every mesh at every stage: valid, no crossings, no
+/// node outside the domain box. Appends a failure naming `stage` and returns
+/// false when one fails.
+bool valid_unintersected_and_inside(const NodeMesh& m, const std::string& stage, CaseResult& r) {
   const ValidationReport report = validate(m);
   if (!report.ok()) {
     r.failures.push_back(stage + ": validate: " + std::to_string(report.problem_count) + " problems, first: " +
@@ -34,6 +35,10 @@ bool valid_and_unintersected(const NodeMesh& m, const std::string& stage, CaseRe
                          std::to_string(crossings.pairs[0][0]) + " and " + std::to_string(crossings.pairs[0][1]));
     return false;
   }
+  if (const size_t outside = nodes_outside_the_domain(m); outside > 0) {
+    r.failures.push_back(stage + ": " + std::to_string(outside) + " nodes outside the domain box");
+    return false;
+  }
   return true;
 }
 
@@ -43,7 +48,7 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   options.threads = 1;
   NodeMesh created = create_mesh(c.scene, options);
   r.triangles = created.num_triangles();
-  if (!valid_and_unintersected(created, "create", r)) return;
+  if (!valid_unintersected_and_inside(created, "create", r)) return;
 
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const PassRegistry registry = builtin_registry();
@@ -62,7 +67,7 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
       // A fresh pass each iteration: it remeshes the mesh as it is, so a size
       // over 1 coarsens it every time (a stress test, not a normal run).
       remesh->run(mesh, field.get(), once);
-      if (!valid_and_unintersected(mesh.to_node_mesh(), stage + " after remeshing", r)) return;
+      if (!valid_unintersected_and_inside(mesh.to_node_mesh(), stage + " after remeshing", r)) return;
     }
     const std::vector<Vec3> before = face_normals(mesh);
     moving.run(mesh, field.get(), once);
@@ -70,10 +75,10 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
       r.failures.push_back(stage + " after moving: " + std::to_string(turned) + " triangles turned by 90 degrees or more");
       return;
     }
-    if (!valid_and_unintersected(mesh.to_node_mesh(), stage + " after moving", r)) return;
+    if (!valid_unintersected_and_inside(mesh.to_node_mesh(), stage + " after moving", r)) return;
     flips.run(mesh, field.get(), once);
     const NodeMesh m = mesh.to_node_mesh();
-    if (!valid_and_unintersected(m, stage + " after flipping", r)) return;
+    if (!valid_unintersected_and_inside(m, stage + " after flipping", r)) return;
     if (it == o.iterations && c.closed_form) r.against_field = inverted_triangles(m, *field);
   }
 }

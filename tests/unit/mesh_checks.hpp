@@ -7,6 +7,7 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace vm::test {
@@ -30,6 +31,16 @@ inline size_t inverted_triangles(const NodeMesh& m, const PhaseField& f) {
 
 /// Normals of every face of the mesh, by face index (valid to follow faces
 /// across passes that do not change the topology).
+/// Nodes that lie outside the mesh's domain box by more than the tolerance of
+/// its faces (1e-9 of the diagonal, InterfaceMesh::box_faces()): the lattice's
+/// nodes on a face can stand an ulp out.
+inline size_t nodes_outside_the_domain(const NodeMesh& m) {
+  const double tol = 1e-9 * (m.domain.max - m.domain.min).norm();
+  return size_t(std::count_if(m.points.begin(), m.points.end(), [&](const Vec3& p) {
+    return (p.array() < m.domain.min.array() - tol).any() || (p.array() > m.domain.max.array() + tol).any();
+  }));
+}
+
 inline std::vector<Vec3> face_normals(const InterfaceMesh& m) {
   const NodeMesh n = m.to_node_mesh();
   std::vector<Vec3> out;

@@ -19,6 +19,16 @@ Vec3 towards_line(const Vec3& from, const Vec3& a, const Vec3& b) {
 
 } // namespace
 
+double box_step(const Vec3& delta, const Vec3& x, const Box& domain, uint8_t box_faces) {
+  double s = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (box_faces >> (2 * a) & 3u) continue; // held on its face: no move along a
+    const double gap = delta[a] > 0 ? domain.max[a] - x[a] : x[a] - domain.min[a];
+    if (delta[a] != 0 && gap > 0) s = std::min(s, gap / std::abs(delta[a]));
+  }
+  return s;
+}
+
 double clamp_step(const Vec3& delta, const Vec3& v0, const Vec3& v1, const Vec3& v2) {
   // v0's region (paper Fig. 4) is bounded by three planes through the midlines,
   // perpendicular to the triangle: the midline opposite v0 (normal n0, from v0
@@ -45,7 +55,7 @@ void clamp_displacements(const InterfaceMesh& mesh, const ClampParams& params, s
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
     Vec3& d = delta[v];
     if (d.isZero(0)) return;
-    double scale = 1.0;
+    double scale = std::min(1.0, params.factor * box_step(d, pos[v], mesh.domain(), mesh.box_faces()[v]));
     mesh.for_each_triangle_at(int32_t(v), [&](int32_t a, int32_t b) {
       scale = std::min(scale, params.factor * clamp_step(d, pos[v], pos[size_t(a)], pos[size_t(b)]));
     });

@@ -27,8 +27,23 @@ struct ClampParams {
 /// @return the largest safe fraction s of `delta`, in [0, +infinity]
 double clamp_step(const Vec3& delta, const Vec3& v0, const Vec3& v1, const Vec3& v2);
 
+/// The largest s >= 0 such that x + s*delta stays inside the domain box along
+/// every axis whose faces x is not held on (`box_faces`, bits as
+/// InterfaceMesh::box_faces()); +infinity when delta never leaves it. An axis
+/// along which x is already outside sets no limit.
+/// @param delta     the displacement of the node
+/// @param x         the node's position
+/// @param domain    the domain box
+/// @param box_faces the box faces the node lies on (its moves keep it there)
+/// @return the largest fraction s of `delta` that keeps the node inside, in [0, +infinity]
+double box_step(const Vec3& delta, const Vec3& x, const Box& domain, uint8_t box_faces);
+
 /// Scales each node's displacement by min(1, factor x min over its triangles of
-/// clamp_step) (eq. 5). Each node is clamped on its own, in parallel.
+/// clamp_step) (eq. 5), and by factor x box_step() besides, so that a node never
+/// leaves the domain box nor reaches its faces: a surface meeting a box face at
+/// a grazing angle would otherwise pull its nodes out through the face (not in
+/// the paper, whose domains are periodic or closed). Each node is clamped on its
+/// own, in parallel.
 /// @param mesh   the mesh, at the positions before the move
 /// @param params the fraction of the largest safe step (ClampParams::factor)
 /// @param delta  the displacement of every node, one entry per node; scaled in place
