@@ -20,6 +20,10 @@ namespace {
 /// Junction nodes within this share of a sliver's longest edge of the target
 /// merge into it with the sliver's collapse (find_slivers()).
 constexpr double kHuddle = 0.1;
+/// A collapse target moves onto the box faces of the node merging into it
+/// when it lies within this share of the sliver's longest edge of them
+/// (onto_box_faces()).
+constexpr double kOntoBox = 0.25;
 
 using detail::CollapsePeers;
 using detail::SliverCollapse;
@@ -56,19 +60,44 @@ std::vector<std::pair<int64_t, int64_t>> choose(const std::vector<SliverCollapse
   return chosen;
 }
 
-/// The smallest quality of node b's triangles once b sits where a is (those at
-/// both vanish), 0 if one of them turns over.
-double quality_after_collapse(const InterfaceMesh& mesh, int32_t b, int32_t a) {
+/// The smallest quality of node b's triangles once b sits at `to`, where a is
+/// or goes (those at both vanish), and, if a moves there, of a's; 0 if one of
+/// them turns over.
+double quality_after_collapse(const InterfaceMesh& mesh, int32_t b, int32_t a, const Vec3& to) {
   const auto& pos = mesh.positions();
-  const Vec3 &from = pos[size_t(b)], &to = pos[size_t(a)];
   double q = 1;
-  mesh.for_each_triangle_at(b, [&](int32_t x, int32_t y) {
-    if (x == a || y == a) return;
-    const Vec3 &px = pos[size_t(x)], &py = pos[size_t(y)];
-    const bool turned = (px - from).cross(py - from).dot((px - to).cross(py - to)) <= 0;
-    q = turned ? 0 : std::min(q, triangle_quality(to, px, py));
-  });
+  auto moved = [&](int32_t n, int32_t gone) {
+    const Vec3& from = pos[size_t(n)];
+    mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
+      if (x == gone || y == gone) return;
+      const Vec3 &px = pos[size_t(x)], &py = pos[size_t(y)];
+      const bool turned = (px - from).cross(py - from).dot((px - to).cross(py - to)) <= 0;
+      q = turned ? 0 : std::min(q, triangle_quality(to, px, py));
+    });
+  };
+  moved(b, a);
+  if (to != pos[size_t(a)]) moved(a, b);
   return q;
+}
+
+/// Where a goes when b, a node on box faces a is not on, merges into it: onto
+/// those faces (a's coordinates across them set to theirs), if b's phases are
+/// among a's and a lies within `reach` of the faces; not finite otherwise. A
+/// junction a hair off the box (a quadruple point 0.08 h inside, the curve
+/// from it ending on the box 0.08 h away) leaves a sliver no ordinary collapse
+/// may remove: neither end lies on all the other's constraints.
+Vec3 onto_box_faces(const InterfaceMesh& mesh, int32_t b, int32_t a, double reach) {
+  const uint8_t box_a = mesh.box_faces()[size_t(a)], box_b = mesh.box_faces()[size_t(b)];
+  const Vec3 none = Vec3::Constant(NAN);
+  if ((box_b & ~box_a) == 0 || (box_a & ~box_b) != 0 ||
+      !detail::constraints_within(mesh.phases()[size_t(b)], 0, mesh.phases()[size_t(a)], 0))
+    return none;
+  Vec3 to = mesh.positions()[size_t(a)];
+  for (int k = 0; k < 3; ++k) {
+    if (box_b >> (2 * k) & 1u) to[k] = mesh.domain().min[k];
+    if (box_b >> (2 * k + 1) & 1u) to[k] = mesh.domain().max[k];
+  }
+  return (to - mesh.positions()[size_t(a)]).norm() <= reach ? to : none;
 }
 
 /// The slivers this rank answers for, with the collapse each would make.
@@ -101,24 +130,37 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     // among a's, judged with the original phases; or whose ends are two
     // corners on the same box faces (quadruple points closer than the mesh
     // resolves, with nothing but slivers between them), which merge into one
-    // higher-order point: the lower id (of the whole mesh) stays.
+    // higher-order point: the lower id (of the whole mesh) stays; or whose b
+    // lies on box faces and a a hair off them, a moving onto them
+    // (onto_box_faces()).
     auto corner = [&](int32_t v) { return detail::constraint_order(mesh, v) >= 4; };
+    auto squared_length = [&](int k) {
+      return (pos[size_t(c[size_t(k)])] - pos[size_t(c[size_t((k + 1) % 3)])]).squaredNorm();
+    };
+    const double longest2 = std::max({squared_length(0), squared_length(1), squared_length(2)});
+    const double reach = kOntoBox * std::sqrt(longest2);
     std::pair<double, std::array<int32_t, 2>> best{INFINITY, {-1, -1}};
+    Vec3 to = Vec3::Constant(NAN); // where a goes, if it moves
     for (int k = 0; k < 3; ++k) {
       const int32_t u = c[size_t(k)], w = c[size_t((k + 1) % 3)];
-      const double len = (pos[size_t(u)] - pos[size_t(w)]).squaredNorm();
+      const double len = squared_length(k);
       if (len >= best.first) continue;
+      Vec3 onto = Vec3::Constant(NAN);
       if (mesh.constraints_within(w, u)) best = {len, {u, w}};
       else if (mesh.constraints_within(u, w)) best = {len, {w, u}};
       else if (corner(u) && corner(w) && mesh.box_faces()[size_t(u)] == mesh.box_faces()[size_t(w)])
         best = {len, node_ids[size_t(u)] < node_ids[size_t(w)] ? std::array{u, w} : std::array{w, u}};
+      else if (onto = onto_box_faces(mesh, w, u, reach); onto.allFinite()) best = {len, {u, w}};
+      else if (onto = onto_box_faces(mesh, u, w, reach); onto.allFinite()) best = {len, {w, u}};
+      else continue;
+      to = onto;
     }
-    SliverCollapse s{q, triangle_ids[face], -1, -1, {}};
+    SliverCollapse s{q, triangle_ids[face], -1, -1, {}, to};
     const auto [a, b] = best.second;
     // A collapse that leaves a triangle no better than the sliver would trade
     // one sliver for another (voronoi30 at grid 48 with collapse_below=0.15:
     // min q 0.065 -> 0.012), and the quality floor cannot undo it.
-    if (a < 0 || quality_after_collapse(mesh, b, a) <= q) {
+    if (a < 0 || quality_after_collapse(mesh, b, a, to.allFinite() ? to : pos[size_t(a)]) <= q) {
       slivers.push_back(std::move(s));
       continue;
     }
@@ -129,12 +171,10 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     // curve node 0.01 h and a quadruple point 0.03 h from it, duplicate
     // triangles whichever merged alone; min q 0.039, which no pass could mend).
     std::vector<int32_t> merged{b};
-    const double huddle = std::pow(kHuddle, 2) * std::max({(pos[size_t(c[0])] - pos[size_t(c[1])]).squaredNorm(),
-                                                           (pos[size_t(c[1])] - pos[size_t(c[2])]).squaredNorm(),
-                                                           (pos[size_t(c[2])] - pos[size_t(c[0])]).squaredNorm()});
+    const double huddle = std::pow(kHuddle, 2) * longest2;
     for (int32_t w : mesh.neighbours(a))
       if (w != b && junction_order(mesh, w) >= 3 && (pos[size_t(w)] - pos[size_t(a)]).squaredNorm() <= huddle &&
-          mesh.constraints_within(w, a) && quality_after_collapse(mesh, w, a) > q)
+          mesh.constraints_within(w, a) && quality_after_collapse(mesh, w, a, pos[size_t(a)]) > q)
         merged.push_back(w);
     s.a = node_ids[size_t(a)];
     s.b = node_ids[size_t(b)];
@@ -145,7 +185,7 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     s.claims.push_back(node_ids[size_t(a)]);
     for (int32_t w : mesh.neighbours(a)) s.claims.push_back(node_ids[size_t(w)]);
     for (size_t k = 1; k < merged.size(); ++k)
-      slivers.push_back(SliverCollapse{q, s.triangle, s.a, node_ids[size_t(merged[k])], s.claims});
+      slivers.push_back(SliverCollapse{q, s.triangle, s.a, node_ids[size_t(merged[k])], s.claims, s.to});
     slivers.push_back(std::move(s));
   }
   return slivers;
@@ -185,8 +225,11 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     // A failure can only be at a node some collapse claims (its a, b and rings).
     detail::Blame blame(claimed.begin(), claimed.end());
     std::sort(blame.begin(), blame.end());
-    const size_t trial_done =
-        merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept, {}, &made, index);
+    std::vector<Vec3> moved_to; // only if some target moves: else merges copy no points
+    for (size_t i : from) moved_to.push_back(slivers[i].to);
+    if (std::none_of(moved_to.begin(), moved_to.end(), [](const Vec3& to) { return to.allFinite(); })) moved_to.clear();
+    const size_t trial_done = merge_passing(trial, chosen, blame, params.guard_crossings, peers, node_ids, trial_kept,
+                                            moved_to, &made, index);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order
     bool any_failed = false;

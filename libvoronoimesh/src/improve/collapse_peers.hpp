@@ -14,13 +14,15 @@
 namespace vm::detail {
 
 /// A junction sliver that could be collapsed: its quality, its triangle's id,
-/// the edge b -> a it would collapse (a = -1: none allowed), and the nodes a
-/// collapse claims (a, b and their rings), as ids.
+/// the edge b -> a it would collapse (a = -1: none allowed), the nodes a
+/// collapse claims (a, b and their rings), as ids, and where a goes (not
+/// finite: a stays).
 struct SliverCollapse {
   double quality;
   int64_t triangle;
   int64_t a, b;
   std::vector<int64_t> claims;
+  Vec3 to = Vec3::Constant(NAN);
 };
 
 class CollapsePeers {

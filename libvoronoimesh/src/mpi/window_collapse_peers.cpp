@@ -14,6 +14,7 @@ namespace {
 struct SliverHead {
   double quality;
   int64_t triangle, a, b, claims;
+  double to[3];
 };
 
 } // namespace
@@ -22,7 +23,7 @@ std::vector<vm::detail::SliverCollapse> WindowCollapsePeers::all(const std::vect
   std::vector<char> bytes;
   auto put = [&](const void* p, size_t n) { bytes.insert(bytes.end(), static_cast<const char*>(p), static_cast<const char*>(p) + n); };
   for (const auto& s : mine) {
-    const SliverHead head{s.quality, s.triangle, s.a, s.b, int64_t(s.claims.size())};
+    const SliverHead head{s.quality, s.triangle, s.a, s.b, int64_t(s.claims.size()), {s.to.x(), s.to.y(), s.to.z()}};
     put(&head, sizeof head);
     put(s.claims.data(), s.claims.size() * sizeof(int64_t));
   }
@@ -32,7 +33,8 @@ std::vector<vm::detail::SliverCollapse> WindowCollapsePeers::all(const std::vect
     SliverHead head;
     std::memcpy(&head, everyone.data() + at, sizeof head);
     at += sizeof head;
-    vm::detail::SliverCollapse s{head.quality, head.triangle, head.a, head.b, std::vector<int64_t>(size_t(head.claims))};
+    vm::detail::SliverCollapse s{head.quality, head.triangle, head.a, head.b, std::vector<int64_t>(size_t(head.claims)),
+                                 Vec3(head.to[0], head.to[1], head.to[2])};
     std::memcpy(s.claims.data(), everyone.data() + at, s.claims.size() * sizeof(int64_t));
     at += s.claims.size() * sizeof(int64_t);
     out.push_back(std::move(s));

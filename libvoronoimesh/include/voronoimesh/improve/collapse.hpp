@@ -35,7 +35,10 @@ struct CollapseParams {
 /// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
 /// its phases and box faces among a's, so a already lies on every constraint of b:
 /// b's triangles are moved to a and the triangles on both a and b disappear, in
-/// every surface at once. Collapses that share no triangle go in one batch; a
+/// every surface at once. Where b lies on box faces that a, a junction node
+/// within a quarter of the triangle's longest edge of them, is not on (and b's
+/// phases are among a's), a moves onto those faces and b merges into it there.
+/// Collapses that share no triangle go in one batch; a
 /// batch (or, if it fails, each collapse) is kept only if no triangle turns over,
 /// the mesh stays valid and (with guard_crossings) no triangle at a kept node
 /// crosses another surface. Rebuilds `mesh` (node ids change) when anything was

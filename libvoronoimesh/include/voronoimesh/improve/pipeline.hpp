@@ -17,12 +17,15 @@ namespace vm {
 inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 
 /// The passes after the remesh pass in the remeshing defaults below: the paper's,
-/// with junction slivers below q 0.15 collapsed (flip:collapse_below, the flip
-/// pass's default too since 2026-11-26; said here as these defaults chose it
-/// first). After remeshing, curve nodes bunch where a triple curve turns
-/// tightly and leave triangles with three corners on the curve: 0.15 lifts the
-/// worst triangle of the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain
-/// polycrystal from 0.052 to 0.158.
+/// with junction slivers below q 0.15 collapsed (flip:collapse_below). After
+/// remeshing, curve nodes bunch where a triple curve turns tightly and leave
+/// triangles with three corners on the curve: 0.15 lifts the worst triangle of
+/// the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain polycrystal from
+/// 0.052 to 0.158. The scenes' pipeline collapses below 0.3 since 2026-11-27; on
+/// label volumes that gained nothing measured (the liver at 1 and 2 voxels per cell
+/// and the CT-like volume the same meshes, the 60-grain volume the same min q
+/// with 30 triangles below q 0.5 instead of 60) and cost 12% more time on the
+/// 60 grains (a collapse or two in most iterations, each rebuilding the mesh).
 inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:collapse_below=0.15";
 
 /// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
@@ -39,8 +42,15 @@ inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,proj
 /// Measured (20 iterations, bench/junction_scenes.sh and the shipped scenes):
 /// min q of seven Voronoi cells 0.354 -> 0.652, of six random four-ball scenes
 /// 0.323 -> 0.531 on average, of twelve random seed scenes 0.155 -> 0.180; mean
-/// q 0.92 -> 0.95 on all; about as many triangles, 30% more time.
-inline constexpr const char* kScenePipeline = "remesh:size=1,smooth,project,clamp,flip";
+/// q 0.92 -> 0.95 on all; about as many triangles, 30% more time. Junction
+/// slivers below q 0.3 collapse (the flip pass's default is 0.15): with
+/// collapse targets moving onto the box (improve/collapse.hpp), the worst
+/// triangle of twelve random seed scenes rose on 8 and fell on none (mean 0.193
+/// -> 0.235; 0.206 without those moves), of voronoi30 at grid 64 0.218 -> 0.416,
+/// of seven cells 0.652 -> 0.643. Not the paper's default too: there the
+/// quality floor then held a curve node of eight spheres 0.15 h off its curve
+/// (tests/unit/test_improve.cpp, triple curves converge).
+inline constexpr const char* kScenePipeline = "remesh:size=1,smooth,project,clamp,flip:collapse_below=0.3";
 
 /// What happened in one iteration, for progress lines and stopping rules.
 struct IterationReport {
