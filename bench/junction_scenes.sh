@@ -3,8 +3,9 @@
 # Voronoi seed scenes (17, 20, 25 and 30 cells, seeds 2-4, grid 48; made by
 # scripts/make_voronoi_scene.py) and 6 random scenes of four overlapping balls
 # (grid 48), meshed with `voronoimesh mesh` at its defaults. Prints a Markdown
-# table and the mean min q of each kind. The scenes are made anew each run and
-# are the same every time (fixed seeds).
+# table (with, for the seeds, the best min q exact junctions allow) and the mean
+# min q of each kind. The scenes are made anew each run and are the same every
+# time (fixed seeds).
 # Usage: bench/junction_scenes.sh   (after scripts/build.sh; BUILD=DIR, OUT=DIR;
 #        VM=PATH to measure another voronoimesh, e.g. an older build)
 set -euo pipefail
@@ -29,16 +30,20 @@ for seed in range(6):
         json.dump(scene, f)
 PY
 
-echo "| scene | triangles | min q | mean q | min angle |"
-echo "|---|---|---|---|---|"
+# "exact bound": the most min q can be with junctions exactly on the Voronoi
+# diagram (its smallest face corner; scripts/voronoi_corner_bound.py), seeds only.
+echo "| scene | triangles | min q | mean q | min angle | exact bound |"
+echo "|---|---|---|---|---|---|"
 for scene in "$out"/seeds*.json "$out"/balls_*.json; do
   name=$(basename "$scene" .json)
   "$vm" mesh -q "$scene" -o "$out/$name.ply"
+  bound=
+  case $name in seeds*) bound=$(python3 scripts/voronoi_corner_bound.py "$scene" | sed 's/.*min q <= //') ;; esac
   "$vm" stats --json "$out/$name.ply" | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
-print("| {} | {} | {:.3f} | {:.3f} | {:.1f} |".format(
-    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"]))' "$name"
+print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {} |".format(
+    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2]))' "$name" "$bound"
 done | tee "$out/table.md"
 python3 - "$out/table.md" <<'PY'
 import sys

@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""Checks scripts/voronoi_corner_bound.py on configurations whose answer is known.
+
+Usage: test_corner_bound.py PATH/TO/voronoi_corner_bound.py   (exit status 0 when every check holds)
+"""
+import importlib.util
+import math
+import sys
+
+spec = importlib.util.spec_from_file_location("corner_bound", sys.argv[1])
+bound = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(bound)
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+# The equilateral triangle is the best there is; an apex of 10 degrees allows about q 0.3.
+check(abs(bound.best_quality_at_angle(math.radians(60)) - 1) < 1e-12, "apex 60 degrees: q 1")
+check(abs(bound.best_quality_at_angle(math.radians(10)) - 0.2963) < 1e-4, "apex 10 degrees: q 0.2963")
+
+# Four seeds on a regular tetrahedron round the box's centre: one vertex there, where the
+# four edges leave along the directions away from the seeds, 109.47 degrees apart.
+c, r = 0.5, 0.3
+tetra = [[c + r * x, c + r * y, c + r * z] for x, y, z in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1))]
+angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0, 0, 0], [1, 1, 1])
+check(quad == (0, 1, 2, 3) and max(abs(v - c) for v in vertex) < 1e-12, f"tetrahedron: vertex {vertex}")
+check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-9, f"tetrahedron: corner {math.degrees(angle)}")
+
+# The same vertex outside the domain is no corner of the meshed diagram.
+angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0.6, 0, 0], [1, 1, 1])
+check(quad is None, "vertex outside the domain counted")
+
+# A fifth seed nearer the centre than the four: theirs is no vertex of the diagram.
+angle, quad, face, vertex = bound.smallest_face_corner(tetra + [[c, c, c + 0.01]], [0, 0, 0], [1, 1, 1])
+check((0, 1, 2, 3) != quad, "a vertex inside another seed's cell counted")
+
+for f in failures:
+    print("FAILED:", f)
+sys.exit(1 if failures else 0)
