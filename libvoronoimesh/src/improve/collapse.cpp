@@ -100,6 +100,31 @@ Vec3 onto_box_faces(const InterfaceMesh& mesh, int32_t b, int32_t a, double reac
   return (to - mesh.positions()[size_t(a)]).norm() <= reach ? to : none;
 }
 
+/// When no edge of a sliver (corners `c`, quality q) may collapse, or its
+/// collapse would leave a triangle no better: the merge of one of its corners b
+/// into a junction neighbour a off the sliver on all of b's constraints (a curve
+/// node into the next node along its curve or into the quadruple point it
+/// leaves) that leaves b's triangles best, if better than q; {-1, -1} if none.
+/// Two curves of one face that leave a quadruple point at a small angle hold
+/// slivers across the face whose edges run across it or along a curve into a
+/// worse triangle; taking a curve node out beside them leaves the corner
+/// triangle the angle allows.
+std::array<int32_t, 2> merge_off_the_sliver(const InterfaceMesh& mesh, const std::array<int32_t, 3>& c, double q,
+                                            std::span<const int64_t> node_ids) {
+  std::tuple<double, int64_t, int64_t> best{q, 0, 0};
+  std::array<int32_t, 2> merge{-1, -1};
+  for (int32_t b : c)
+    for (int32_t a : mesh.neighbours(b)) {
+      if (std::find(c.begin(), c.end(), a) != c.end() || junction_order(mesh, a) < 3 || !mesh.constraints_within(b, a))
+        continue;
+      // Best quality first, ties to the lowest ids: the same choice on every rank.
+      const std::tuple<double, int64_t, int64_t> candidate{
+          quality_after_collapse(mesh, b, a, mesh.positions()[size_t(a)]), -node_ids[size_t(b)], -node_ids[size_t(a)]};
+      if (candidate > best) best = candidate, merge = {a, b};
+    }
+  return merge;
+}
+
 /// The slivers this rank answers for, with the collapse each would make.
 std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers* peers,
                                          std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids) {
@@ -155,12 +180,18 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
       else continue;
       to = onto;
     }
-    SliverCollapse s{q, triangle_ids[face], -1, -1, {}, to};
-    const auto [a, b] = best.second;
     // A collapse that leaves a triangle no better than the sliver would trade
     // one sliver for another (voronoi30 at grid 48 with collapse_below=0.15:
     // min q 0.065 -> 0.012), and the quality floor cannot undo it.
-    if (a < 0 || quality_after_collapse(mesh, b, a, to.allFinite() ? to : pos[size_t(a)]) <= q) {
+    // Then one of its corners may merge into a node off it instead.
+    if (const auto [a, b] = best.second;
+        a < 0 || quality_after_collapse(mesh, b, a, to.allFinite() ? to : pos[size_t(a)]) <= q) {
+      best.second = merge_off_the_sliver(mesh, c, q, node_ids);
+      to = Vec3::Constant(NAN);
+    }
+    SliverCollapse s{q, triangle_ids[face], -1, -1, {}, to};
+    const auto [a, b] = best.second;
+    if (a < 0) {
       slivers.push_back(std::move(s));
       continue;
     }

@@ -38,6 +38,9 @@ struct CollapseParams {
 /// every surface at once. Where b lies on box faces that a, a junction node
 /// within a quarter of the triangle's longest edge of them, is not on (and b's
 /// phases are among a's), a moves onto those faces and b merges into it there.
+/// Where no edge of the triangle may collapse, or every collapse would leave a
+/// triangle no better, one of its corners merges into a junction neighbour off
+/// it that lies on all its constraints, whichever leaves its triangles best.
 /// Collapses that share no triangle go in one batch; a
 /// batch (or, if it fails, each collapse) is kept only if no triangle turns over,
 /// the mesh stays valid and (with guard_crossings) no triangle at a kept node

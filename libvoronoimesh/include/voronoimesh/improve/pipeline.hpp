@@ -46,7 +46,8 @@ inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,proj
 /// slivers below q 0.3 collapse (the flip pass's default is 0.15): with
 /// collapse targets moving onto the box (improve/collapse.hpp), the worst
 /// triangle of twelve random seed scenes rose on 8 and fell on none (mean 0.193
-/// -> 0.235; 0.206 without those moves), of voronoi30 at grid 64 0.218 -> 0.416,
+/// -> 0.235; 0.206 without those moves; 0.250 since slivers that cannot
+/// collapse lose a curve node beside them), of voronoi30 at grid 64 0.218 -> 0.416,
 /// of seven cells 0.652 -> 0.643. Not the paper's default too: there the
 /// quality floor then held a curve node of eight spheres 0.15 h off its curve
 /// (tests/unit/test_improve.cpp, triple curves converge).
