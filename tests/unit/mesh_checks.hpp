@@ -29,8 +29,6 @@ inline size_t inverted_triangles(const NodeMesh& m, const PhaseField& f) {
   return bad;
 }
 
-/// Normals of every face of the mesh, by face index (valid to follow faces
-/// across passes that do not change the topology).
 /// Nodes that lie outside the mesh's domain box by more than the tolerance of
 /// its faces (1e-9 of the diagonal, InterfaceMesh::box_faces()): the lattice's
 /// nodes on a face can stand an ulp out.
@@ -41,6 +39,8 @@ inline size_t nodes_outside_the_domain(const NodeMesh& m) {
   }));
 }
 
+/// Normals of every face of the mesh, by face index (valid to follow faces
+/// across passes that do not change the topology).
 inline std::vector<Vec3> face_normals(const InterfaceMesh& m) {
   const NodeMesh n = m.to_node_mesh();
   std::vector<Vec3> out;

@@ -60,26 +60,6 @@ std::vector<std::pair<int64_t, int64_t>> choose(const std::vector<SliverCollapse
   return chosen;
 }
 
-/// The smallest quality of node b's triangles once b sits at `to`, where a is
-/// or goes (those at both vanish), and, if a moves there, of a's; 0 if one of
-/// them turns over.
-double quality_after_collapse(const InterfaceMesh& mesh, int32_t b, int32_t a, const Vec3& to) {
-  const auto& pos = mesh.positions();
-  double q = 1;
-  auto moved = [&](int32_t n, int32_t gone) {
-    const Vec3& from = pos[size_t(n)];
-    mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
-      if (x == gone || y == gone) return;
-      const Vec3 &px = pos[size_t(x)], &py = pos[size_t(y)];
-      const bool turned = (px - from).cross(py - from).dot((px - to).cross(py - to)) <= 0;
-      q = turned ? 0 : std::min(q, triangle_quality(to, px, py));
-    });
-  };
-  moved(b, a);
-  if (to != pos[size_t(a)]) moved(a, b);
-  return q;
-}
-
 /// Where a goes when b, a node on box faces a is not on, merges into it: onto
 /// those faces (a's coordinates across them set to theirs), if b's phases are
 /// among a's and a lies within `reach` of the faces; not finite otherwise. A
@@ -118,8 +98,8 @@ std::array<int32_t, 2> merge_off_the_sliver(const InterfaceMesh& mesh, const std
       if (std::find(c.begin(), c.end(), a) != c.end() || junction_order(mesh, a) < 3 || !mesh.constraints_within(b, a))
         continue;
       // Best quality first, ties to the lowest ids: the same choice on every rank.
-      const std::tuple<double, int64_t, int64_t> candidate{
-          quality_after_collapse(mesh, b, a, mesh.positions()[size_t(a)]), -node_ids[size_t(b)], -node_ids[size_t(a)]};
+      const double after = detail::quality_after_merge(mesh, b, a, mesh.positions()[size_t(a)], false);
+      const std::tuple<double, int64_t, int64_t> candidate{after, -node_ids[size_t(b)], -node_ids[size_t(a)]};
       if (candidate > best) best = candidate, merge = {a, b};
     }
   return merge;
@@ -185,7 +165,7 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     // min q 0.065 -> 0.012), and the quality floor cannot undo it.
     // Then one of its corners may merge into a node off it instead.
     if (const auto [a, b] = best.second;
-        a < 0 || quality_after_collapse(mesh, b, a, to.allFinite() ? to : pos[size_t(a)]) <= q) {
+        a < 0 || detail::quality_after_merge(mesh, b, a, to.allFinite() ? to : pos[size_t(a)], to.allFinite()) <= q) {
       best.second = merge_off_the_sliver(mesh, c, q, node_ids);
       to = Vec3::Constant(NAN);
     }
@@ -205,7 +185,7 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
     const double huddle = std::pow(kHuddle, 2) * longest2;
     for (int32_t w : mesh.neighbours(a))
       if (w != b && junction_order(mesh, w) >= 3 && (pos[size_t(w)] - pos[size_t(a)]).squaredNorm() <= huddle &&
-          mesh.constraints_within(w, a) && quality_after_collapse(mesh, w, a, pos[size_t(a)]) > q)
+          mesh.constraints_within(w, a) && detail::quality_after_merge(mesh, w, a, pos[size_t(a)], false) > q)
         merged.push_back(w);
     s.a = node_ids[size_t(a)];
     s.b = node_ids[size_t(b)];

@@ -6,8 +6,10 @@
 /// the junction-sliver collapse (improve/collapse.cpp) and the remesh pass
 /// (improve/remesh.cpp).
 
+#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -25,6 +27,30 @@ class CrossingIndex; // check/crossing_index.hpp
 /// index in `m` of each triangle of `out`.
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
                  std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr);
+
+/// The smallest quality of the triangles that change when node b merges into a
+/// placed at `to` (those at b, and at a if `a_moves`), after the merge: 0 if one
+/// turns over; those at both vanish. With `before`, also their smallest quality
+/// before it. For the remesh pass's NodeRings and the junction-sliver
+/// collapse's InterfaceMesh alike.
+template <class Mesh>
+double quality_after_merge(const Mesh& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves,
+                           double* before = nullptr) {
+  const auto& pos = mesh.positions();
+  double old_q = 1, new_q = 1;
+  for (int32_t n : {b, a}) {
+    if (n == a && !a_moves) continue; // a's triangles stay as they are
+    mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
+      const Vec3 &p = pos[size_t(n)], &px = pos[size_t(x)], &py = pos[size_t(y)];
+      old_q = std::min(old_q, triangle_quality(p, px, py));
+      if (x == a || y == a || x == b || y == b) return; // this triangle disappears
+      const bool turned = (px - p).cross(py - p).dot((px - to).cross(py - to)) <= 0;
+      new_q = turned ? 0 : std::min(new_q, triangle_quality(to, px, py));
+    });
+  }
+  if (before) *before = old_q;
+  return new_q;
+}
 
 /// Drops nodes no triangle uses and renumbers the rest in order; appends the
 /// old index of each kept node to `kept`.

@@ -102,25 +102,6 @@ struct Candidate {
   bool merge = false; ///< two corners merged at their midpoint: a moves too
 };
 
-/// The smallest quality of the triangles that change when b merges into a
-/// placed at `to` (those at b, and at a if it moves): before (`old_q`) and
-/// after (`new_q`; 0 if one turns over).
-void merge_qualities(const NodeRings& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves, double& old_q,
-                     double& new_q) {
-  const auto& pos = mesh.positions();
-  old_q = new_q = 1;
-  for (int32_t n : {b, a}) {
-    if (n == a && !a_moves) continue; // a's triangles stay as they are
-    mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
-      const Vec3 &p = pos[size_t(n)], &px = pos[size_t(x)], &py = pos[size_t(y)];
-      old_q = std::min(old_q, triangle_quality(p, px, py));
-      if (x == a || y == a || x == b || y == b) return; // this triangle disappears
-      const bool turned = (px - p).cross(py - p).dot((px - to).cross(py - to)) <= 0;
-      new_q = turned ? 0 : std::min(new_q, triangle_quality(to, px, py));
-    });
-  }
-}
-
 /// For a corner b, the merge with a neighbouring corner a < b on the same box
 /// faces closer than RemeshParams::merge_corners of the target, at their
 /// midpoint: close quadruple points become one higher-order point, where no
@@ -136,8 +117,8 @@ std::optional<Candidate> best_corner_merge(const NodeRings& mesh, std::span<cons
     const double ratio = (pos[size_t(a)] - pos[size_t(b)]).norm() / std::min(target[size_t(a)], target[size_t(b)]);
     if (ratio >= params.merge_corners || (best && std::tie(best->ratio, best->a) <= std::tie(ratio, a))) continue;
     if (!link_condition(mesh, a, b)) continue;
-    double old_q, new_q;
-    merge_qualities(mesh, b, a, 0.5 * (pos[size_t(a)] + pos[size_t(b)]), true, old_q, new_q);
+    double old_q;
+    const double new_q = detail::quality_after_merge(mesh, b, a, 0.5 * (pos[size_t(a)] + pos[size_t(b)]), true, &old_q);
     if (new_q < std::min(params.min_quality, old_q)) continue;
     best = Candidate{ratio, b, a, true};
   }
@@ -167,8 +148,8 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
       if (w != a && (pos[size_t(a)] - pos[size_t(w)]).norm() > kLongEdge * std::min(target[size_t(a)], target[size_t(w)]))
         ok = false;
     if (!ok || !link_condition(mesh, a, b)) continue;
-    double old_q, new_q;
-    merge_qualities(mesh, b, a, pos[size_t(a)], false, old_q, new_q);
+    double old_q;
+    const double new_q = detail::quality_after_merge(mesh, b, a, pos[size_t(a)], false, &old_q);
     if (new_q < std::min(params.min_quality, old_q)) continue;
     best = Candidate{ratio, b, a};
   }

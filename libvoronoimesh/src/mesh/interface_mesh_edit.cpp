@@ -12,10 +12,10 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "core/parallel.hpp"
-
-#include <tbb/enumerable_thread_specific.h>
 #include "mesh/patch_connectivity.hpp"
 #include "mesh/topology.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <atomic>
