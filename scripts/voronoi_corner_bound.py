@@ -19,6 +19,7 @@ Prints, per scene, the smallest corner angle, where it is and the bound on min q
 Brute force over every four seeds: seconds for the tens of cells of
 bench/junction_scenes.sh, too slow for grain maps of hundreds.
 """
+import argparse
 import itertools
 import json
 import math
@@ -93,16 +94,30 @@ def smallest_face_corner(seeds, lo, hi):
     return best
 
 
-def main():
-    if len(sys.argv) < 2:
-        sys.exit(__doc__)
-    for path in sys.argv[1:]:
+def read_seeds(path):
+    """The seeds and domain of a scene file; exits with a one-line message naming the file if it is not one."""
+    try:
         with open(path) as f:
             scene = json.load(f)
-        seeds = [p["points"][0] for p in scene["phases"] if p.get("kind") == "seeds"]
-        if len(seeds) != len(scene["phases"]) or any(len(p["points"]) != 1 for p in scene["phases"]):
+    except OSError as e:
+        sys.exit(f"{path}: cannot open ({e.strerror})")
+    except json.JSONDecodeError as e:
+        sys.exit(f"{path}: malformed JSON at line {e.lineno}, column {e.colno}")
+    try:
+        phases, domain = scene["phases"], scene["domain"]
+        if any(p.get("kind") != "seeds" or len(p["points"]) != 1 for p in phases):
             sys.exit(f"{path}: every phase must be 'seeds' with one point")
-        angle, quad, face, vertex = smallest_face_corner(seeds, scene["domain"]["min"], scene["domain"]["max"])
+        return [p["points"][0] for p in phases], domain["min"], domain["max"]
+    except (KeyError, TypeError, AttributeError):
+        sys.exit(f"{path}: not a scene with a domain and phases (docs/scenes.md)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scenes", nargs="+", metavar="SCENE.json", help="scenes of 'seeds' phases, one point each")
+    for path in parser.parse_args().scenes:
+        seeds, lo, hi = read_seeds(path)
+        angle, quad, face, vertex = smallest_face_corner(seeds, lo, hi)
         if quad is None:
             print(f"{path}: no quadruple point inside the domain")
             continue
