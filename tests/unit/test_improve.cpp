@@ -302,6 +302,16 @@ TEST(Improve, a_sliver_no_edge_of_which_may_collapse_loses_a_curve_node_beside_i
   EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds25_3"), 0.3);
 }
 
+// Seventeen cells whose lattice resolved a nearly degenerate vertex as two
+// quadruple points of the same four phases, joined by two curves round a small
+// face (a digon): the remesh pass merges such a face into one point when the
+// phase functions lead both corners to one. Its slivers held min q at 0.307.
+TEST(Improve, a_small_face_between_two_curves_of_one_vertex_merges_into_it) {
+  EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds17_2"), 0.33);
+  const std::string pipeline = std::string(kScenePipeline).replace(0, 13, "remesh:size=1:merge_digons=0");
+  EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds17_2"), 0.32);
+}
+
 // Quadruple points are not moved by forces, only projected onto the exact point
 // where their four phases tie: they converge there and stay.
 TEST(Improve, quadruple_points_stay_put) {

@@ -43,7 +43,7 @@ class RemeshPass : public Pass {
 public:
   explicit RemeshPass(const ParamValues& p)
       : params_{p.at("length") > 0 ? 1.0 : p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"),
-                p.at("min_quality")},
+                p.at("merge_digons"), p.at("min_quality")},
         length_(p.at("length")), last_(int(p.at("last"))) {}
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
@@ -134,6 +134,9 @@ void register_builtin_passes(PassRegistry& registry) {
        {"min_size", remesh.min_size, 0.1, 8.0, false, "shortest target edge length with tolerance, same unit"},
        {"merge_corners", remesh.merge_corners, 0.0, 0.5, false,
         "neighbouring quadruple points closer than this x the target merge into one point (0: never)"},
+       {"merge_digons", remesh.merge_digons, 0.0, 16.0, false,
+        "a face bounded by two curves between quadruple points of the same phases, each at most this x the target "
+        "long, merges into one point where the phase functions lead both corners to one (0: never)"},
        {"min_quality", remesh.min_quality, 0.0, 1.0, false,
         "collapses leave no triangle below this or the worst they replace"},
        {"last", 3, 0, 1000000, true, "the last iteration it runs in (each run rebuilds the mesh)"}},

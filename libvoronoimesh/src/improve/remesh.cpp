@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "core/union_find.hpp"
+#include "improve/digon_faces.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -67,19 +68,6 @@ double interface_curvature(const PhaseField& field, int i, int j, const Vec3& x,
   return std::sqrt(sum);
 }
 
-/// True when the edge a-b runs along a curve: its triangles are not exactly two
-/// of one phase pair (a junction, or a surface's edge on the box), or both ends
-/// lie on one edge of the box.
-bool along_curve(const NodeRings& mesh, int32_t a, int32_t b) {
-  if (std::popcount(unsigned(mesh.box_faces()[size_t(a)] & mesh.box_faces()[size_t(b)])) >= 2) return true;
-  std::vector<PhasePair> pairs;
-  for (int32_t t : mesh.triangles_at(a)) {
-    const auto& tri = mesh.mesh().triangles[size_t(t)];
-    if (std::find(tri.begin(), tri.end(), b) != tri.end()) pairs.push_back(mesh.mesh().pairs[size_t(t)]);
-  }
-  return pairs.size() != 2 || pairs[0] != pairs[1];
-}
-
 /// True when the nodes next to both a and b are exactly the third corners of
 /// the triangles on edge a-b (the link condition, at the node level): else the
 /// collapse would fold two edges into one that more triangles share.
@@ -142,7 +130,7 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
     // into the curve's end: a curve of one edge between two corners would fold
     // onto another curve between them.
     if (!mesh.constraints_within(b, a)) continue;
-    if (order == 3 && (constraint_order(mesh, a) != 3 || !along_curve(mesh, a, b))) continue;
+    if (order == 3 && (constraint_order(mesh, a) != 3 || !mesh.along_curve(a, b))) continue;
     bool ok = true;
     for (int32_t w : mesh.neighbours(b))
       if (w != a && (pos[size_t(a)] - pos[size_t(w)]).norm() > kLongEdge * std::min(target[size_t(a)], target[size_t(w)]))
@@ -195,6 +183,33 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
     chosen.push_back({c.a, c.b});
   }
   detail::parallel_sort(blame.begin(), blame.end(), std::less<std::pair<int64_t, int32_t>>());
+  return chosen;
+}
+
+/// The merges of the small digon faces (improve/digon_faces.hpp), each face's
+/// nodes into its corner `keep`, moved where the phase functions lead both
+/// corners, as collapses; a failure at any node of a face or next to one drops
+/// all of the face's.
+std::vector<std::pair<int64_t, int64_t>> choose_digon_merges(const NodeRings& mesh, std::span<const double> target,
+                                                             const PhaseField& field, const RemeshParams& params,
+                                                             detail::Blame& blame, std::vector<Vec3>& moved_to) {
+  std::vector<std::pair<int64_t, int64_t>> chosen;
+  for (const detail::DigonFace& face : detail::small_digon_faces(mesh, target, field, params.merge_digons)) {
+    const auto first = int32_t(chosen.size());
+    for (int32_t b : face.merged) {
+      chosen.push_back({face.keep, b});
+      moved_to.push_back(face.to);
+    }
+    std::vector<int32_t> around{face.keep};
+    for (int32_t n : face.merged) around.push_back(n);
+    for (int32_t n : std::vector<int32_t>(around))
+      around.insert(around.end(), mesh.neighbours(n).begin(), mesh.neighbours(n).end());
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    for (int32_t n : around)
+      for (auto i = first; i < int32_t(chosen.size()); ++i) blame.emplace_back(n, i);
+  }
+  std::sort(blame.begin(), blame.end());
   return chosen;
 }
 
@@ -334,22 +349,32 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     old = std::move(now);
   };
   std::vector<double> target;
-  bool collapsed = false, target_current = false;
+  bool collapsed = false, target_current = false, digons_looked_for = params.merge_digons <= 0 || !field;
   for (int round = 0; round < params.collapse_rounds; ++round) {
     const NodeRings rings(m);
     target = targets(m.points, rings.phases(), field, reference, params);
     target_current = true;
     detail::Blame blame;
     std::vector<Vec3> moved_to;
-    const auto chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
+    // Digon faces first, in a batch of their own (no round of collapses): each
+    // merges whole or not at all, which the collapses' blame cannot say.
+    std::vector<std::pair<int64_t, int64_t>> chosen;
+    if (!digons_looked_for) chosen = choose_digon_merges(rings, target, *field, params, blame, moved_to);
+    digons_looked_for = true;
+    const bool digons = !chosen.empty();
+    if (digons) --round;
+    else chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
     if (chosen.empty()) break;
     std::vector<int64_t> ids(m.num_nodes());
     std::iota(ids.begin(), ids.end(), 0);
     std::vector<int32_t> kept_triangles, kept_nodes;
     const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
                                               moved_to);
-    if (done == 0) break;
-    stats.collapses += done;
+    if (done == 0) {
+      if (digons) continue;
+      break;
+    }
+    (digons ? stats.digon_merges : stats.collapses) += done;
     detail::drop_unused_nodes(m, kept_nodes);
     follow(triangle_was, kept_triangles);
     follow(node_was, kept_nodes);

@@ -59,4 +59,14 @@ bool NodeRings::has_phase(int32_t n, int32_t p) const {
   return std::find(s.begin(), s.end(), int16_t(p)) != s.end();
 }
 
+bool NodeRings::along_curve(int32_t a, int32_t b) const {
+  if (std::popcount(unsigned(box_[size_t(a)] & box_[size_t(b)])) >= 2) return true;
+  std::vector<PhasePair> pairs;
+  for (int32_t t : at_.of(size_t(a))) {
+    const auto& tri = m_.triangles[size_t(t)];
+    if (std::find(tri.begin(), tri.end(), b) != tri.end()) pairs.push_back(m_.pairs[size_t(t)]);
+  }
+  return pairs.size() != 2 || pairs[0] != pairs[1];
+}
+
 } // namespace vm::detail

@@ -68,6 +68,10 @@ public:
   const NodeMesh& mesh() const { return m_; }
   /// True when phase p is among node n's phases.
   bool has_phase(int32_t n, int32_t p) const;
+  /// True when the edge a-b runs along a curve: its triangles are not exactly two
+  /// of one phase pair (a junction, or a surface's edge on the box), or both ends
+  /// lie on one edge of the box.
+  bool along_curve(int32_t a, int32_t b) const;
   /// True when a's phases and box faces are all among b's.
   bool constraints_within(int32_t a, int32_t b) const {
     return detail::constraints_within(phases_[size_t(a)], box_[size_t(a)], phases_[size_t(b)], box_[size_t(b)]);

@@ -42,6 +42,12 @@ struct RemeshParams {
   /// the mesh stays valid: the curve between them is too short for any
   /// triangle at it to be more than a sliver. 0: corners never merge.
   double merge_corners = 0.1;
+  /// With the phase functions: a face bounded by two triple curves between two
+  /// quadruple points of the same phases (a "digon", which no Voronoi diagram
+  /// has: a lattice artefact of a nearly degenerate vertex), both curves at most
+  /// this many targets long, whose corners Newton's method leads to one point,
+  /// merges into a quadruple point there when the mesh stays valid. 0: never.
+  double merge_digons = 6;
   /// A collapse may leave no triangle below the smaller of this and the worst
   /// quality among the triangles it replaces.
   double min_quality = 0.3;
@@ -60,6 +66,7 @@ struct RemeshParams {
 struct RemeshStats {
   size_t splits = 0;    ///< edges split
   size_t collapses = 0; ///< edges collapsed
+  size_t digon_merges = 0; ///< nodes of digon faces merged into a corner (RemeshParams::merge_digons)
   /// When anything changed: the old id of each triangle of the new mesh, -1
   /// for one the call made (with old_nodes for CrossingGuard::renumbered(), so
   /// that the guard's index carries over); empty when nothing changed.

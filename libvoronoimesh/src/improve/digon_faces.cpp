@@ -1,0 +1,198 @@
+/// @file improve/digon_faces.cpp
+/// Finding small digon faces (improve/digon_faces.hpp).
+
+#include "improve/digon_faces.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <optional>
+
+namespace vm::detail {
+namespace {
+
+/// Nodes of a digon face beyond its corners: more, and it is no small face.
+constexpr size_t kMostNodes = 48;
+/// Newton steps toward a meeting point of four phases, and how close (in
+/// targets) the last must come, and the two corners' points to each other.
+constexpr int kNewtonSteps = 30;
+constexpr double kConverged = 1e-6, kSamePoint = 0.1;
+
+/// Where Newton's method on phi_0 = phi_1 = phi_2 = phi_3 (the phases of a
+/// quadruple point) leads from x, no step longer than `reach`; none if it does
+/// not converge.
+std::optional<Vec3> meeting_point(const PhaseField& field, const PhaseSet& phases, Vec3 x, double reach) {
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    Eigen::Matrix3d rows;
+    Vec3 gap;
+    const double phi0 = field.value(phases[0], x);
+    const Vec3 grad0 = field.gradient(phases[0], x);
+    for (int i = 1; i < 4; ++i) {
+      rows.row(i - 1) = (field.gradient(phases[size_t(i)], x) - grad0).transpose();
+      gap[i - 1] = phi0 - field.value(phases[size_t(i)], x);
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(rows);
+    if (!lu.isInvertible()) return std::nullopt;
+    Vec3 move = lu.solve(gap);
+    if (!move.allFinite()) return std::nullopt;
+    const double length = move.norm();
+    if (length > reach) move *= reach / length;
+    x += move;
+    if (length < kConverged * reach) return x;
+  }
+  return std::nullopt;
+}
+
+/// A quadruple point off the box: where the curves of a digon end.
+bool is_corner(const NodeRings& mesh, int32_t n) {
+  return phase_count(mesh.phases()[size_t(n)]) == 4 && mesh.box_faces()[size_t(n)] == 0;
+}
+
+/// A node inside a triple curve, off the box.
+bool is_curve_node(const NodeRings& mesh, int32_t n) {
+  return phase_count(mesh.phases()[size_t(n)]) == 3 && mesh.box_faces()[size_t(n)] == 0;
+}
+
+/// A triple curve from a corner: its three phases, its nodes between the
+/// corners, the corner it ends at and its length.
+struct Curve {
+  PhaseSet phases;
+  std::vector<int32_t> inner;
+  int32_t end;
+  double length;
+};
+
+/// The curve that leaves corner `from` through its neighbour `next`, followed
+/// to the next corner; none where `next` does not go along a curve, the curve
+/// branches or reaches the box, or it is longer than `longest`.
+std::optional<Curve> follow_curve(const NodeRings& mesh, int32_t from, int32_t next, double longest) {
+  const auto& pos = mesh.positions();
+  if (!mesh.constraints_within(next, from) || !mesh.along_curve(from, next)) return std::nullopt;
+  Curve curve{mesh.phases()[size_t(next)], {}, -1, (pos[size_t(from)] - pos[size_t(next)]).norm()};
+  int32_t previous = from, at = next;
+  while (!is_corner(mesh, at)) {
+    if (!is_curve_node(mesh, at) || curve.inner.size() == kMostNodes) return std::nullopt;
+    curve.inner.push_back(at);
+    int32_t ahead = -1, ways = 0;
+    for (int32_t n : mesh.neighbours(at))
+      if (n != previous && mesh.constraints_within(at, n) && mesh.along_curve(at, n)) ahead = n, ++ways;
+    if (ways != 1) return std::nullopt;
+    curve.length += (pos[size_t(at)] - pos[size_t(ahead)]).norm();
+    if (curve.length > longest) return std::nullopt;
+    previous = at, at = ahead;
+  }
+  if (curve.inner.empty()) { // one edge between the corners: its phases are its triangles'
+    curve.phases.fill(-1);
+    std::vector<int16_t> phases;
+    for (int32_t t : mesh.triangles_at(from)) {
+      const auto& tri = mesh.mesh().triangles[size_t(t)];
+      if (std::find(tri.begin(), tri.end(), at) == tri.end()) continue;
+      for (int32_t p : mesh.mesh().pairs[size_t(t)]) phases.push_back(int16_t(p));
+    }
+    std::sort(phases.begin(), phases.end());
+    phases.erase(std::unique(phases.begin(), phases.end()), phases.end());
+    if (phases.size() != 3) return std::nullopt;
+    std::copy(phases.begin(), phases.end(), curve.phases.begin());
+  }
+  curve.end = at;
+  return curve;
+}
+
+/// The two phases that two triple curves share.
+PhasePair shared_pair(const PhaseSet& a, const PhaseSet& b) {
+  std::vector<int32_t> common;
+  std::set_intersection(a.begin(), a.begin() + 3, b.begin(), b.begin() + 3, std::back_inserter(common));
+  return common.size() == 2 ? PhasePair{common[0], common[1]} : PhasePair{-1, -1};
+}
+
+/// The nodes inside the face of `pair` that the inner nodes of two curves
+/// bound (appended to `inside`); false if that face reaches beyond the two
+/// curves (another junction, the box) or holds too many nodes.
+bool face_inside(const NodeRings& mesh, const PhasePair& pair, const std::vector<int32_t>& boundary,
+                 std::vector<int32_t>& inside) {
+  // Flooded from the curves' inner nodes, not the corners: at a corner of a
+  // digon, the same pair also has a face outside it.
+  std::vector<int32_t> walk;
+  for (int32_t n : boundary)
+    if (is_curve_node(mesh, n)) walk.push_back(n);
+  auto known = [&](int32_t n) {
+    return std::find(boundary.begin(), boundary.end(), n) != boundary.end() ||
+           std::find(inside.begin(), inside.end(), n) != inside.end();
+  };
+  while (!walk.empty()) {
+    const int32_t at = walk.back();
+    walk.pop_back();
+    for (int32_t t : mesh.triangles_at(at)) {
+      if (mesh.mesh().pairs[size_t(t)] != pair) continue;
+      for (int32_t n : mesh.mesh().triangles[size_t(t)]) {
+        if (known(n)) continue;
+        const PhaseSet& s = mesh.phases()[size_t(n)];
+        if (phase_count(s) != 2 || s[0] != pair[0] || s[1] != pair[1] || mesh.box_faces()[size_t(n)] != 0 ||
+            inside.size() == kMostNodes)
+          return false;
+        inside.push_back(n);
+        walk.push_back(n);
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const double> target,
+                                         const PhaseField& field, double longest) {
+  struct Found {
+    double span;
+    DigonFace face;
+  };
+  std::vector<Found> found;
+  const auto& pos = mesh.positions();
+  for (int32_t c = 0; c < int32_t(mesh.num_nodes()); ++c) {
+    if (!is_corner(mesh, c)) continue;
+    std::vector<Curve> curves;
+    for (int32_t n : mesh.neighbours(c))
+      if (auto curve = follow_curve(mesh, c, n, longest * target[size_t(c)])) curves.push_back(std::move(*curve));
+    for (size_t i = 0; i < curves.size(); ++i)
+      for (size_t j = i + 1; j < curves.size(); ++j) {
+        const Curve &a = curves[i], &b = curves[j];
+        const int32_t other = a.end;
+        if (other != b.end || other <= c || mesh.phases()[size_t(other)] != mesh.phases()[size_t(c)] ||
+            a.phases == b.phases || std::max(a.length, b.length) > longest * target[size_t(other)])
+          continue;
+        const PhasePair pair = shared_pair(a.phases, b.phases);
+        if (pair[0] < 0) continue;
+        std::vector<int32_t> boundary{c, other}, inside;
+        boundary.insert(boundary.end(), a.inner.begin(), a.inner.end());
+        boundary.insert(boundary.end(), b.inner.begin(), b.inner.end());
+        if (!face_inside(mesh, pair, boundary, inside)) continue;
+        const double size = std::min(target[size_t(c)], target[size_t(other)]);
+        const PhaseSet& phases = mesh.phases()[size_t(c)];
+        const auto here = meeting_point(field, phases, pos[size_t(c)], size);
+        const auto there = meeting_point(field, phases, pos[size_t(other)], size);
+        if (!here || !there || (*here - *there).norm() > kSamePoint * size) continue;
+        DigonFace face{c, {}, 0.5 * (*here + *there)};
+        face.merged.assign(boundary.begin() + 1, boundary.end());
+        face.merged.insert(face.merged.end(), inside.begin(), inside.end());
+        std::sort(face.merged.begin(), face.merged.end());
+        found.push_back({std::max(a.length, b.length), std::move(face)});
+      }
+  }
+  // The smallest first; a face next to one already taken waits for the next call.
+  std::stable_sort(found.begin(), found.end(), [](const Found& x, const Found& y) { return x.span < y.span; });
+  std::vector<uint8_t> taken(mesh.num_nodes(), 0);
+  std::vector<DigonFace> faces;
+  for (Found& f : found) {
+    std::vector<int32_t> nodes = f.face.merged;
+    nodes.push_back(f.face.keep);
+    std::vector<int32_t> around = nodes;
+    for (int32_t n : nodes) around.insert(around.end(), mesh.neighbours(n).begin(), mesh.neighbours(n).end());
+    if (std::any_of(around.begin(), around.end(), [&](int32_t n) { return taken[size_t(n)]; })) continue;
+    for (int32_t n : around) taken[size_t(n)] = 1;
+    faces.push_back(std::move(f.face));
+  }
+  std::sort(faces.begin(), faces.end(), [](const DigonFace& x, const DigonFace& y) { return x.keep < y.keep; });
+  return faces;
+}
+
+} // namespace vm::detail
