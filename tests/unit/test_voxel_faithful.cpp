@@ -105,10 +105,11 @@ InputOptions faithful() {
 TEST(VoxelFaithful, every_label_keeps_its_voxel_centres) {
   const Meshed m = mesh_thin_structures(faithful());
   EXPECT_EQ(m.created[0], 1.0); // every voxel centre of every label, after create
-  // Issue 19 asks 0.9 of every label after the default pipeline; the one-voxel
-  // tube keeps 19 of its 24 centres (0.79; every other label 0.98 or more):
-  // an open gap, guarded here at what holds.
-  EXPECT_GE(m.improved[0], 0.75);
+  // Issue 19 asks 0.9 of every label after the default pipeline. The crossing
+  // guard undoes moves that carry the centre of a voxel of a thin structure
+  // out of its label (improve/kept_points.hpp): without it the one-voxel tube
+  // kept 19 of its 24 centres (0.79); now 22.
+  EXPECT_GE(m.improved[0], 0.9);
   EXPECT_GE(m.improved[1], 0.99);
 }
 

@@ -79,6 +79,35 @@ void reduce_to_bricks(Lo lo, Hi hi, Index3& dims, size_t a, int64_t r, std::vect
 
 /// Per brick of the voxel grid (x fastest): the one phase of every voxel within
 /// `reach` voxels of the brick, or -2 when they differ (the brick needs its values computed).
+/// The voxels of a phase one voxel thin along some axis (both neighbours along
+/// it, inside the volume, of another phase or none), as linear indices,
+/// ascending: islands, sheets and tubes, whose centres smoothing and flips
+/// would otherwise carry out of their phase.
+std::vector<int64_t> thin_voxels(const PhaseVoxels& v) {
+  const Index3 n = v.size;
+  std::vector<std::vector<int64_t>> of_slice(static_cast<size_t>(n[2]));
+  parallel_for_each_index(size_t(n[2]), [&](size_t z) {
+    const auto k = int64_t(z);
+    for (int64_t j = 0; j < n[1]; ++j)
+      for (int64_t i = 0; i < n[0]; ++i) {
+        const int64_t at = i + n[0] * (j + n[1] * k);
+        const int16_t own = v.phase[size_t(at)];
+        if (own < 0) continue;
+        const Index3 here{i, j, k};
+        bool thin = false;
+        for (size_t a = 0; a < 3 && !thin; ++a) {
+          const int64_t step = a == 0 ? 1 : a == 1 ? n[0] : n[0] * n[1];
+          thin = here[a] > 0 && here[a] + 1 < n[a] && v.phase[size_t(at - step)] != own &&
+                 v.phase[size_t(at + step)] != own;
+        }
+        if (thin) of_slice[z].push_back(at);
+      }
+  });
+  std::vector<int64_t> thin;
+  for (const auto& slice : of_slice) thin.insert(thin.end(), slice.begin(), slice.end());
+  return thin;
+}
+
 std::vector<int32_t> uniform_bricks(const PhaseVoxels& v, const Index3& reach) {
   Index3 dims = v.size;
   std::vector<int16_t> lo, hi, lo2, hi2;
@@ -316,6 +345,9 @@ std::shared_ptr<const TopKGridField> label_field(const PhaseVoxels& v, const Lab
     else
       offer_smoothed_indicators(v, block, takes, reach, w, top, lead, *field);
   }, 1);
+  // Voxel-faithful: every voxel centre leads in its own label, and improvement
+  // keeps those of thin structures there (thicker ones keep theirs unaided).
+  if (p.voxel_faithful) field->keep_nodes(thin_voxels(v));
   if (const int64_t empty = field->finish(p.signed_distance ? -band : 0.f); empty >= 0)
     fail({empty % v.size[0], (empty / v.size[0]) % v.size[1], empty / (v.size[0] * v.size[1])});
   return field;

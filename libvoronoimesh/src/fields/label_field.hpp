@@ -21,6 +21,8 @@ struct LabelFieldParams {
   /// Indicator: at every voxel centre its own label leads every other by at
   /// least kVoxelCentreLead (raised where smoothing leaves it behind), so
   /// every voxel centre lies in its own label's phase (InputOptions::voxel_faithful).
+  /// The centres of voxels one voxel thin along an axis are kept points
+  /// (PhaseField::kept_points()), which improvement leaves in their phase.
   bool voxel_faithful = false;
   double band = 3.0;            ///< half-width of the band in voxels (signed distance)
   int k = 4;                    ///< phases kept per voxel

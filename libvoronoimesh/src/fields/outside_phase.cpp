@@ -58,6 +58,12 @@ public:
     return inner_->gradient(id[0], x) + g;
   }
 
+  void kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3>& out) const override {
+    inner_->kept_points(lo, hi, out);
+  }
+  int32_t kept_phase(const Vec3& p) const override { return inner_->kept_phase(p); }
+  bool keeps_points() const override { return inner_->keeps_points(); }
+
 private:
   double top(const Vec3& x) const {
     std::array<int32_t, 1> id;

@@ -3,6 +3,7 @@
 #include "fields/top_k.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -30,6 +31,16 @@ void PhaseField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<dou
     ids[slot] = order[slot];
     vals[slot] = v[size_t(order[slot])];
   }
+}
+
+void PhaseField::kept_points([[maybe_unused]] const Vec3& lo, [[maybe_unused]] const Vec3& hi,
+                             [[maybe_unused]] std::vector<Vec3>& out) const {}
+
+int32_t PhaseField::kept_phase(const Vec3& p) const {
+  std::array<int32_t, 1> id;
+  std::array<double, 1> value;
+  top_values(p, id, value);
+  return id[0];
 }
 
 } // namespace vm

@@ -239,6 +239,34 @@ void TopKGridField::values(const Vec3& x, std::span<double> out) const {
     }
 }
 
+void TopKGridField::keep_nodes(std::vector<int64_t> nodes) {
+  kept_ = std::move(nodes);
+  brick_keeps_.assign(brick_.size(), 0);
+  const auto n = grid_.nodes();
+  for (int64_t node : kept_) {
+    const int64_t i = node % n[0], j = node / n[0] % n[1], k = node / (n[0] * n[1]);
+    brick_keeps_[size_t(i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick)))] = 1;
+  }
+}
+
+void TopKGridField::kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3>& out) const {
+  if (kept_.empty()) return;
+  const auto nodes = grid_.nodes();
+  std::array<int64_t, 3> first, last;
+  for (int a = 0; a < 3; ++a) {
+    first[size_t(a)] = std::max<int64_t>(0, int64_t(std::ceil((lo[a] - grid_.domain.min[a]) / spacing_[a])));
+    last[size_t(a)] = std::min(nodes[size_t(a)] - 1, int64_t(std::floor((hi[a] - grid_.domain.min[a]) / spacing_[a])));
+  }
+  for (int64_t k = first[2]; k <= last[2]; ++k)
+    for (int64_t j = first[1]; j <= last[1]; ++j)
+      for (int64_t i = first[0]; i <= last[0]; ++i) {
+        // Most boxes hold no kept node: their bricks say so without a search.
+        if (!brick_keeps_[size_t(i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick)))]) continue;
+        if (std::binary_search(kept_.begin(), kept_.end(), grid_.node_index(i, j, k)))
+          out.push_back(grid_.domain.min + Vec3(double(i), double(j), double(k)).cwiseProduct(spacing_));
+      }
+}
+
 void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
   Place p; // not cell(): sampling asks once per point
   locate(x, p);

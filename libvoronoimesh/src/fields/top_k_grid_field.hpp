@@ -75,6 +75,12 @@ public:
   double value(int i, const Vec3& x) const override;
   Vec3 gradient(int i, const Vec3& x) const override;
   void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const override;
+  /// Makes grid nodes kept points (PhaseField::kept_points()), each in the
+  /// phase that leads there: a voxel-faithful label volume's voxel centres.
+  /// @param nodes the nodes' linear indices (GridSpec::node_index()), ascending
+  void keep_nodes(std::vector<int64_t> nodes);
+  void kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3>& out) const override;
+  bool keeps_points() const override { return !kept_.empty(); }
 
 private:
   /// One node's kept phases: k ids and values, largest first, and the floor.
@@ -129,6 +135,8 @@ private:
   std::vector<float> uniform_values_;
   float uniform_floor_ = 0;
   float top_;
+  std::vector<int64_t> kept_;          ///< keep_nodes(), ascending
+  std::vector<uint8_t> brick_keeps_;   ///< per brick: it holds a kept node
   std::vector<int16_t> ids_; ///< dense bricks, kBrick^3 nodes each (x fastest), k per node
   std::vector<float> values_;
   std::vector<float> floor_;

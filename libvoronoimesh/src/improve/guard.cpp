@@ -6,6 +6,7 @@
 #include "check/crossing_index.hpp"
 #include "core/parallel.hpp"
 #include "improve/field_orientation.hpp"
+#include "improve/kept_points.hpp"
 
 #include <algorithm>
 
@@ -100,6 +101,8 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       if (turned[i]) culprits.push_back(watched[i]);
     for (size_t t = 0; t < spoilt.size(); ++t)
       if (spoilt[t]) culprits.push_back(int32_t(t));
+    if (field && field->keeps_points())
+      for (int32_t t : detail::triangles_losing_kept_points(mesh, before, involved, *field)) culprits.push_back(t);
     std::fill(changed.begin(), changed.end(), 0);
     std::vector<int32_t> undo;
     auto put_back = [&](int32_t n) {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace vm {
 
@@ -57,6 +58,21 @@ public:
   /// @param ids  receives the phase ids; its size is k, at most num_phases()
   /// @param vals receives their values, one per entry of `ids`
   virtual void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const;
+
+  /// Points that improvement must leave in their own phase (a voxel-faithful
+  /// label volume's centres of voxels in thin structures: CrossingGuard::commit()
+  /// undoes moves that carry one out): appends those in the box [lo, hi] to
+  /// `out`. The default has none.
+  /// @param lo  the box's lower corner
+  /// @param hi  its upper corner
+  /// @param out receives the points
+  virtual void kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3>& out) const;
+  /// The phase a kept point (from kept_points()) must stay in.
+  /// @param p the point
+  /// @return its phase
+  virtual int32_t kept_phase(const Vec3& p) const;
+  /// True when kept_points() has points to give.
+  virtual bool keeps_points() const { return false; }
 };
 
 } // namespace vm

@@ -78,6 +78,10 @@ public:
   /// quality of the mesh before the moves, moving never makes the worst triangle
   /// worse except to bring a node visibly off its interface onto it.
   ///
+  /// With a `field` that keeps points (PhaseField::kept_points(): a
+  /// voxel-faithful label volume's centres of voxels in thin structures), so
+  /// are the moves that carry one out of its phase across a triangle.
+  ///
   /// In a distributed run each rank passes its window of the mesh (moves of every
   /// node in it, exact) and `agree` (AgreeOnUndone), so every rank undoes the same
   /// moves and stops at the same round.

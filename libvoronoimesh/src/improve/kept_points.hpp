@@ -1,0 +1,29 @@
+#pragma once
+/// @file improve/kept_points.hpp
+/// Moves that carry a kept point (PhaseField::kept_points(): a voxel-faithful
+/// label volume's centres of voxels in thin structures) out of its own phase,
+/// for the crossing guard to undo: create puts every such point in its phase,
+/// and smoothing would otherwise pull a one-voxel tube's ends back past them.
+
+#include "voronoimesh/fields/phase_field.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vm::detail {
+
+/// The triangles flagged in `involved` whose move, from `before` to the mesh's
+/// positions now, left a kept point of one of its two phases on the other
+/// side: the point lay on its phase's side and within the triangle (seen along
+/// its normal) before or after, and now lies on the far side. Ascending.
+/// @param mesh     the mesh, its nodes moved
+/// @param before   every node's position before the move
+/// @param involved one flag per triangle: those that moved
+/// @param field    the phase functions, which give the kept points
+/// @return the triangle ids
+std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
+                                                  std::span<const uint8_t> involved, const PhaseField& field);
+
+} // namespace vm::detail
