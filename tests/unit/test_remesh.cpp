@@ -10,6 +10,8 @@
 #include "voronoimesh/improve/smooth.hpp"
 #include "voronoimesh/mesh/junctions.hpp"
 
+#include "improve/node_merge.hpp"
+
 #include "fixtures.hpp"
 #include "mesh_checks.hpp"
 
@@ -274,6 +276,31 @@ TEST(Remesh, tolerance_bounds_how_far_triangle_centroids_lie_from_their_surface)
   EXPECT_LT(farthest, tolerance * reference);
   EXPECT_GT(rms_edge_length(mesh), 1.2 * reference); // not by making every edge short
   EXPECT_TRUE(validate(m).ok());
+}
+
+// Merging a digon face closes up a strip of another face one triangle wide
+// between two of its nodes: triangles (g1, x, y) and (g2, y, x) become one
+// triangle turned both ways, and where the merged node goes one of them turns
+// over. With close_folds both go and nothing turns; without it they stay, and
+// the merge fails.
+TEST(Remesh, merging_a_digon_face_closes_a_strip_one_triangle_wide_beside_it) {
+  NodeMesh m;
+  m.points = {{0, 0, 0}, {0, 0, 0.1}, {1, -1, 0}, {1, 1, 0}, {2, 0, 0}};
+  // g1 = 0, g2 = 1 merges into it; the strip (0, 2, 3), (1, 3, 2); (2, 4, 3) stays.
+  m.triangles = {{0, 2, 3}, {1, 3, 2}, {2, 4, 3}};
+  m.pairs = {{0, 1}, {0, 1}, {0, 1}};
+  const std::vector<int32_t> into{-1, 0, -1, -1, -1};
+  std::vector<Vec3> moved = m.points;
+  moved[0] = {3, 0, 0}; // past the strip's edge (2, 3)
+  NodeMesh out;
+  std::vector<int32_t> turned, kept;
+  detail::merge_nodes(m, into, out, turned, kept, &moved, true);
+  EXPECT_EQ(out.triangles, (std::vector<std::array<int32_t, 3>>{{2, 4, 3}}));
+  EXPECT_EQ(kept, (std::vector<int32_t>{2}));
+  EXPECT_TRUE(turned.empty());
+  detail::merge_nodes(m, into, out, turned, kept, &moved);
+  EXPECT_EQ(out.triangles.size(), 3u);
+  EXPECT_FALSE(turned.empty());
 }
 
 } // namespace

@@ -45,10 +45,52 @@ void report_trial_crossings(const NodeMesh& trial, std::span<const uint8_t> invo
   }
 }
 
+/// Two triangles at a merge target that became the same three nodes, of the
+/// same pair, turned opposite ways: a strip of a face one triangle wide
+/// between merged nodes closed up (beside a digon face, improve/digon_faces.hpp).
+/// Both go; `kept_triangles` and `moved` (one entry per triangle of `out`) follow.
+void close_folds_at_targets(const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& kept_triangles,
+                            std::vector<uint8_t>& moved) {
+  std::vector<uint8_t> target(out.num_nodes(), 0);
+  for (int32_t a : into)
+    if (a >= 0) target[size_t(a)] = 1;
+  std::vector<std::pair<std::array<int32_t, 3>, int32_t>> at_targets; // sorted corners, triangle
+  for (size_t t = 0; t < out.num_triangles(); ++t) {
+    auto corners = out.triangles[t];
+    if (!(target[size_t(corners[0])] | target[size_t(corners[1])] | target[size_t(corners[2])])) continue;
+    std::sort(corners.begin(), corners.end());
+    at_targets.push_back({corners, int32_t(t)});
+  }
+  std::sort(at_targets.begin(), at_targets.end());
+  // A rotation of the sorted corners, or of their reverse.
+  auto even = [](const std::array<int32_t, 3>& t) { return (t[0] < t[1]) + (t[1] < t[2]) + (t[2] < t[0]) == 2; };
+  std::vector<uint8_t> gone(out.num_triangles(), 0);
+  for (size_t i = 0; i + 1 < at_targets.size(); ++i) {
+    const bool pair_alone = at_targets[i].first == at_targets[i + 1].first &&
+                            (i + 2 == at_targets.size() || at_targets[i + 2].first != at_targets[i].first) &&
+                            (i == 0 || at_targets[i - 1].first != at_targets[i].first);
+    if (!pair_alone) continue;
+    const auto t = size_t(at_targets[i].second), u = size_t(at_targets[i + 1].second);
+    if (out.pairs[t] == out.pairs[u] && even(out.triangles[t]) != even(out.triangles[u])) gone[t] = gone[u] = 1;
+  }
+  size_t kept = 0;
+  for (size_t t = 0; t < out.num_triangles(); ++t)
+    if (!gone[t]) {
+      out.triangles[kept] = out.triangles[t];
+      out.pairs[kept] = out.pairs[t];
+      kept_triangles[kept] = kept_triangles[t];
+      moved[kept++] = moved[t];
+    }
+  out.triangles.resize(kept);
+  out.pairs.resize(kept);
+  kept_triangles.resize(kept);
+  moved.resize(kept);
+}
+
 } // namespace
 
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points) {
+                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points, bool close_folds) {
   kept_triangles.clear();
   out = m.empty_like();
   out.points = points ? *points : m.points;
@@ -56,19 +98,25 @@ void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& 
   out.triangles.reserve(m.num_triangles());
   out.pairs.reserve(m.num_triangles());
   kept_triangles.reserve(m.num_triangles());
+  std::vector<uint8_t> moved;
+  moved.reserve(m.num_triangles());
   for (size_t t = 0; t < m.num_triangles(); ++t) {
     auto tri = m.triangles[t];
-    bool moved = false;
+    bool moves = false;
     for (int32_t& v : tri) {
-      if (into[size_t(v)] >= 0) v = into[size_t(v)], moved = true;
-      moved = moved || (points && out.points[size_t(v)] != m.points[size_t(v)]);
+      if (into[size_t(v)] >= 0) v = into[size_t(v)], moves = true;
+      moves = moves || (points && out.points[size_t(v)] != m.points[size_t(v)]);
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-    if (moved && normal(out, tri).dot(normal(m, m.triangles[t])) <= 0) turned.insert(turned.end(), tri.begin(), tri.end());
     out.triangles.push_back(tri);
     out.pairs.push_back(m.pairs[t]);
     kept_triangles.push_back(int32_t(t));
+    moved.push_back(moves);
   }
+  if (close_folds) close_folds_at_targets(into, out, kept_triangles, moved);
+  for (size_t i = 0; i < out.num_triangles(); ++i)
+    if (moved[i] && normal(out, out.triangles[i]).dot(normal(m, m.triangles[size_t(kept_triangles[i])])) <= 0)
+      turned.insert(turned.end(), out.triangles[i].begin(), out.triangles[i].end());
 }
 
 void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
@@ -154,7 +202,8 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index) {
+                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index,
+                     bool close_folds) {
   // Ids back to this mesh's nodes (ids ascend with the nodes).
   auto local = [&](int64_t id) {
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
@@ -181,7 +230,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
         if (!moved_to.empty() && moved_to[i].allFinite()) points[size_t(a)] = moved_to[i];
       }
     failed.clear();
-    merge_nodes(m, into, trial, failed, kept_triangles, moved_to.empty() ? nullptr : &points);
+    merge_nodes(m, into, trial, failed, kept_triangles, moved_to.empty() ? nullptr : &points, close_folds);
     if (peers) std::erase_if(failed, [&](int32_t n) { return !peers->answers_for(n); });
     // Triangles that turn over are failures enough; only without them is the
     // merged mesh validated (by every rank, if any rank saw them).

@@ -22,11 +22,14 @@ class CrossingIndex; // check/crossing_index.hpp
 
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
 /// triangles that lose a corner disappear. With `points`, the nodes of `out`
-/// lie there (a merge target may move). Appends to `turned` the corners of
-/// remaining triangles that would turn over, and sets `kept_triangles` to the
-/// index in `m` of each triangle of `out`.
+/// lie there (a merge target may move). With `close_folds`, two triangles at
+/// a target that became one triangle turned both ways (a strip one triangle
+/// wide between merged nodes) disappear too. Appends to `turned` the corners
+/// of remaining triangles that would turn over, and sets `kept_triangles` to
+/// the index in `m` of each triangle of `out`.
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr);
+                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr,
+                 bool close_folds = false);
 
 /// The smallest quality of the triangles that change when node b merges into a
 /// placed at `to` (those at b, and at a if `a_moves`), after the merge: 0 if one
@@ -97,11 +100,12 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param made           if given, set to one flag per collapse of `chosen`: made or not
 /// @param index          null, or the guard's index up to date with `m` (CrossingGuard::index_for()), to
 ///                       find crossings around the merges instead of in the whole merged mesh
+/// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
-                     const CrossingIndex* index = nullptr);
+                     const CrossingIndex* index = nullptr, bool close_folds = false);
 
 } // namespace vm::detail

@@ -369,7 +369,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     std::iota(ids.begin(), ids.end(), 0);
     std::vector<int32_t> kept_triangles, kept_nodes;
     const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
-                                              moved_to);
+                                              moved_to, nullptr, nullptr, digons);
     if (done == 0) {
       if (digons) continue;
       break;
