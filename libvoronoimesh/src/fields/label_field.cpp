@@ -77,12 +77,10 @@ void reduce_to_bricks(Lo lo, Hi hi, Index3& dims, size_t a, int64_t r, std::vect
   dims = out;
 }
 
-/// Per brick of the voxel grid (x fastest): the one phase of every voxel within
-/// `reach` voxels of the brick, or -2 when they differ (the brick needs its values computed).
 /// The voxels of a phase one voxel thin along some axis (both neighbours along
 /// it, inside the volume, of another phase or none), as linear indices,
-/// ascending: islands, sheets and tubes, whose centres smoothing and flips
-/// would otherwise carry out of their phase.
+/// ascending: islands, sheets and tubes, whose centres smoothing would
+/// otherwise carry out of their phase.
 std::vector<int64_t> thin_voxels(const PhaseVoxels& v) {
   const Index3 n = v.size;
   std::vector<std::vector<int64_t>> of_slice(static_cast<size_t>(n[2]));
@@ -108,6 +106,8 @@ std::vector<int64_t> thin_voxels(const PhaseVoxels& v) {
   return thin;
 }
 
+/// Per brick of the voxel grid (x fastest): the one phase of every voxel within
+/// `reach` voxels of the brick, or -2 when they differ (the brick needs its values computed).
 std::vector<int32_t> uniform_bricks(const PhaseVoxels& v, const Index3& reach) {
   Index3 dims = v.size;
   std::vector<int16_t> lo, hi, lo2, hi2;

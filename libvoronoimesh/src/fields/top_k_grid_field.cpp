@@ -54,7 +54,7 @@ TopKGridField::TopKGridField(const GridSpec& grid, int k, std::vector<std::strin
 }
 
 size_t TopKGridField::slot(int64_t i, int64_t j, int64_t k) const {
-  const int64_t b = i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick));
+  const int64_t b = brick_of(i, j, k);
   const int64_t local = i % kBrick + kBrick * (j % kBrick + kBrick * (k % kBrick));
   return size_t(int64_t(brick_[size_t(b)]) * kBrickNodes + local);
 }
@@ -245,7 +245,7 @@ void TopKGridField::keep_nodes(std::vector<int64_t> nodes) {
   const auto n = grid_.nodes();
   for (int64_t node : kept_) {
     const int64_t i = node % n[0], j = node / n[0] % n[1], k = node / (n[0] * n[1]);
-    brick_keeps_[size_t(i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick)))] = 1;
+    brick_keeps_[size_t(brick_of(i, j, k))] = 1;
   }
 }
 
@@ -261,7 +261,7 @@ void TopKGridField::kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3
     for (int64_t j = first[1]; j <= last[1]; ++j)
       for (int64_t i = first[0]; i <= last[0]; ++i) {
         // Most boxes hold no kept node: their bricks say so without a search.
-        if (!brick_keeps_[size_t(i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick)))]) continue;
+        if (!brick_keeps_[size_t(brick_of(i, j, k))]) continue;
         if (std::binary_search(kept_.begin(), kept_.end(), grid_.node_index(i, j, k)))
           out.push_back(grid_.domain.min + Vec3(double(i), double(j), double(k)).cwiseProduct(spacing_));
       }

@@ -117,6 +117,10 @@ private:
   void fill_cell(const Place& p, Cell& c, bool gradients) const;
   /// Slot of node (i, j, k) in the dense arrays; precondition: its brick is not uniform.
   size_t slot(int64_t i, int64_t j, int64_t k) const;
+  /// The brick (x fastest) that holds node (i, j, k).
+  int64_t brick_of(int64_t i, int64_t j, int64_t k) const {
+    return i / kBrick + bricks_[0] * (j / kBrick + bricks_[1] * (k / kBrick));
+  }
   float node_value(const Node& n, int32_t phase) const;
   double floor_at(const Cell& c) const;
 

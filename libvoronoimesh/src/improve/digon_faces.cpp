@@ -140,6 +140,18 @@ bool face_inside(const NodeRings& mesh, const PhasePair& pair, const std::vector
 
 } // namespace
 
+std::vector<int32_t> nodes_around(const NodeRings& mesh, const DigonFace& face) {
+  std::vector<int32_t> around = face.merged;
+  around.push_back(face.keep);
+  for (size_t i = 0, nodes = around.size(); i < nodes; ++i) {
+    const auto ring = mesh.neighbours(around[i]);
+    around.insert(around.end(), ring.begin(), ring.end());
+  }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  return around;
+}
+
 std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const double> target,
                                          const PhaseField& field, double longest) {
   struct Found {
@@ -183,10 +195,7 @@ std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const 
   std::vector<uint8_t> taken(mesh.num_nodes(), 0);
   std::vector<DigonFace> faces;
   for (Found& f : found) {
-    std::vector<int32_t> nodes = f.face.merged;
-    nodes.push_back(f.face.keep);
-    std::vector<int32_t> around = nodes;
-    for (int32_t n : nodes) around.insert(around.end(), mesh.neighbours(n).begin(), mesh.neighbours(n).end());
+    const std::vector<int32_t> around = nodes_around(mesh, f.face);
     if (std::any_of(around.begin(), around.end(), [&](int32_t n) { return taken[size_t(n)]; })) continue;
     for (int32_t n : around) taken[size_t(n)] = 1;
     faces.push_back(std::move(f.face));

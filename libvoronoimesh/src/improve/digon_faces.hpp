@@ -33,6 +33,10 @@ struct DigonFace {
   Vec3 to;
 };
 
+/// The nodes of `face` (its corner `keep` and the merged ones) and their
+/// neighbours, ascending, each once: where a check of its merge can fail.
+std::vector<int32_t> nodes_around(const NodeRings& mesh, const DigonFace& face);
+
 /// The digon faces of `mesh` that the phase functions say are artefacts: from
 /// each of its two corners, Newton's method on the four phases' equalities
 /// converges to one point (the merged node's place), within a tenth of the

@@ -200,13 +200,7 @@ std::vector<std::pair<int64_t, int64_t>> choose_digon_merges(const NodeRings& me
       chosen.push_back({face.keep, b});
       moved_to.push_back(face.to);
     }
-    std::vector<int32_t> around{face.keep};
-    for (int32_t n : face.merged) around.push_back(n);
-    for (int32_t n : std::vector<int32_t>(around))
-      around.insert(around.end(), mesh.neighbours(n).begin(), mesh.neighbours(n).end());
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    for (int32_t n : around)
+    for (int32_t n : detail::nodes_around(mesh, face))
       for (auto i = first; i < int32_t(chosen.size()); ++i) blame.emplace_back(n, i);
   }
   std::sort(blame.begin(), blame.end());
