@@ -30,20 +30,19 @@ for seed in range(6):
         json.dump(scene, f)
 PY
 
-# "exact bound": the most min q can be with junctions exactly on the Voronoi
-# diagram (its smallest face corner; scripts/voronoi_corner_bound.py), seeds only.
+# "exact bound": the most min q can be with exact junctions (the smallest
+# corner of a surface at a quadruple point; scripts/corner_bound.py).
 echo "| scene | triangles | min q | mean q | min angle | exact bound |"
 echo "|---|---|---|---|---|---|"
 for scene in "$out"/seeds*.json "$out"/balls_*.json; do
   name=$(basename "$scene" .json)
   "$vm" mesh -q "$scene" -o "$out/$name.ply"
-  bound=
-  case $name in seeds*) bound=$(python3 scripts/voronoi_corner_bound.py "$scene" | sed 's/.*min q <= //') ;; esac
+  bound=$(python3 scripts/corner_bound.py "$scene" | sed -n 's/.*min q <= //p')
   "$vm" stats --json "$out/$name.ply" | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
 print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {} |".format(
-    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2]))' "$name" "$bound"
+    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2]))' "$name" "${bound:-none}"
 done | tee "$out/table.md"
 python3 - "$out/table.md" <<'PY'
 import sys

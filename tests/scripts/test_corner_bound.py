@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Checks scripts/voronoi_corner_bound.py on configurations whose answer is known.
+"""Checks scripts/corner_bound.py on configurations whose answer is known.
 
-Usage: test_corner_bound.py PATH/TO/voronoi_corner_bound.py   (exit status 0 when every check holds)
+Usage: test_corner_bound.py PATH/TO/corner_bound.py   (exit status 0 when every check holds)
 """
 import importlib.util
 import math
@@ -26,7 +26,8 @@ check(abs(bound.best_quality_at_angle(math.radians(10)) - 0.2963) < 1e-4, "apex 
 # Four seeds on a regular tetrahedron round the box's centre: one vertex there, where the
 # four edges leave along the directions away from the seeds, 109.47 degrees apart.
 c, r = 0.5, 0.3
-tetra = [[c + r * x, c + r * y, c + r * z] for x, y, z in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1))]
+corners = [[c + r * x, c + r * y, c + r * z] for x, y, z in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1))]
+tetra = [bound.Phase({"kind": "seeds", "points": [p]}) for p in corners]
 angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0, 0, 0], [1, 1, 1])
 check(quad == (0, 1, 2, 3) and max(abs(v - c) for v in vertex) < 1e-12, f"tetrahedron: vertex {vertex}")
 check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-9, f"tetrahedron: corner {math.degrees(angle)}")
@@ -36,8 +37,18 @@ angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0.6, 0, 0], [1, 1
 check(quad is None, "vertex outside the domain counted")
 
 # A fifth seed nearer the centre than the four: theirs is no vertex of the diagram.
-angle, quad, face, vertex = bound.smallest_face_corner(tetra + [[c, c, c + 0.01]], [0, 0, 0], [1, 1, 1])
+nearer = bound.Phase({"kind": "seeds", "points": [[c, c, c + 0.01]]})
+angle, quad, face, vertex = bound.smallest_face_corner(tetra + [nearer], [0, 0, 0], [1, 1, 1])
 check((0, 1, 2, 3) != quad, "a vertex inside another seed's cell counted")
+
+# The same four as equal balls in an outside phase, found by Newton's method: at the centre
+# the balls' gradients are the seeds' (the point is 0.52 inside each, so the outside, 0, is
+# lower), and the corners are the tetrahedron's.
+outside = bound.Phase({"kind": "constant", "value": 0})
+balls = [outside] + [bound.Phase({"kind": "sphere", "center": p, "radius": 1.04}) for p in corners]
+angle, quad, face, vertex = bound.smallest_face_corner(balls, [0, 0, 0], [1, 1, 1])
+check(quad == (1, 2, 3, 4) and max(abs(v - c) for v in vertex) < 1e-9, f"balls: vertex {vertex} of {quad}")
+check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-6, f"balls: corner {math.degrees(angle)}")
 
 for f in failures:
     print("FAILED:", f)

@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""The best worst triangle a closed-form scene allows with exact junctions.
+
+Usage: corner_bound.py SCENE.json [...]   (scenes whose phases are "seeds" of one point
+       each, as scripts/make_voronoi_scene.py writes them, or "sphere", "plane" and
+       "constant" phases, as bench/junction_scenes.sh's balls)
+
+A surface between two phases ends at triple curves, and two of its curves meet
+at a quadruple point: there the surface has a corner, of the angle between the
+two curves' tangents. A mesh whose junctions are exact has a node at every
+quadruple point inside the domain and its triple curves along the curves, so
+every triangle at a corner of angle t has an angle of about t at most (exactly
+t at most where the curves are straight, as in a Voronoi diagram), and quality
+q (4 sqrt(3) area / sum of squared edges) of at most that of the isosceles
+triangle with apex t: 2 sqrt(3) sin t / (4 - 2 cos t). The smallest corner
+inside the domain therefore bounds the mesh's min q from above: below about
+10 degrees, q >= 0.3 is out of reach without moving junctions off the exact
+ones (which a mesh from sampled phase functions does by O(h) anyway, so it
+can land above the bound).
+
+Quadruple points: of seeds, the circumcentres of four seeds with no seed
+nearer; of other phases, where Newton's method on the four phases' equalities
+ends, started from a lattice of points in the domain, with every other phase
+lower there. Prints, per scene, the smallest corner angle, where it is and
+the bound on min q. Brute force over every four phases: seconds for the tens
+of cells of bench/junction_scenes.sh, too slow for grain maps of hundreds.
+"""
+import argparse
+import itertools
+import json
+import math
+import sys
+
+# Newton starts per axis (spheres and planes), iterations, and when a point counts as found.
+NEWTON_STARTS = 6
+NEWTON_STEPS = 40
+NEWTON_TOLERANCE = 1e-12
+
+
+def sub(a, b):
+    return [a[i] - b[i] for i in range(3)]
+
+
+def dot(a, b):
+    return sum(a[i] * b[i] for i in range(3))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def det3(m):
+    return dot(m[0], cross(m[1], m[2]))
+
+
+def solve3(rows, rhs):
+    """x with rows x = rhs (Cramer's rule), or None if the rows are (nearly) dependent."""
+    d = det3(rows)
+    if abs(d) < 1e-14:
+        return None
+    x = []
+    for c in range(3):
+        m = [r[:] for r in rows]
+        for r in range(3):
+            m[r][c] = rhs[r]
+        x.append(det3(m) / d)
+    return x
+
+
+def circumcentre(points):
+    """The point equidistant from four points, or None if they are (nearly) coplanar."""
+    a = points[0]
+    rows = [[2 * (p[i] - a[i]) for i in range(3)] for p in points[1:]]
+    return solve3(rows, [dot(p, p) - dot(a, a) for p in points[1:]])
+
+
+class Phase:
+    """A phase function of docs/scenes.md: its value and gradient at a point."""
+
+    def __init__(self, spec):
+        self.kind = spec["kind"]
+        if self.kind == "seeds":
+            self.centre, self.radius = spec["points"][0], 0.0
+        elif self.kind == "sphere":
+            self.centre, self.radius = spec["center"], float(spec["radius"])
+        elif self.kind == "plane":
+            n = spec["normal"]
+            length = math.sqrt(dot(n, n))
+            self.point, self.normal = spec["point"], [v / length for v in n]
+        else:
+            self.value = float(spec["value"])
+
+    def __call__(self, x):
+        if self.kind in ("seeds", "sphere"):
+            return self.radius - math.sqrt(dot(sub(x, self.centre), sub(x, self.centre)))
+        if self.kind == "plane":
+            return dot(self.normal, sub(x, self.point))
+        return self.value
+
+    def gradient(self, x):
+        if self.kind in ("seeds", "sphere"):
+            d = sub(x, self.centre)
+            length = math.sqrt(dot(d, d))
+            return [-v / length for v in d] if length > 0 else [0.0, 0.0, 0.0]
+        if self.kind == "plane":
+            return self.normal
+        return [0.0, 0.0, 0.0]
+
+
+def best_quality_at_angle(t):
+    """Quality of the isosceles triangle with apex angle t: the most a triangle with an angle t can have."""
+    return 2 * math.sqrt(3) * math.sin(t) / (4 - 2 * math.cos(t))
+
+
+def newton_points(phases, quad, lo, hi):
+    """Where the four phases of `quad` are equal inside [lo, hi], from a lattice of starts (deduplicated)."""
+    found = []
+    a = phases[quad[0]]
+    for start in itertools.product(*[[lo[i] + (k + 0.5) * (hi[i] - lo[i]) / NEWTON_STARTS
+                                      for k in range(NEWTON_STARTS)] for i in range(3)]):
+        x = list(start)
+        for _ in range(NEWTON_STEPS):
+            ga = a.gradient(x)
+            rows = [sub(phases[q].gradient(x), ga) for q in quad[1:]]
+            step = solve3(rows, [phases[q](x) - a(x) for q in quad[1:]])
+            if step is None:
+                break
+            x = sub(x, step)
+            if dot(step, step) < NEWTON_TOLERANCE ** 2:
+                break
+        residual = max(abs(phases[q](x) - a(x)) for q in quad[1:])
+        if residual < 1e-9 and all(lo[i] <= x[i] <= hi[i] for i in range(3)) and \
+                all(dot(sub(x, y), sub(x, y)) > 1e-18 for y in found):
+            found.append(x)
+    return found
+
+
+def quadruple_points(phases, lo, hi):
+    """(the four phases, the point) of every quadruple point inside [lo, hi]: four phases equal, all others lower."""
+    seeds = all(p.kind == "seeds" for p in phases)
+    for quad in itertools.combinations(range(len(phases)), 4):
+        if seeds:
+            x = circumcentre([phases[i].centre for i in quad])
+            candidates = [x] if x is not None and all(lo[i] <= x[i] <= hi[i] for i in range(3)) else []
+        else:
+            candidates = newton_points(phases, quad, lo, hi)
+        for x in candidates:
+            top = phases[quad[0]](x)
+            if all(phases[k](x) <= top + 1e-12 * max(1.0, abs(top)) for k in range(len(phases)) if k not in quad):
+                yield quad, x
+
+
+def corners_at(phases, quad, x):
+    """(angle, the face's two phases) of each surface corner at quadruple point x of the phases `quad`."""
+    # The curve of three phases leaves the point along the cross product of
+    # their gradients' differences, on the side where the fourth phase is lower.
+    direction = {}
+    for three in itertools.combinations(quad, 3):
+        fourth = next(i for i in quad if i not in three)
+        g = [phases[i].gradient(x) for i in three]
+        n = cross(sub(g[1], g[0]), sub(g[2], g[0]))
+        length = math.sqrt(dot(n, n))
+        if length == 0:
+            continue
+        n = [v / length for v in n]
+        if dot(n, sub(phases[fourth].gradient(x), g[0])) > 0:
+            n = [-v for v in n]
+        direction[three] = n
+    # Two curves bound the surface of the two phases they share.
+    for e, f in itertools.combinations(direction, 2):
+        yield math.acos(max(-1.0, min(1.0, dot(direction[e], direction[f])))), sorted(set(e) & set(f))
+
+
+def smallest_face_corner(phases, lo, hi):
+    """(angle, the four phases, the face's two phases, the point) of the smallest corner inside [lo, hi]."""
+    best = (math.inf, None, None, None)
+    for quad, x in quadruple_points(phases, lo, hi):
+        for angle, face in corners_at(phases, quad, x):
+            if angle < best[0]:
+                best = (angle, quad, face, x)
+    return best
+
+
+def read_scene(path):
+    """The phases and domain of a scene file; exits with a one-line message naming the file if it is not one."""
+    try:
+        with open(path) as f:
+            scene = json.load(f)
+    except OSError as e:
+        sys.exit(f"{path}: cannot open ({e.strerror})")
+    except json.JSONDecodeError as e:
+        sys.exit(f"{path}: malformed JSON at line {e.lineno}, column {e.colno}")
+    try:
+        specs, domain = scene["phases"], scene["domain"]
+        for p in specs:
+            if p.get("kind") not in ("seeds", "sphere", "plane", "constant"):
+                sys.exit(f"{path}: phase '{p.get('name', '?')}' is of kind '{p.get('kind')}': "
+                         "only seeds, sphere, plane and constant phases have a closed-form bound here")
+            if p["kind"] == "seeds" and len(p["points"]) != 1:
+                sys.exit(f"{path}: phase '{p.get('name', '?')}' has {len(p['points'])} seeds: one each expected")
+        return [Phase(p) for p in specs], domain["min"], domain["max"]
+    except (KeyError, TypeError, AttributeError, ValueError, ZeroDivisionError):
+        sys.exit(f"{path}: not a scene with a domain and phases (docs/scenes.md)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scenes", nargs="+", metavar="SCENE.json",
+                        help="scenes of seeds (one point each), sphere, plane and constant phases")
+    for path in parser.parse_args().scenes:
+        phases, lo, hi = read_scene(path)
+        angle, quad, face, vertex = smallest_face_corner(phases, lo, hi)
+        if quad is None:
+            print(f"{path}: no quadruple point inside the domain")
+            continue
+        print(f"{path}: smallest face corner {math.degrees(angle):.1f} deg (face of phases {face[0]} and {face[1]} "
+              f"at the point of phases {', '.join(map(str, quad))}, "
+              f"({', '.join(f'{v:.3f}' for v in vertex)})): min q <= {best_quality_at_angle(angle):.3f}")
+
+
+if __name__ == "__main__":
+    main()
