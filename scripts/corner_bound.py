@@ -9,14 +9,16 @@ A surface between two phases ends at triple curves, and two of its curves meet
 at a quadruple point: there the surface has a corner, of the angle between the
 two curves' tangents. A mesh whose junctions are exact has a node at every
 quadruple point inside the domain and its triple curves along the curves, so
-every triangle at a corner of angle t has an angle of about t at most (exactly
-t at most where the curves are straight, as in a Voronoi diagram), and quality
-q (4 sqrt(3) area / sum of squared edges) of at most that of the isosceles
-triangle with apex t: 2 sqrt(3) sin t / (4 - 2 cos t). The smallest corner
-inside the domain therefore bounds the mesh's min q from above: below about
-10 degrees, q >= 0.3 is out of reach without moving junctions off the exact
-ones (which a mesh from sampled phase functions does by O(h) anyway, so it
-can land above the bound).
+the triangles at a corner of angle t (about t where the curves are curved)
+split it into k angles summing to t, and the worst of them has quality q
+(4 sqrt(3) area / sum of squared edges) of at most that of the isosceles
+triangle with apex t / k: 2 sqrt(3) sin a / (4 - 2 cos a) for apex a. The
+best k gives the corner's bound (one triangle below 60 degrees, where the
+bound is about t in degrees / 30 for small t), and the tightest corner inside
+the domain bounds the mesh's min q from above: below about 10 degrees, q >=
+0.3 is out of reach without moving junctions off the exact ones (which a mesh
+from sampled phase functions does by O(h) anyway, so it can land above the
+bound).
 
 Quadruple points: of seeds, the circumcentres of four seeds with no seed
 nearer; of other phases, where Newton's method on the four phases' equalities
@@ -112,6 +114,11 @@ def best_quality_at_angle(t):
     return 2 * math.sqrt(3) * math.sin(t) / (4 - 2 * math.cos(t))
 
 
+def best_quality_at_corner(t):
+    """The most the worst of the triangles filling a corner of angle t can have: t split evenly in k."""
+    return max(best_quality_at_angle(t / k) for k in range(1, math.ceil(t / (math.pi / 3)) + 2))
+
+
 def newton_points(phases, quad, lo, hi):
     """Where the four phases of `quad` are equal inside [lo, hi], from a lattice of starts (deduplicated)."""
     found = []
@@ -171,13 +178,14 @@ def corners_at(phases, quad, x):
         yield math.acos(max(-1.0, min(1.0, dot(direction[e], direction[f])))), sorted(set(e) & set(f))
 
 
-def smallest_face_corner(phases, lo, hi):
-    """(angle, the four phases, the face's two phases, the point) of the smallest corner inside [lo, hi]."""
-    best = (math.inf, None, None, None)
+def tightest_corner(phases, lo, hi):
+    """(angle, the four phases, the face's two phases, the point) of the corner inside [lo, hi] with the
+    lowest bound (best_quality_at_corner())."""
+    best, bound = (math.inf, None, None, None), math.inf
     for quad, x in quadruple_points(phases, lo, hi):
         for angle, face in corners_at(phases, quad, x):
-            if angle < best[0]:
-                best = (angle, quad, face, x)
+            if best_quality_at_corner(angle) < bound:
+                best, bound = (angle, quad, face, x), best_quality_at_corner(angle)
     return best
 
 
@@ -209,13 +217,13 @@ def main():
                         help="scenes of seeds (one point each), sphere, plane and constant phases")
     for path in parser.parse_args().scenes:
         phases, lo, hi = read_scene(path)
-        angle, quad, face, vertex = smallest_face_corner(phases, lo, hi)
+        angle, quad, face, vertex = tightest_corner(phases, lo, hi)
         if quad is None:
             print(f"{path}: no quadruple point inside the domain")
             continue
-        print(f"{path}: smallest face corner {math.degrees(angle):.1f} deg (face of phases {face[0]} and {face[1]} "
+        print(f"{path}: tightest corner {math.degrees(angle):.1f} deg (face of phases {face[0]} and {face[1]} "
               f"at the point of phases {', '.join(map(str, quad))}, "
-              f"({', '.join(f'{v:.3f}' for v in vertex)})): min q <= {best_quality_at_angle(angle):.3f}")
+              f"({', '.join(f'{v:.3f}' for v in vertex)})): min q <= {best_quality_at_corner(angle):.3f}")
 
 
 if __name__ == "__main__":

@@ -22,23 +22,29 @@ def check(condition, what):
 # The equilateral triangle is the best there is; an apex of 10 degrees allows about q 0.3.
 check(abs(bound.best_quality_at_angle(math.radians(60)) - 1) < 1e-12, "apex 60 degrees: q 1")
 check(abs(bound.best_quality_at_angle(math.radians(10)) - 0.2963) < 1e-4, "apex 10 degrees: q 0.2963")
+# A corner is filled by triangles whose angles there sum to it: one below 60 degrees, three
+# equilateral ones at 180, and at 75 degrees one (q 0.96) beats two of 37.5 (q 0.87).
+check(abs(bound.best_quality_at_corner(math.radians(10)) - 0.2963) < 1e-4, "corner of 10 degrees: q 0.2963")
+check(abs(bound.best_quality_at_corner(math.radians(180)) - 1) < 1e-12, "corner of 180 degrees: q 1")
+check(abs(bound.best_quality_at_corner(math.radians(75)) - bound.best_quality_at_angle(math.radians(75))) < 1e-12,
+      "corner of 75 degrees: one triangle")
 
 # Four seeds on a regular tetrahedron round the box's centre: one vertex there, where the
 # four edges leave along the directions away from the seeds, 109.47 degrees apart.
 c, r = 0.5, 0.3
 corners = [[c + r * x, c + r * y, c + r * z] for x, y, z in ((1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1))]
 tetra = [bound.Phase({"kind": "seeds", "points": [p]}) for p in corners]
-angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0, 0, 0], [1, 1, 1])
+angle, quad, face, vertex = bound.tightest_corner(tetra, [0, 0, 0], [1, 1, 1])
 check(quad == (0, 1, 2, 3) and max(abs(v - c) for v in vertex) < 1e-12, f"tetrahedron: vertex {vertex}")
 check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-9, f"tetrahedron: corner {math.degrees(angle)}")
 
 # The same vertex outside the domain is no corner of the meshed diagram.
-angle, quad, face, vertex = bound.smallest_face_corner(tetra, [0.6, 0, 0], [1, 1, 1])
+angle, quad, face, vertex = bound.tightest_corner(tetra, [0.6, 0, 0], [1, 1, 1])
 check(quad is None, "vertex outside the domain counted")
 
 # A fifth seed nearer the centre than the four: theirs is no vertex of the diagram.
 nearer = bound.Phase({"kind": "seeds", "points": [[c, c, c + 0.01]]})
-angle, quad, face, vertex = bound.smallest_face_corner(tetra + [nearer], [0, 0, 0], [1, 1, 1])
+angle, quad, face, vertex = bound.tightest_corner(tetra + [nearer], [0, 0, 0], [1, 1, 1])
 check((0, 1, 2, 3) != quad, "a vertex inside another seed's cell counted")
 
 # The same four as equal balls in an outside phase, found by Newton's method: at the centre
@@ -46,7 +52,7 @@ check((0, 1, 2, 3) != quad, "a vertex inside another seed's cell counted")
 # lower), and the corners are the tetrahedron's.
 outside = bound.Phase({"kind": "constant", "value": 0})
 balls = [outside] + [bound.Phase({"kind": "sphere", "center": p, "radius": 1.04}) for p in corners]
-angle, quad, face, vertex = bound.smallest_face_corner(balls, [0, 0, 0], [1, 1, 1])
+angle, quad, face, vertex = bound.tightest_corner(balls, [0, 0, 0], [1, 1, 1])
 check(quad == (1, 2, 3, 4) and max(abs(v - c) for v in vertex) < 1e-9, f"balls: vertex {vertex} of {quad}")
 check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-6, f"balls: corner {math.degrees(angle)}")
 
