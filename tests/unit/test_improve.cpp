@@ -312,6 +312,18 @@ TEST(Improve, a_small_face_between_two_curves_of_one_vertex_merges_into_it) {
   EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds17_2"), 0.32);
 }
 
+// Twenty-five random cells: the lattice put the quadruple point of cells 7, 16,
+// 20 and 22 0.69 h from where they meet, two of its curves running on past that
+// place (their first nodes inside the point's fourth cell), and the crossing
+// guard held it there: projection would have had to pass it through them. From
+// the second iteration the remesh pass merges such curve nodes into their point,
+// which goes where its four cells meet (min q 0.198 without that).
+TEST(Improve, curve_nodes_past_their_quadruple_point_merge_into_it) {
+  EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds25_4"), 0.33);
+  const std::string pipeline = std::string(kScenePipeline).replace(0, 13, "remesh:size=1:merge_overshoots=0");
+  EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds25_4"), 0.25);
+}
+
 // Quadruple points are not moved by forces, only projected onto the exact point
 // where their four phases tie: they converge there and stay.
 TEST(Improve, quadruple_points_stay_put) {

@@ -43,8 +43,8 @@ class RemeshPass : public Pass {
 public:
   explicit RemeshPass(const ParamValues& p)
       : params_{p.at("length") > 0 ? 1.0 : p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"),
-                p.at("merge_digons"), p.at("min_quality")},
-        length_(p.at("length")), last_(int(p.at("last"))) {}
+                p.at("merge_digons"), false, p.at("min_quality")},
+        length_(p.at("length")), last_(int(p.at("last"))), merge_overshoots_(p.at("merge_overshoots") > 0) {}
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
     // Curvature comes from the phase functions: without them the target would
@@ -62,6 +62,9 @@ public:
     }
     RemeshParams params = params_;
     params.max_triangles = max_triangles_;
+    // From the second iteration: the created mesh's curves overshoot by
+    // snapping, which its first projection mends (improve/curve_overshoots.hpp).
+    params.merge_overshoots = merge_overshoots_ && c.iteration > 1;
     params.guard_crossings = c.guard_crossings;
     const RemeshStats done = remesh_edges(c.mesh, c.field, reference_, params);
     if (!done.old_triangles.empty()) c.guard.renumbered(c.mesh, done.old_triangles, done.old_nodes);
@@ -71,6 +74,7 @@ private:
   RemeshParams params_;
   double length_;
   int last_;
+  bool merge_overshoots_;
   double reference_ = 0;
   size_t max_triangles_ = 0;
 };
@@ -137,6 +141,9 @@ void register_builtin_passes(PassRegistry& registry) {
        {"merge_digons", remesh.merge_digons, 0.0, 16.0, false,
         "a face bounded by two curves between quadruple points of the same phases, each at most this x the target "
         "long, merges into one point where the phase functions lead both corners to one (0: never)"},
+       {"merge_overshoots", 1, 0, 1, true,
+        "from the second iteration, a curve node next to a quadruple point where the point's fourth phase is larger "
+        "(the curve runs past it) merges into the point, which goes where its phases meet (0: never)"},
        {"min_quality", remesh.min_quality, 0.0, 1.0, false,
         "collapses leave no triangle below this or the worst they replace"},
        {"last", 3, 0, 1000000, true, "the last iteration it runs in (each run rebuilds the mesh)"}},

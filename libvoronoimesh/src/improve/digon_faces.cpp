@@ -3,8 +3,6 @@
 
 #include "improve/digon_faces.hpp"
 
-#include <Eigen/LU>
-
 #include <algorithm>
 #include <optional>
 
@@ -13,45 +11,8 @@ namespace {
 
 /// Nodes of a digon face beyond its corners: more, and it is no small face.
 constexpr size_t kMostNodes = 48;
-/// Newton steps toward a meeting point of four phases, and how close (in
-/// targets) the last must come, and the two corners' points to each other.
-constexpr int kNewtonSteps = 30;
-constexpr double kConverged = 1e-6, kSamePoint = 0.1;
-
-/// Where Newton's method on phi_0 = phi_1 = phi_2 = phi_3 (the phases of a
-/// quadruple point) leads from x, no step longer than `reach`; none if it does
-/// not converge.
-std::optional<Vec3> meeting_point(const PhaseField& field, const PhaseSet& phases, Vec3 x, double reach) {
-  for (int step = 0; step < kNewtonSteps; ++step) {
-    Eigen::Matrix3d rows;
-    Vec3 gap;
-    const double phi0 = field.value(phases[0], x);
-    const Vec3 grad0 = field.gradient(phases[0], x);
-    for (int i = 1; i < 4; ++i) {
-      rows.row(i - 1) = (field.gradient(phases[size_t(i)], x) - grad0).transpose();
-      gap[i - 1] = phi0 - field.value(phases[size_t(i)], x);
-    }
-    const Eigen::FullPivLU<Eigen::Matrix3d> lu(rows);
-    if (!lu.isInvertible()) return std::nullopt;
-    Vec3 move = lu.solve(gap);
-    if (!move.allFinite()) return std::nullopt;
-    const double length = move.norm();
-    if (length > reach) move *= reach / length;
-    x += move;
-    if (length < kConverged * reach) return x;
-  }
-  return std::nullopt;
-}
-
-/// A quadruple point off the box: where the curves of a digon end.
-bool is_corner(const NodeRings& mesh, int32_t n) {
-  return phase_count(mesh.phases()[size_t(n)]) == 4 && mesh.box_faces()[size_t(n)] == 0;
-}
-
-/// A node inside a triple curve, off the box.
-bool is_curve_node(const NodeRings& mesh, int32_t n) {
-  return phase_count(mesh.phases()[size_t(n)]) == 3 && mesh.box_faces()[size_t(n)] == 0;
-}
+/// How close (in targets) the two corners' meeting points must come.
+constexpr double kSamePoint = 0.1;
 
 /// A triple curve from a corner: its three phases, its nodes between the
 /// corners, the corner it ends at and its length.
@@ -140,23 +101,11 @@ bool face_inside(const NodeRings& mesh, const PhasePair& pair, const std::vector
 
 } // namespace
 
-std::vector<int32_t> nodes_around(const NodeRings& mesh, const DigonFace& face) {
-  std::vector<int32_t> around = face.merged;
-  around.push_back(face.keep);
-  for (size_t i = 0, nodes = around.size(); i < nodes; ++i) {
-    const auto ring = mesh.neighbours(around[i]);
-    around.insert(around.end(), ring.begin(), ring.end());
-  }
-  std::sort(around.begin(), around.end());
-  around.erase(std::unique(around.begin(), around.end()), around.end());
-  return around;
-}
-
-std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const double> target,
-                                         const PhaseField& field, double longest) {
+std::vector<PointMerge> small_digon_faces(const NodeRings& mesh, std::span<const double> target,
+                                          const PhaseField& field, double longest) {
   struct Found {
     double span;
-    DigonFace face;
+    PointMerge face;
   };
   std::vector<Found> found;
   const auto& pos = mesh.positions();
@@ -183,7 +132,7 @@ std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const 
         const auto here = meeting_point(field, phases, pos[size_t(c)], size);
         const auto there = meeting_point(field, phases, pos[size_t(other)], size);
         if (!here || !there || (*here - *there).norm() > kSamePoint * size) continue;
-        DigonFace face{c, {}, 0.5 * (*here + *there)};
+        PointMerge face{c, {}, 0.5 * (*here + *there)};
         face.merged.assign(boundary.begin() + 1, boundary.end());
         face.merged.insert(face.merged.end(), inside.begin(), inside.end());
         std::sort(face.merged.begin(), face.merged.end());
@@ -192,15 +141,8 @@ std::vector<DigonFace> small_digon_faces(const NodeRings& mesh, std::span<const 
   }
   // The smallest first; a face next to one already taken waits for the next call.
   std::stable_sort(found.begin(), found.end(), [](const Found& x, const Found& y) { return x.span < y.span; });
-  std::vector<uint8_t> taken(mesh.num_nodes(), 0);
-  std::vector<DigonFace> faces;
-  for (Found& f : found) {
-    const std::vector<int32_t> around = nodes_around(mesh, f.face);
-    if (std::any_of(around.begin(), around.end(), [&](int32_t n) { return taken[size_t(n)]; })) continue;
-    for (int32_t n : around) taken[size_t(n)] = 1;
-    faces.push_back(std::move(f.face));
-  }
-  std::sort(faces.begin(), faces.end(), [](const DigonFace& x, const DigonFace& y) { return x.keep < y.keep; });
+  std::vector<PointMerge> faces;
+  for (Found& f : found) faces.push_back(std::move(f.face));
   return faces;
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "core/union_find.hpp"
+#include "improve/curve_overshoots.hpp"
 #include "improve/digon_faces.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
@@ -186,21 +187,26 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
   return chosen;
 }
 
-/// The merges of the small digon faces (improve/digon_faces.hpp), each face's
-/// nodes into its corner `keep`, moved where the phase functions lead both
-/// corners, as collapses; a failure at any node of a face or next to one drops
-/// all of the face's.
-std::vector<std::pair<int64_t, int64_t>> choose_digon_merges(const NodeRings& mesh, std::span<const double> target,
+/// The merges into one point (improve/point_merges.hpp) of the small digon
+/// faces (improve/digon_faces.hpp) and, after them, of the curve ends past
+/// their quadruple point (improve/curve_overshoots.hpp), as collapses of each
+/// merged node into the kept one, which moves where the phase functions say;
+/// a failure at any node of a merge or next to one drops all of the merge's.
+std::vector<std::pair<int64_t, int64_t>> choose_point_merges(const NodeRings& mesh, std::span<const double> target,
                                                              const PhaseField& field, const RemeshParams& params,
                                                              detail::Blame& blame, std::vector<Vec3>& moved_to) {
+  std::vector<detail::PointMerge> merges;
+  if (params.merge_digons > 0) merges = detail::small_digon_faces(mesh, target, field, params.merge_digons);
+  if (params.merge_overshoots)
+    for (detail::PointMerge& m : detail::overshooting_curve_ends(mesh, target, field)) merges.push_back(std::move(m));
   std::vector<std::pair<int64_t, int64_t>> chosen;
-  for (const detail::DigonFace& face : detail::small_digon_faces(mesh, target, field, params.merge_digons)) {
+  for (const detail::PointMerge& merge : detail::keep_apart(mesh, std::move(merges))) {
     const auto first = int32_t(chosen.size());
-    for (int32_t b : face.merged) {
-      chosen.push_back({face.keep, b});
-      moved_to.push_back(face.to);
+    for (int32_t b : merge.merged) {
+      chosen.push_back({merge.keep, b});
+      moved_to.push_back(merge.to);
     }
-    for (int32_t n : detail::nodes_around(mesh, face))
+    for (int32_t n : detail::nodes_around(mesh, merge))
       for (auto i = first; i < int32_t(chosen.size()); ++i) blame.emplace_back(n, i);
   }
   std::sort(blame.begin(), blame.end());
@@ -343,32 +349,34 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     old = std::move(now);
   };
   std::vector<double> target;
-  bool collapsed = false, target_current = false, digons_looked_for = params.merge_digons <= 0 || !field;
+  bool collapsed = false, target_current = false,
+       merges_looked_for = (params.merge_digons <= 0 && !params.merge_overshoots) || !field;
   for (int round = 0; round < params.collapse_rounds; ++round) {
     const NodeRings rings(m);
     target = targets(m.points, rings.phases(), field, reference, params);
     target_current = true;
     detail::Blame blame;
     std::vector<Vec3> moved_to;
-    // Digon faces first, in a batch of their own (no round of collapses): each
-    // merges whole or not at all, which the collapses' blame cannot say.
+    // Merges into one point first, in a batch of their own (no round of
+    // collapses): each merges whole or not at all, which the collapses' blame
+    // cannot say.
     std::vector<std::pair<int64_t, int64_t>> chosen;
-    if (!digons_looked_for) chosen = choose_digon_merges(rings, target, *field, params, blame, moved_to);
-    digons_looked_for = true;
-    const bool digons = !chosen.empty();
-    if (digons) --round;
+    if (!merges_looked_for) chosen = choose_point_merges(rings, target, *field, params, blame, moved_to);
+    merges_looked_for = true;
+    const bool point_merges = !chosen.empty();
+    if (point_merges) --round;
     else chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
     if (chosen.empty()) break;
     std::vector<int64_t> ids(m.num_nodes());
     std::iota(ids.begin(), ids.end(), 0);
     std::vector<int32_t> kept_triangles, kept_nodes;
     const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
-                                              moved_to, nullptr, nullptr, digons);
+                                              moved_to, nullptr, nullptr, point_merges);
     if (done == 0) {
-      if (digons) continue;
+      if (point_merges) continue;
       break;
     }
-    (digons ? stats.digon_merges : stats.collapses) += done;
+    (point_merges ? stats.point_merges : stats.collapses) += done;
     detail::drop_unused_nodes(m, kept_nodes);
     follow(triangle_was, kept_triangles);
     follow(node_was, kept_nodes);

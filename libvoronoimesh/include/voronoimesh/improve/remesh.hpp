@@ -48,6 +48,12 @@ struct RemeshParams {
   /// this many targets long, whose corners Newton's method leads to one point,
   /// merges into a quadruple point there when the mesh stays valid. 0: never.
   double merge_digons = 6;
+  /// With the phase functions: a curve node next to a quadruple point where the
+  /// point's fourth phase is larger than the curve's three (the curve runs past
+  /// the point) merges into the point, which goes where its four phases meet,
+  /// when the mesh stays valid. For a mesh whose nodes have been projected (the
+  /// remesh pass sets it from its second iteration on).
+  bool merge_overshoots = false;
   /// A collapse may leave no triangle below the smaller of this and the worst
   /// quality among the triangles it replaces.
   double min_quality = 0.3;
@@ -66,7 +72,9 @@ struct RemeshParams {
 struct RemeshStats {
   size_t splits = 0;    ///< edges split
   size_t collapses = 0; ///< edges collapsed
-  size_t digon_merges = 0; ///< nodes of digon faces merged into a corner (RemeshParams::merge_digons)
+  /// Nodes merged into a quadruple point: of digon faces (RemeshParams::merge_digons) and of curves
+  /// past their point (RemeshParams::merge_overshoots).
+  size_t point_merges = 0;
   /// When anything changed: the old id of each triangle of the new mesh, -1
   /// for one the call made (with old_nodes for CrossingGuard::renumbered(), so
   /// that the guard's index carries over); empty when nothing changed.

@@ -1,0 +1,67 @@
+/// @file improve/point_merges.cpp
+/// What the remesh pass's merges into one point share (improve/point_merges.hpp).
+
+#include "improve/point_merges.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+
+namespace vm::detail {
+namespace {
+
+/// Newton steps toward a meeting point of four phases, and how close (in
+/// reaches) the last must come.
+constexpr int kNewtonSteps = 30;
+constexpr double kConverged = 1e-6;
+
+} // namespace
+
+std::vector<int32_t> nodes_around(const NodeRings& mesh, const PointMerge& merge) {
+  std::vector<int32_t> around = merge.merged;
+  around.push_back(merge.keep);
+  for (size_t i = 0, nodes = around.size(); i < nodes; ++i) {
+    const auto ring = mesh.neighbours(around[i]);
+    around.insert(around.end(), ring.begin(), ring.end());
+  }
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  return around;
+}
+
+std::vector<PointMerge> keep_apart(const NodeRings& mesh, std::vector<PointMerge> merges) {
+  std::vector<uint8_t> taken(mesh.num_nodes(), 0);
+  std::vector<PointMerge> kept;
+  for (PointMerge& m : merges) {
+    const std::vector<int32_t> around = nodes_around(mesh, m);
+    if (std::any_of(around.begin(), around.end(), [&](int32_t n) { return taken[size_t(n)]; })) continue;
+    for (int32_t n : around) taken[size_t(n)] = 1;
+    kept.push_back(std::move(m));
+  }
+  std::sort(kept.begin(), kept.end(), [](const PointMerge& x, const PointMerge& y) { return x.keep < y.keep; });
+  return kept;
+}
+
+std::optional<Vec3> meeting_point(const PhaseField& field, const PhaseSet& phases, Vec3 x, double reach) {
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    Eigen::Matrix3d rows;
+    Vec3 gap;
+    const double phi0 = field.value(phases[0], x);
+    const Vec3 grad0 = field.gradient(phases[0], x);
+    for (int i = 1; i < 4; ++i) {
+      rows.row(i - 1) = (field.gradient(phases[size_t(i)], x) - grad0).transpose();
+      gap[i - 1] = phi0 - field.value(phases[size_t(i)], x);
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(rows);
+    if (!lu.isInvertible()) return std::nullopt;
+    Vec3 move = lu.solve(gap);
+    if (!move.allFinite()) return std::nullopt;
+    const double length = move.norm();
+    if (length > reach) move *= reach / length;
+    x += move;
+    if (length < kConverged * reach) return x;
+  }
+  return std::nullopt;
+}
+
+} // namespace vm::detail
