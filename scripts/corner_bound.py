@@ -4,6 +4,10 @@
 Usage: corner_bound.py SCENE.json [...]   (scenes whose phases are "seeds" of one point
        each, as scripts/make_voronoi_scene.py writes them, or "sphere", "plane" and
        "constant" phases, as bench/junction_scenes.sh's balls)
+       corner_bound.py --at A,B,C,D [--at ...] INPUT   (the corners at the point where
+       those four phases meet; phase ids of a scene, or labels of a labelled point cloud
+       with one point per label, "x y z label" lines as bench/make_grains.py writes: the
+       grain maps, too many for the search, at their worst triangles' points)
 
 A surface between two phases ends at triple curves, and two of its curves meet
 at a quadruple point: there the surface has a corner, of the angle between the
@@ -211,11 +215,76 @@ def read_scene(path):
         sys.exit(f"{path}: not a scene with a domain and phases (docs/scenes.md)")
 
 
+def read_point_cloud(path):
+    """(seed phases in label order, labels) of a labelled point cloud with one point per label."""
+    points = {}
+    try:
+        with open(path) as f:
+            for number, line in enumerate(f, 1):
+                fields = line.split()
+                if not fields or fields[0].startswith("#"):
+                    continue
+                try:
+                    x, y, z, label = float(fields[0]), float(fields[1]), float(fields[2]), int(fields[3])
+                except (ValueError, IndexError):
+                    sys.exit(f"{path}:{number}: expected 'x y z label'")
+                if label in points:
+                    sys.exit(f"{path}:{number}: label {label} has a second point: one point per label expected")
+                points[label] = [x, y, z]
+    except OSError as e:
+        sys.exit(f"{path}: cannot open ({e.strerror})")
+    labels = sorted(points)
+    return [Phase({"kind": "seeds", "points": [points[label]]}) for label in labels], labels
+
+
+def report_point(path, phases, ids, names, lo, hi):
+    """Prints the corners at the point where the phases `ids` meet (for others than seeds, the first
+    Newton's method finds from a lattice of starts in [lo, hi])."""
+    quad = tuple(sorted(ids))
+    if all(phases[i].kind == "seeds" for i in quad):
+        x = circumcentre([phases[i].centre for i in quad])
+    else:
+        found = newton_points(phases, quad, lo, hi)
+        x = found[0] if found else None
+    if x is None:
+        print(f"{path}: phases {', '.join(names[i] for i in quad)} meet nowhere")
+        return
+    top = phases[quad[0]](x)
+    beaten = [names[k] for k in range(len(phases)) if k not in quad and phases[k](x) > top]
+    where = ", ".join(f"{v:.4f}" for v in x)
+    note = f"; not a point of the partition: {', '.join(beaten)} larger there" if beaten else ""
+    print(f"{path}: point of {', '.join(names[i] for i in quad)} at ({where}){note}")
+    for angle, face in corners_at(phases, quad, x):
+        print(f"  face of {names[face[0]]} and {names[face[1]]}: corner {math.degrees(angle):.1f} deg, "
+              f"min q <= {best_quality_at_corner(angle):.3f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("scenes", nargs="+", metavar="SCENE.json",
-                        help="scenes of seeds (one point each), sphere, plane and constant phases")
-    for path in parser.parse_args().scenes:
+    parser.add_argument("scenes", nargs="+", metavar="INPUT",
+                        help="scenes of seeds (one point each), sphere, plane and constant phases; with --at, "
+                             "also a labelled point cloud (.xyz, .txt) with one point per label")
+    parser.add_argument("--at", action="append", default=[], metavar="A,B,C,D",
+                        help="the corners at the point of these four phases (scene phase ids or point labels)")
+    args = parser.parse_args()
+    for path in args.scenes:
+        if args.at:
+            if path.endswith(".json"):
+                phases, lo, hi = read_scene(path)
+                names = [str(i) for i in range(len(phases))]
+            else:
+                phases, labels = read_point_cloud(path)
+                names = [str(label) for label in labels]
+                lo, hi = None, None  # seeds only: no search
+            for spec in args.at:
+                try:
+                    ids = [names.index(v.strip()) for v in spec.split(",")]
+                except ValueError:
+                    parser.error(f"--at {spec}: not four phases of {path}")
+                if len(set(ids)) != 4:
+                    parser.error(f"--at {spec}: four different phases expected")
+                report_point(path, phases, ids, names, lo, hi)
+            continue
         phases, lo, hi = read_scene(path)
         angle, quad, face, vertex = tightest_corner(phases, lo, hi)
         if quad is None:

@@ -5,7 +5,10 @@ Usage: test_corner_bound.py PATH/TO/corner_bound.py   (exit status 0 when every 
 """
 import importlib.util
 import math
+import os
+import subprocess
 import sys
+import tempfile
 
 spec = importlib.util.spec_from_file_location("corner_bound", sys.argv[1])
 bound = importlib.util.module_from_spec(spec)
@@ -55,6 +58,22 @@ balls = [outside] + [bound.Phase({"kind": "sphere", "center": p, "radius": 1.04}
 angle, quad, face, vertex = bound.tightest_corner(balls, [0, 0, 0], [1, 1, 1])
 check(quad == (1, 2, 3, 4) and max(abs(v - c) for v in vertex) < 1e-9, f"balls: vertex {vertex} of {quad}")
 check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-6, f"balls: corner {math.degrees(angle)}")
+
+# --at on a labelled point cloud: the same four seeds, labelled 7, 3, 9 and 4, and a fifth
+# far away; the corners at their point are the tetrahedron's.
+with tempfile.TemporaryDirectory() as folder:
+    cloud = os.path.join(folder, "seeds.xyz")
+    with open(cloud, "w") as f:
+        f.write("# x y z label\n")
+        for label, p in zip((7, 3, 9, 4), corners):
+            f.write(f"{p[0]} {p[1]} {p[2]} {label}\n")
+        f.write("0.95 0.95 0.95 1\n")
+    run = subprocess.run([sys.executable, sys.argv[1], "--at", "3,4,7,9", cloud], capture_output=True, text=True)
+    lines = run.stdout.splitlines()
+    check(run.returncode == 0 and len(lines) == 7 and "not a point" not in lines[0], f"--at: {run.stdout}{run.stderr}")
+    check(all("corner 109.5 deg" in line for line in lines[1:]), f"--at corners: {run.stdout}")
+    run = subprocess.run([sys.executable, sys.argv[1], "--at", "3,4,7,8", cloud], capture_output=True, text=True)
+    check(run.returncode == 2 and "not four phases" in run.stderr, f"--at with an unknown label: {run.stderr}")
 
 for f in failures:
     print("FAILED:", f)
