@@ -106,8 +106,19 @@ size_t InterfaceMesh::ring_of(size_t v, int32_t* out) const {
 }
 
 size_t InterfaceMesh::valence_of(size_t v) const {
+  // Outgoing halfedges counted round each copy (a boundary copy's ring goes on
+  // along its boundary), not OpenMesh's valence(): Debian builds OpenMesh with
+  // assertions on, and that call into it was 2.2% of 1,000 grains' run.
   size_t valence = 0;
-  for (int32_t c : copies(int32_t(v))) valence += mesh_->valence(OMesh::VertexHandle(c));
+  for (int32_t c : copies(int32_t(v))) {
+    const auto start = mesh_->halfedge_handle(OMesh::VertexHandle(c));
+    if (!start.is_valid()) continue;
+    auto h = start;
+    do {
+      ++valence;
+      h = mesh_->next_halfedge_handle(mesh_->opposite_halfedge_handle(h));
+    } while (h != start);
+  }
   return valence;
 }
 
