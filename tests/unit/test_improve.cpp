@@ -260,7 +260,7 @@ TEST(Improve, collapses_merge_close_quadruple_points_and_never_trade_a_sliver_fo
 /// seeds30_2 the interface of cells 1 and 27 meets the box face y = 1 at a
 /// grazing angle: projection and smoothing carried 18 of its nodes up to 0.8 h
 /// out through the face before the clamp kept them in).
-double seeds_min_quality(const char* pipeline, const std::string& name = "seeds30_2") {
+InterfaceMesh improved_seeds(const char* pipeline, const std::string& name) {
   const Scene scene = load_scene(std::string(VM_TESTS_DATA_DIR) + "/scenes/" + name + ".json");
   InterfaceMesh mesh = initial_mesh(scene);
   Pipeline::parse(pipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(20));
@@ -269,7 +269,22 @@ double seeds_min_quality(const char* pipeline, const std::string& name = "seeds3
   EXPECT_TRUE(find_self_intersections(m).ok());
   EXPECT_EQ(test::nodes_outside_the_domain(m), 0u);
   std::printf("%s, %s: min q %.3f\n", name.c_str(), pipeline, quality_summary(mesh).first);
-  return quality_summary(mesh).first;
+  return mesh;
+}
+
+double seeds_min_quality(const char* pipeline, const std::string& name = "seeds30_2") {
+  return quality_summary(improved_seeds(pipeline, name)).first;
+}
+
+/// Quadruple points off the box whose four phases another one off the box has too
+/// (a Voronoi diagram has one point of any four cells).
+size_t twin_quadruple_points(const InterfaceMesh& mesh) {
+  std::map<PhaseSet, size_t> points;
+  for (size_t n = 0; n < mesh.num_nodes(); ++n)
+    if (phase_count(mesh.phases()[n]) == 4 && mesh.box_faces()[n] == 0) ++points[mesh.phases()[n]];
+  size_t twins = 0;
+  for (const auto& [phases, count] : points) twins += count > 1 ? count : 0;
+  return twins;
 }
 
 TEST(Improve, a_failed_collapse_does_not_keep_its_neighbours_from_collapsing) {
@@ -306,10 +321,14 @@ TEST(Improve, a_sliver_no_edge_of_which_may_collapse_loses_a_curve_node_beside_i
 // quadruple points of the same four phases, joined by two curves round a small
 // face (a digon): the remesh pass merges such a face into one point when the
 // phase functions lead both corners to one. Its slivers held min q at 0.307.
+// Without the merge three points of cells 3, 11, 12 and 16 stay (the worst
+// triangle is then 0.313, too near the merged mesh's 0.471 for a test of it).
 TEST(Improve, a_small_face_between_two_curves_of_one_vertex_merges_into_it) {
-  EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds17_2"), 0.33);
+  const InterfaceMesh merged = improved_seeds(kScenePipeline, "seeds17_2");
+  EXPECT_GT(quality_summary(merged).first, 0.33);
+  EXPECT_EQ(twin_quadruple_points(merged), 0u);
   const std::string pipeline = std::string(kScenePipeline).replace(0, 13, "remesh:size=1:merge_digons=0");
-  EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds17_2"), 0.32);
+  EXPECT_GE(twin_quadruple_points(improved_seeds(pipeline.c_str(), "seeds17_2")), 2u);
 }
 
 // Twenty-five random cells: the lattice put the quadruple point of cells 7, 16,
