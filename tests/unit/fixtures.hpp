@@ -5,6 +5,8 @@
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
 #include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <Eigen/Geometry>
@@ -189,6 +191,16 @@ inline NodeMesh created_mesh(const Scene& scene, const CreateParams& params = {}
   if (!phases) phases = scene.field.get();
   for (int p = 0; p < phases->num_phases(); ++p) m.phase_names.push_back(phases->phase_name(p));
   return m;
+}
+
+/// created_mesh() as the passes take it.
+inline InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(created_mesh(scene)); }
+
+/// Run options of `n` iterations, the rest the defaults.
+inline RunOptions iterations(int n) {
+  RunOptions o;
+  o.iterations = n;
+  return o;
 }
 
 /// The paper's four overlapping spheres (examples/four_spheres.json) created at

@@ -18,7 +18,7 @@ namespace {
 
 using namespace vm;
 
-InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(test::created_mesh(scene)); }
+using test::initial_mesh;
 
 /// A node of `m` on surface `a`-`b` only, and one on a different surface.
 std::pair<int32_t, int32_t> nodes_on_two_surfaces(const InterfaceMesh& m) {
