@@ -97,11 +97,17 @@ std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   std::vector<detail::FixedPointSum> sum(chunks, detail::FixedPointSum(1.0));
   const std::vector<double>& quality = mesh.qualities();
   detail::parallel_for(size_t(0), chunks, [&](size_t c) {
+    // Summed in locals, stored once: through the vectors, every 128-bit add
+    // waited on the store before it (6% of an iteration on the 16k scene).
+    double lowest = lo[c];
+    detail::FixedPointSum chunk_sum(1.0);
     for (size_t f = c * chunk; f < std::min(n, (c + 1) * chunk); ++f) {
       const double q = quality[f];
-      lo[c] = std::min(lo[c], q);
-      sum[c].add(q);
+      lowest = std::min(lowest, q);
+      chunk_sum.add(q);
     }
+    lo[c] = lowest;
+    sum[c] = chunk_sum;
   });
   double min_q = n ? std::numeric_limits<double>::infinity() : 0;
   detail::FixedPointSum total(1.0);

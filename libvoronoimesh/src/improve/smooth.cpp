@@ -73,14 +73,18 @@ SquaredEdgeLengths squared_edge_lengths(const InterfaceMesh& mesh, std::span<con
   std::vector<uint64_t> count(chunks, 0);
   const auto& pos = mesh.positions();
   parallel_for_each_index(chunks, [&](size_t c) {
+    FixedPointSum chunk_sum(unit); // in locals, stored once (as quality_summary())
+    uint64_t edges = 0;
     for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v) {
       if (!counted.empty() && !counted[v]) continue;
       for (int32_t w : mesh.neighbours(int32_t(v)))
         if (size_t(w) > v && !on_box_surface(int32_t(v), w)) {
-          sum[c].add((pos[v] - pos[size_t(w)]).squaredNorm());
-          ++count[c];
+          chunk_sum.add((pos[v] - pos[size_t(w)]).squaredNorm());
+          ++edges;
         }
     }
+    sum[c] = chunk_sum;
+    count[c] = edges;
   });
   SquaredEdgeLengths total{FixedPointSum(unit), 0};
   for (size_t c = 0; c < chunks; ++c) total.sum.add_raw(sum[c].raw()), total.edges += count[c];
