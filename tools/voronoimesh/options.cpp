@@ -112,7 +112,7 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                       vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
                       "edges 1.4x the lattice's, about half the triangles, before the paper's passes, which then "
-                      "collapse junction slivers below q 0.15); for a mesh read from a file and under --mpi the "
+                      "collapse junction slivers below q 0.3); for a mesh read from a file and under --mpi the "
                       "paper's " + vm::kDefaultPipeline);
   cmd->add_option("--size,--max-size", o.size,
                   std::string("Target edge length in world units (the input's units): remesh to edges of about L "

@@ -21,18 +21,24 @@ inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 /// remeshing, curve nodes bunch where a triple curve turns tightly and leave
 /// triangles with three corners on the curve: 0.15 lifts the worst triangle of
 /// the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain polycrystal from
-/// 0.052 to 0.158. The scenes' pipeline collapses below 0.3 since 2026-11-27; on
-/// label volumes that gained nothing measured (the liver at 1 and 2 voxels per cell
-/// and the CT-like volume the same meshes, the 60-grain volume the same min q
-/// with 30 triangles below q 0.5 instead of 60) and cost 12% more time on the
-/// 60 grains (a collapse or two in most iterations, each rebuilding the mesh).
+/// 0.052 to 0.158. Label volumes collapse below 0.3 (kLabelVolumePipeline),
+/// the scenes below 0.5 (kScenePipeline).
 inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:collapse_below=0.15";
 
 /// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
 /// is the voxel grid, finer than their surfaces need, so the remesh pass first
 /// coarsens the mesh to edges 1.4 times the lattice's (about half the triangles),
-/// then kPassesAfterRemesh.
-inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.15";
+/// then the paper's passes, with junction slivers below q 0.3 collapsed. Against
+/// 0.15 (kPassesAfterRemesh), measured 2026-11-27 on 17 volume and cell-size
+/// pairs: the 60-grain polycrystal's worst triangle rose at every cell size
+/// (0.174 -> 0.293 at its default and 1 voxel per cell, 0.166 -> 0.223 at 1.4,
+/// 0.163 -> 0.234 at 2, 0.161 -> 0.305 at 3; closed 0.158 -> 0.293) for 4-7%
+/// more time; the liver fell at 1 voxel per cell (0.352 -> 0.328); the other 11
+/// (the liver at its default, 1.4, 2 and 3, the CT-like volume at its default,
+/// 1, 1.5, 2 and 3, 20 grains at 1 and 1.4) made the same worst triangle. An
+/// earlier try (before curve ends past their quadruple point merged into it)
+/// had found no gain on the 60 grains.
+inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.3";
 
 /// The default for every other input created from phase functions (scenes,
 /// distance grids, point clouds; run/meshing.hpp, pipeline_for()): the remesh
