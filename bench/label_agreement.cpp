@@ -1,6 +1,6 @@
 // bench/label_agreement.cpp: how well a mesh of a label volume keeps its labels.
-// Meshes the volume with a closed domain (so that every phase is a closed volume
-// and every voxel centre lies in exactly one), improves it with a pipeline, then
+// Meshes the volume as `voronoimesh mesh --close` does (a closed domain, so that
+// every phase is a closed volume and every voxel centre lies in exactly one), then
 // locates every voxel centre in the mesh (check/locate.hpp) and prints one
 // markdown row: triangles, min/mean quality, the share of voxel centres in
 // their own label's phase (all; interior ones, whose 26 neighbours share their
@@ -12,10 +12,7 @@
 
 #include "voronoimesh/check/locate.hpp"
 #include "voronoimesh/check/stats.hpp"
-#include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/input.hpp"
-#include "voronoimesh/fields/outside_phase.hpp"
-#include "voronoimesh/fields/sampled_field.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/run/meshing.hpp"
@@ -56,23 +53,15 @@ int run(const std::string& path, const Options& o) {
     return 2;
   }
   const vm::Scene scene = vm::load_input(path, o.input);
-  vm::CreateParams close;
-  close.close = true;
-  vm::MeshOptions defaults;
-  defaults.lattice = o.lattice;
-  close.lattice = vm::lattice_for(defaults, scene);
-  const auto phases = vm::with_outside_phase(scene.field, scene.grid.domain);
-  const vm::SampledField samples =
-      vm::SampledField::sample(*phases, vm::grid_for_lattice(scene.grid, close.lattice), 4,
-                               close.lattice == vm::Lattice::bcc ? vm::SampledNodes::bcc : vm::SampledNodes::all);
-  vm::NodeMesh created;
-  vm::create_initial_mesh(samples, close, created);
-  vm::InterfaceMesh mesh = vm::InterfaceMesh::from_node_mesh(created);
-  created = {};
-  vm::RunOptions run;
-  run.iterations = o.iterations;
-  vm::Pipeline::parse(o.pipeline, vm::builtin_registry()).run(mesh, phases.get(), run);
-  const vm::NodeMesh m = mesh.to_node_mesh();
+  // The CLI's `mesh --close` (run/meshing.hpp): a mesh made any other way
+  // would be measured in place of the one users get.
+  vm::MeshOptions options;
+  options.close = true;
+  options.lattice = o.lattice;
+  options.pipeline = o.pipeline;
+  options.iterations = o.iterations;
+  options.threads = o.threads;
+  const vm::NodeMesh m = vm::mesh_scene(scene, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const vm::PointGrid centres{volume.origin, volume.spacing, volume.size};
