@@ -1,10 +1,11 @@
 #pragma once
 /// @file same_build.hpp
 /// Whether two InterfaceMesh builds are the same in everything a pass can read:
-/// OpenMesh's arrays (halfedges, vertices, faces, the node and pair of each),
-/// each node's copies, neighbours, phases and box faces, the triangles and
-/// their copies. InterfaceMesh::from_edited() must build what from_node_mesh()
-/// builds; the tests of the edits that use it compare with this.
+/// OpenMesh's arrays (halfedges, vertices, faces, the node and pair of each)
+/// and properties, each node's copies, neighbours, phases and box faces, the
+/// triangles and their copies. InterfaceMesh::apply_edit() must build what
+/// from_node_mesh() builds (in arrays it reuses, whose properties must not pile
+/// up); the tests of the edits that use it compare with this.
 
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
@@ -20,6 +21,9 @@ inline std::string build_difference(const InterfaceMesh& a, const InterfaceMesh&
   const OMesh &x = a.omesh(), &y = b.omesh();
   if (x.n_vertices() != y.n_vertices() || x.n_edges() != y.n_edges() || x.n_faces() != y.n_faces())
     return "element counts";
+  if (x.n_vprops() != y.n_vprops() || x.n_hprops() != y.n_hprops() || x.n_eprops() != y.n_eprops() ||
+      x.n_fprops() != y.n_fprops())
+    return "property counts";
   for (size_t h = 0; h < x.n_halfedges(); ++h) {
     const auto hh = OMesh::HalfedgeHandle(int(h));
     if (x.to_vertex_handle(hh) != y.to_vertex_handle(hh) || x.next_halfedge_handle(hh) != y.next_halfedge_handle(hh) ||

@@ -251,7 +251,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   if (done) {
     kept.triangles = kept_triangles;
     drop_unused_nodes(m, kept.nodes);
-    mesh = mesh.from_edited(m, kept.triangles, kept.nodes);
+    mesh.apply_edit(m, kept.triangles, kept.nodes);
     if (params.guard) params.guard->renumbered(mesh, kept.triangles, kept.nodes);
   }
   return done;

@@ -432,7 +432,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   }
   if (collapsed || stats.splits) {
     node_was.resize(m.num_nodes(), -1); // the splits' midpoints
-    mesh = mesh.from_edited(m, triangle_was, node_was);
+    mesh.apply_edit(m, triangle_was, node_was);
     stats.old_triangles = std::move(triangle_was);
     stats.old_nodes = std::move(node_was);
   }

@@ -27,28 +27,32 @@ PhasePair InterfaceMesh::pair(OMesh::FaceHandle f) const {
 }
 
 InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
+  InterfaceMesh im;
+  im.build(m);
+  return im;
+}
+
+void InterfaceMesh::build(const NodeMesh& m) {
   detail::check_node_mesh(m);
   const auto& tris = m.triangles;
   const size_t num_nodes = m.points.size();
 
-  InterfaceMesh im;
   const detail::NodeTriangles nt = detail::node_triangles(num_nodes, tris);
   const detail::EdgeTable et = detail::edge_table(tris, nt);
 
   // Phase sets (the first node with too many named).
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   for (size_t n = 0; n < num_nodes; ++n) detail::check_phase_count(n, np.count(n));
-  im.phases_.resize(num_nodes);
-  detail::parallel_for_each_index(num_nodes, [&](size_t n) { im.phases_[n] = detail::phase_set(np.of(n)); });
+  phases_.resize(num_nodes);
+  detail::parallel_for_each_index(num_nodes, [&](size_t n) { phases_[n] = detail::phase_set(np.of(n)); });
 
   // One OpenMesh vertex per corner class, numbered by node so each node's
   // copies are contiguous.
   const std::vector<int32_t> partner = detail::glued_partners(et, tris, m.pairs);
   std::vector<int32_t> vertex_of_corner;
-  detail::number_corner_classes(nt, tris, partner, vertex_of_corner, im.copy_off_);
-  im.link(m, vertex_of_corner, partner, detail::some_edge_joins_vertices_twice(et, vertex_of_corner, partner));
-  im.build_adjacency();
-  return im;
+  detail::number_corner_classes(nt, tris, partner, vertex_of_corner, copy_off_);
+  link(m, vertex_of_corner, partner, detail::some_edge_joins_vertices_twice(et, vertex_of_corner, partner));
+  build_adjacency();
 }
 
 void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner,
@@ -64,8 +68,11 @@ void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_o
   copy_v_.resize(num_vertices);
   std::iota(copy_v_.begin(), copy_v_.end(), 0);
 
-  mesh_->add_property(node_, "node");
-  mesh_->add_property(pair_, "pair");
+  // Emptied, its memory kept, where it held a mesh before (apply_edit()): its
+  // properties stay, and every value of them is set below.
+  mesh_->clean_keep_reservation();
+  if (!node_.is_valid()) mesh_->add_property(node_, "node");
+  if (!pair_.is_valid()) mesh_->add_property(pair_, "pair");
   mesh_->property(node_).set_persistent(true);
   mesh_->property(pair_).set_persistent(true);
   mesh_->resize(num_vertices, 0, 0);

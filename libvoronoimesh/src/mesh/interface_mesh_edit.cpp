@@ -1,5 +1,5 @@
 /// @file mesh/interface_mesh_edit.cpp
-/// InterfaceMesh::from_edited(): the patch-split mesh of an edit of a mesh
+/// InterfaceMesh::apply_edit(): the patch-split mesh of an edit of a mesh
 /// (a batch of collapses, the remesh pass), built as from_node_mesh() builds
 /// it but only where the edit changed something. A node whose triangles are
 /// the same (renumbered) keeps its phases, its corner classes (in the order of
@@ -26,7 +26,7 @@ namespace vm {
 
 namespace {
 
-/// from_edited() builds anew when more than one node in this many changed.
+/// apply_edit() builds anew when more than one node in this many changed.
 constexpr size_t kWholeBuildShare = 3;
 
 /// The corner k of its face that halfedge h leaves (the halfedge from corner k
@@ -62,24 +62,24 @@ template <class F> void for_each_edge(const std::vector<std::pair<int32_t, int32
 
 } // namespace
 
-InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int32_t> triangle_was,
-                                         std::span<const int32_t> node_was) const {
+void InterfaceMesh::apply_edit(const NodeMesh& m, std::span<const int32_t> triangle_was,
+                               std::span<const int32_t> node_was) {
   detail::check_node_mesh(m);
   const size_t nodes = m.points.size(), faces = m.triangles.size();
   const auto& tris = m.triangles;
-  if (face_by_face_ || triangle_was.size() != faces || node_was.size() != nodes) return from_node_mesh(m);
+  if (face_by_face_ || triangle_was.size() != faces || node_was.size() != nodes) return build(m);
   // This mesh's ids to the edit's. An id out of range or kept twice is no
   // edit of it; nodes out of order would leave the rings carried over unsorted.
   std::vector<int32_t> node_now(num_nodes(), -1), triangle_now(num_triangles(), -1);
   for (size_t n = 0, last = 0; n < nodes; ++n)
     if (const int32_t w = node_was[n]; w >= 0) {
-      if (size_t(w) >= num_nodes() || size_t(w) < last) return from_node_mesh(m);
+      if (size_t(w) >= num_nodes() || size_t(w) < last) return build(m);
       node_now[size_t(w)] = int32_t(n);
       last = size_t(w) + 1;
     }
   for (size_t t = 0; t < faces; ++t)
     if (const int32_t w = triangle_was[t]; w >= 0) {
-      if (size_t(w) >= num_triangles() || triangle_now[size_t(w)] >= 0) return from_node_mesh(m);
+      if (size_t(w) >= num_triangles() || triangle_now[size_t(w)] >= 0) return build(m);
       triangle_now[size_t(w)] = int32_t(t);
     }
 
@@ -109,7 +109,7 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
   // Where most nodes changed, the whole-mesh tables are cheaper than going
   // node by node (the liver's first remesh call, nearly every node dirty:
   // 42 ms this way, 29 ms from_node_mesh()).
-  if (kWholeBuildShare * size_t(std::count(dirty.begin(), dirty.end(), 1)) > nodes) return from_node_mesh(m);
+  if (kWholeBuildShare * size_t(std::count(dirty.begin(), dirty.end(), 1)) > nodes) return build(m);
 
   // The dirty nodes and their triangles (ascending, as node_triangles() has them).
   std::vector<int32_t> dirty_nodes, dirty_index(nodes, -1);
@@ -167,7 +167,7 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
     partner[3 * size_t(t) + size_t(k)] = 3 * s + corner_of(*mesh_, o);
     partner[3 * size_t(s) + size_t(corner_of(*mesh_, o))] = 3 * t + k;
   });
-  if (lost) return from_node_mesh(m);
+  if (lost) return build(m);
 
   // Corner classes: a dirty node's from its triangles; a clean node's are its
   // copies here, in the order of their first triangle now.
@@ -228,6 +228,10 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
   for (const auto& edges : unglued)
     for (const auto& edge : edges) twice = twice || detail::joins_vertices_twice(edge, vertex_of_corner);
 
+  // This mesh's OpenMesh arrays, read for the last time above, hold the new mesh.
+  im.mesh_ = std::move(mesh_);
+  im.node_ = node_;
+  im.pair_ = pair_;
   im.link(m, vertex_of_corner, partner, twice);
 
   // Rings: a clean node's neighbours are those it had, renumbered (in the same
@@ -250,7 +254,7 @@ InterfaceMesh InterfaceMesh::from_edited(const NodeMesh& m, std::span<const int3
   detail::parallel_for_each_index(faces, [&](size_t t) {
     for (size_t k = 0; k < 3; ++k) im.triangle_copies_[t][k] = vertex_of_corner[3 * t + k];
   });
-  return im;
+  *this = std::move(im);
 }
 
 } // namespace vm
