@@ -68,7 +68,7 @@ TEST(Guard, undoes_exactly_the_move_that_would_cross_and_keeps_the_others) {
 // every moved triangle below it, so only the approaching move may stay.
 TEST(Guard, quality_floor_undoes_moves_that_spoil_the_worst_triangle_unless_they_approach_the_surface) {
   const Scene scene = test::example_scene("four_spheres.json", 16);
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  InterfaceMesh mesh = initial_mesh(scene);
   const PhaseField& field = *scene.field;
   // Two surface nodes far apart, each off its surface after snapping.
   int32_t v = -1, u = -1;
@@ -97,7 +97,7 @@ TEST(Guard, quality_floor_undoes_moves_that_spoil_the_worst_triangle_unless_they
   EXPECT_EQ(mesh.positions()[size_t(u)], before[size_t(u)]); // bit for bit
   EXPECT_EQ(mesh.positions()[size_t(v)], without_floor.positions()[size_t(v)]);
   // Without the field nothing tells an approaching move apart: both are undone.
-  InterfaceMesh blind = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  InterfaceMesh blind = initial_mesh(scene);
   std::vector<Vec3> blind_delta = free_delta;
   EXPECT_EQ(CrossingGuard().commit(blind, blind_delta, nullptr, {}, 1.0).undone_nodes, 2u);
 }

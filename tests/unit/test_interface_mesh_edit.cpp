@@ -28,10 +28,8 @@ using namespace vm;
 /// no longer in the order their copies were numbered.
 InterfaceMesh flipped_voronoi7() {
   const Scene scene = test::example_scene("voronoi7.json", 24);
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
-  RunOptions options;
-  options.iterations = 3;
-  Pipeline::parse("smooth,project,clamp,flip", builtin_registry()).run(mesh, scene.field.get(), options);
+  InterfaceMesh mesh = test::initial_mesh(scene);
+  Pipeline::parse("smooth,project,clamp,flip", builtin_registry()).run(mesh, scene.field.get(), test::iterations(3));
   return mesh;
 }
 

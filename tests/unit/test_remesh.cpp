@@ -60,10 +60,8 @@ double total_area(const NodeMesh& m) {
 /// voronoi7 at grid 32 after `iterations` of `pipeline`.
 NodeMesh improved_voronoi7(const std::string& pipeline, int iterations) {
   const Scene scene = test::example_scene("voronoi7.json", 32);
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
-  RunOptions options;
-  options.iterations = iterations;
-  Pipeline::parse(pipeline, builtin_registry()).run(mesh, scene.field.get(), options);
+  InterfaceMesh mesh = test::initial_mesh(scene);
+  Pipeline::parse(pipeline, builtin_registry()).run(mesh, scene.field.get(), test::iterations(iterations));
   return mesh.to_node_mesh();
 }
 
@@ -142,12 +140,10 @@ INSTANTIATE_TEST_SUITE_P(Scenes, RemeshCorners, testing::Values("four_spheres.js
 TEST(Remesh, close_corners_merge_into_one_point_instead_of_leaving_slivers) {
   const Scene scene = test::example_scene("voronoi30.json", 48);
   auto improved = [&](const std::string& remesh) {
-    InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
-    RunOptions options;
-    options.iterations = 5;
+    InterfaceMesh mesh = test::initial_mesh(scene);
     // Without the flip pass's collapses, which merge such corners too.
     Pipeline::parse(remesh + ",smooth,project,clamp,flip:collapse_below=0", builtin_registry())
-        .run(mesh, scene.field.get(), options);
+        .run(mesh, scene.field.get(), test::iterations(5));
     return mesh.to_node_mesh();
   };
   const NodeMesh kept = improved("remesh:merge_corners=0"), merged = improved("remesh");
@@ -229,7 +225,7 @@ TEST(Remesh, tolerance_sizes_edges_by_the_curvature_of_the_surface) {
   // sqrt(k1^2 + k2^2) = sqrt(2) / r, so the chord rule gives
   // L = sqrt(3.375 tolerance r / sqrt(2)) wherever the bounds do not bite.
   const Scene scene = test::example_scene("four_spheres.json", 32);
-  const InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  const InterfaceMesh mesh = test::initial_mesh(scene);
   const double reference = rms_edge_length(mesh);
   RemeshParams params;
   params.size = 100;
@@ -257,12 +253,10 @@ TEST(Remesh, tolerance_sizes_edges_by_the_curvature_of_the_surface) {
 // iterating the paper's eq. 4 step), with edges far longer where allowed.
 TEST(Remesh, tolerance_bounds_how_far_triangle_centroids_lie_from_their_surface) {
   const Scene scene = test::example_scene("four_spheres.json", 32);
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::created_mesh(scene));
+  InterfaceMesh mesh = test::initial_mesh(scene);
   const double reference = rms_edge_length(mesh), tolerance = 0.2;
-  RunOptions options;
-  options.iterations = 20;
   Pipeline::parse("remesh:size=4:min_size=0.5:tolerance=0.2,smooth,project,clamp,flip", builtin_registry())
-      .run(mesh, scene.field.get(), options);
+      .run(mesh, scene.field.get(), test::iterations(20));
   const NodeMesh m = mesh.to_node_mesh();
   double farthest = 0;
   for (size_t t = 0; t < m.num_triangles(); ++t) {
