@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace {
@@ -110,6 +111,35 @@ TEST(Remesh, splits_stop_at_the_triangle_limit) {
   remesh_edges(mesh, nullptr, rms_edge_length(mesh), params);
   EXPECT_EQ(mesh.num_triangles(), 4 * created.num_triangles());
   EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+}
+
+// A mesh as created has short edges beside long ones. Collapsing first leaves
+// most of those (no collapse may make an edge longer than 4/3 of the target)
+// and then splits every long edge beside them: a surplus of triangles that the
+// next call, after smoothing, collapses again. Splitting first frees those
+// collapses (RemeshParams::split_first, the pass's split_first).
+TEST(Remesh, splitting_first_leaves_no_surplus_on_a_created_mesh) {
+  const Scene scene = test::example_scene("voronoi7.json", 32);
+  const InterfaceMesh created = test::initial_mesh(scene);
+  const NodeMesh created_nodes = created.to_node_mesh();
+  auto first_call = [&](bool split_first) {
+    InterfaceMesh mesh = created;
+    RemeshParams params;
+    params.size = 1;
+    params.split_first = split_first;
+    remesh_edges(mesh, scene.field.get(), rms_edge_length(created), params);
+    return mesh.to_node_mesh();
+  };
+  const NodeMesh collapsed_first = first_call(false), split_first = first_call(true);
+  for (const NodeMesh* m : {&collapsed_first, &split_first}) {
+    EXPECT_TRUE(validate(*m).ok()) << validate(*m).summary();
+    EXPECT_TRUE(find_self_intersections(*m).ok());
+    EXPECT_EQ(junction_graph(*m), junction_graph(created_nodes));
+  }
+  std::printf("created %zu, collapsed first %zu, split first %zu triangles\n", created_nodes.num_triangles(),
+              collapsed_first.num_triangles(), split_first.num_triangles());
+  EXPECT_GT(collapsed_first.num_triangles(), created_nodes.num_triangles() * 5 / 4);
+  EXPECT_LT(split_first.num_triangles(), created_nodes.num_triangles() * 21 / 20);
 }
 
 class RemeshCorners : public testing::TestWithParam<std::string> {};

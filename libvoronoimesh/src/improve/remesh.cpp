@@ -336,8 +336,8 @@ std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseFi
 RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double reference, const RemeshParams& params) {
   RemeshStats stats;
   // Collapses in rounds (each claims the rings around it, so one round reaches
-  // a fraction of the short edges), each on the NodeMesh the last one left:
-  // the InterfaceMesh is rebuilt once, after the splits.
+  // a fraction of the short edges), each on the NodeMesh the last one left, and
+  // splits, in either order: the InterfaceMesh is rebuilt once, at the end.
   NodeMesh m = mesh.to_node_mesh();
   // The old id of each triangle and node of m, followed through every change.
   std::vector<int32_t> triangle_was(m.num_triangles()), node_was(m.num_nodes());
@@ -351,87 +351,102 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   std::vector<double> target;
   bool collapsed = false, target_current = false,
        merges_looked_for = (params.merge_digons <= 0 && !params.merge_overshoots) || !field;
-  for (int round = 0; round < params.collapse_rounds; ++round) {
-    const NodeRings rings(m);
-    target = targets(m.points, rings.phases(), field, reference, params);
-    target_current = true;
-    detail::Blame blame;
-    std::vector<Vec3> moved_to;
-    // Merges into one point first, in a batch of their own (no round of
-    // collapses): each merges whole or not at all, which the collapses' blame
-    // cannot say.
-    std::vector<std::pair<int64_t, int64_t>> chosen;
-    if (!merges_looked_for) chosen = choose_point_merges(rings, target, *field, params, blame, moved_to);
-    merges_looked_for = true;
-    const bool point_merges = !chosen.empty();
-    if (point_merges) --round;
-    else chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
-    if (chosen.empty()) break;
-    std::vector<int64_t> ids(m.num_nodes());
-    std::iota(ids.begin(), ids.end(), 0);
-    std::vector<int32_t> kept_triangles, kept_nodes;
-    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
-                                              moved_to, nullptr, nullptr, point_merges);
-    if (done == 0) {
-      if (point_merges) continue;
-      break;
+  auto collapse_short_edges = [&] {
+    for (int round = 0; round < params.collapse_rounds; ++round) {
+      const NodeRings rings(m);
+      target = targets(m.points, rings.phases(), field, reference, params);
+      target_current = true;
+      detail::Blame blame;
+      std::vector<Vec3> moved_to;
+      // Merges into one point first, in a batch of their own (no round of
+      // collapses): each merges whole or not at all, which the collapses' blame
+      // cannot say.
+      std::vector<std::pair<int64_t, int64_t>> chosen;
+      if (!merges_looked_for) chosen = choose_point_merges(rings, target, *field, params, blame, moved_to);
+      merges_looked_for = true;
+      const bool point_merges = !chosen.empty();
+      if (point_merges) --round;
+      else chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
+      if (chosen.empty()) break;
+      std::vector<int64_t> ids(m.num_nodes());
+      std::iota(ids.begin(), ids.end(), 0);
+      std::vector<int32_t> kept_triangles, kept_nodes;
+      const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids,
+                                                kept_triangles, moved_to, nullptr, nullptr, point_merges);
+      if (done == 0) {
+        if (point_merges) continue;
+        break;
+      }
+      (point_merges ? stats.point_merges : stats.collapses) += done;
+      detail::drop_unused_nodes(m, kept_nodes);
+      follow(triangle_was, kept_triangles);
+      follow(node_was, kept_nodes);
+      collapsed = true;
+      target_current = false; // its nodes were renumbered
     }
-    (point_merges ? stats.point_merges : stats.collapses) += done;
-    detail::drop_unused_nodes(m, kept_nodes);
-    follow(triangle_was, kept_triangles);
-    follow(node_was, kept_nodes);
-    collapsed = true;
-    target_current = false; // its nodes were renumbered
-  }
-  if (!target_current) target = targets(m.points, NodeRings(m).phases(), field, reference, params);
+  };
   // Splits in rounds too (new nodes take the mean target of their edge), so an
   // edge several times too long is cut down in one call. New triangles lie in
   // old ones, but on flat interfaces a rounded midpoint can stand a hair off a
   // coplanar neighbour's plane: with the guard, splits whose triangles cross
   // another are undone and the nodes around them held from splitting.
-  const NodeMesh unsplit = m;
-  const std::vector<double> unsplit_target = target;
-  const std::vector<int32_t> unsplit_triangle_was = triangle_was;
-  const size_t old_nodes = m.num_nodes();
-  std::vector<uint8_t> held(old_nodes, 0);
-  for (int attempt = 0;; ++attempt) {
-    std::vector<uint8_t> now_held = held;
-    std::vector<std::array<int32_t, 2>> parents;
-    stats.splits = 0;
-    for (int round = 0; round < kSplitRounds; ++round) {
-      if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
-      const size_t splits = split_long_edges(m, target, now_held, parents, triangle_was);
-      if (splits == 0) break;
-      stats.splits += splits;
+  auto split_long_edges_in_rounds = [&] {
+    if (!target_current) target = targets(m.points, NodeRings(m).phases(), field, reference, params);
+    target_current = true; // the midpoints' targets are appended
+    const NodeMesh unsplit = m;
+    const std::vector<double> unsplit_target = target;
+    const std::vector<int32_t> unsplit_triangle_was = triangle_was;
+    const size_t old_nodes = m.num_nodes();
+    std::vector<uint8_t> held(old_nodes, 0);
+    size_t done = 0;
+    for (int attempt = 0;; ++attempt) {
+      std::vector<uint8_t> now_held = held;
+      std::vector<std::array<int32_t, 2>> parents;
+      done = 0;
+      for (int round = 0; round < kSplitRounds; ++round) {
+        if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
+        const size_t splits = split_long_edges(m, target, now_held, parents, triangle_was);
+        if (splits == 0) break;
+        done += splits;
+      }
+      if (done == 0 || !params.guard_crossings) break;
+      std::vector<uint8_t> involved(m.num_triangles(), 0);
+      for (size_t t = 0; t < m.num_triangles(); ++t)
+        for (int32_t v : m.triangles[t]) involved[t] |= size_t(v) >= old_nodes;
+      const IntersectionReport crossings =
+          find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
+      if (crossings.ok()) break;
+      // Hold the old nodes behind every corner of a crossing triangle (a new
+      // node's are those of the edge it split, walked back) and split again.
+      std::vector<int32_t> walk;
+      for (const auto& pair : crossings.pairs)
+        for (int32_t t : pair)
+          for (int32_t v : m.triangles[size_t(t)]) walk.push_back(v);
+      while (!walk.empty()) {
+        const int32_t v = walk.back();
+        walk.pop_back();
+        if (size_t(v) < old_nodes) held[size_t(v)] = 1;
+        else walk.insert(walk.end(), parents[size_t(v) - old_nodes].begin(), parents[size_t(v) - old_nodes].end());
+      }
+      m = unsplit;
+      target = unsplit_target;
+      triangle_was = unsplit_triangle_was;
+      if (attempt == 2) { // still crossing: no splits in this call
+        done = 0;
+        break;
+      }
     }
-    if (stats.splits == 0 || !params.guard_crossings) break;
-    std::vector<uint8_t> involved(m.num_triangles(), 0);
-    for (size_t t = 0; t < m.num_triangles(); ++t)
-      for (int32_t v : m.triangles[t]) involved[t] |= size_t(v) >= old_nodes;
-    const IntersectionReport crossings = find_self_intersections(m, std::numeric_limits<size_t>::max(), involved, false);
-    if (crossings.ok()) break;
-    // Hold the old nodes behind every corner of a crossing triangle (a new
-    // node's are those of the edge it split, walked back) and split again.
-    std::vector<int32_t> walk;
-    for (const auto& pair : crossings.pairs)
-      for (int32_t t : pair)
-        for (int32_t v : m.triangles[size_t(t)]) walk.push_back(v);
-    while (!walk.empty()) {
-      const int32_t v = walk.back();
-      walk.pop_back();
-      if (size_t(v) < old_nodes) held[size_t(v)] = 1;
-      else walk.insert(walk.end(), parents[size_t(v) - old_nodes].begin(), parents[size_t(v) - old_nodes].end());
-    }
-    m = unsplit;
-    target = unsplit_target;
-    triangle_was = unsplit_triangle_was;
-    if (attempt == 2) { // still crossing: no splits in this call
-      stats.splits = 0;
-      break;
-    }
+    stats.splits += done;
+    node_was.resize(m.num_nodes(), -1); // the splits' midpoints, after every old node
+  };
+  if (params.split_first) {
+    split_long_edges_in_rounds();
+    collapse_short_edges();
+  } else {
+    collapse_short_edges();
+    split_long_edges_in_rounds();
   }
   if (collapsed || stats.splits) {
-    node_was.resize(m.num_nodes(), -1); // the splits' midpoints
     mesh.apply_edit(m, triangle_was, node_was);
     stats.old_triangles = std::move(triangle_was);
     stats.old_nodes = std::move(node_was);

@@ -66,6 +66,13 @@ struct RemeshParams {
   size_t max_triangles = 0;
   /// Refuse collapses after which a moved triangle crosses another surface.
   bool guard_crossings = true;
+  /// Split long edges before collapsing short ones (Botsch and Kobbelt's order)
+  /// instead of after. A mesh as created has short edges beside long ones, and
+  /// no collapse may make an edge longer than 4/3 of the target, so collapsing
+  /// first leaves those and splits every long edge beside them: a surplus the
+  /// next call collapses again (1,000 grains at grid 128: 1.39M triangles ->
+  /// 2.04M -> 1.29M; splitting first: 1.35M -> 1.28M).
+  bool split_first = false;
 };
 
 /// What remesh_edges() did.
@@ -99,7 +106,8 @@ std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseFi
 /// neighbouring nodes removed in one round, never making an edge longer than 4/3
 /// of the target (RemeshParams::collapse_rounds, each on the node-level mesh the last left);
 /// then rounds of splits of every edge longer than 4/3 of the target at its
-/// midpoint (projection brings new nodes onto their surface or curve later).
+/// midpoint (projection brings new nodes onto their surface or curve later);
+/// with RemeshParams::split_first the splits come first.
 /// @param mesh      the mesh, changed in place (node and triangle ids change when anything changed)
 /// @param field     the phase functions for the target lengths (target_edge_lengths()); null: uniform
 /// @param reference the length the parameters are multiples of
