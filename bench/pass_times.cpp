@@ -17,8 +17,9 @@
 
 #include <tbb/global_control.h>
 
-#include <cstdio>
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -87,7 +88,11 @@ int main(int argc, char** argv) {
       threads = positive("--threads", value), ++a;
     } else if (arg == "--iterations") {
       options.iterations = positive("--iterations", value), ++a;
-    } else if (arg == "--pipeline" && value) {
+    } else if (arg == "--pipeline") {
+      if (!value) {
+        std::fprintf(stderr, "pass_times: --pipeline needs a pipeline, e.g. smooth,project,clamp,flip\n%s", kUsage);
+        return 2;
+      }
       pipeline = value, ++a;
     } else if (arg == "--no-guard") {
       options.guard_crossings = false;
@@ -96,7 +101,8 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (threads > 0) options.threads = threads;
+  // One limit for the whole run: create_mesh() and improve_mesh() would take
+  // MeshOptions::threads, but reading and building the phase functions would not.
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   try {
