@@ -335,9 +335,8 @@ std::vector<double> target_edge_lengths(const InterfaceMesh& mesh, const PhaseFi
 
 RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double reference, const RemeshParams& params) {
   RemeshStats stats;
-  // Collapses in rounds (each claims the rings around it, so one round reaches
-  // a fraction of the short edges), each on the NodeMesh the last one left, and
-  // splits, in either order: the InterfaceMesh is rebuilt once, at the end.
+  // Point merges, then collapses and splits in either order, each on the
+  // NodeMesh the last one left: the InterfaceMesh is rebuilt once, at the end.
   NodeMesh m = mesh.to_node_mesh();
   // The old id of each triangle and node of m, followed through every change.
   std::vector<int32_t> triangle_was(m.num_triangles()), node_was(m.num_nodes());
@@ -349,8 +348,42 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     old = std::move(now);
   };
   std::vector<double> target;
-  bool collapsed = false, target_current = false,
-       merges_looked_for = (params.merge_digons <= 0 && !params.merge_overshoots) || !field;
+  bool collapsed = false, target_current = false;
+  // Applies one batch of merges or collapses chosen on `rings` (the current m
+  // with its targets); false if none passed.
+  auto apply = [&](std::vector<std::pair<int64_t, int64_t>>& chosen, detail::Blame& blame,
+                   std::vector<Vec3>& moved_to, bool point_merges) {
+    std::vector<int64_t> ids(m.num_nodes());
+    std::iota(ids.begin(), ids.end(), 0);
+    std::vector<int32_t> kept_triangles, kept_nodes;
+    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
+                                              moved_to, nullptr, nullptr, point_merges);
+    if (done == 0) return false;
+    (point_merges ? stats.point_merges : stats.collapses) += done;
+    detail::drop_unused_nodes(m, kept_nodes);
+    follow(triangle_was, kept_triangles);
+    follow(node_was, kept_nodes);
+    collapsed = true;
+    target_current = false; // its nodes were renumbered
+    return true;
+  };
+  // Merges into one point first, in a batch of their own, before any split or
+  // collapse changes the nodes around the points: each merges whole or not at
+  // all, which the collapses' blame cannot say.
+  auto merge_points = [&] {
+    if (params.merge_digons <= 0 && !params.merge_overshoots) return;
+    if (!field) return;
+    const NodeRings rings(m);
+    target = targets(m.points, rings.phases(), field, reference, params);
+    target_current = true;
+    detail::Blame blame;
+    std::vector<Vec3> moved_to;
+    std::vector<std::pair<int64_t, int64_t>> chosen = choose_point_merges(rings, target, *field, params, blame,
+                                                                        moved_to);
+    if (!chosen.empty()) apply(chosen, blame, moved_to, true);
+  };
+  // Collapses in rounds: each claims the rings around it, so one round reaches
+  // a fraction of the short edges.
   auto collapse_short_edges = [&] {
     for (int round = 0; round < params.collapse_rounds; ++round) {
       const NodeRings rings(m);
@@ -358,31 +391,9 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
       target_current = true;
       detail::Blame blame;
       std::vector<Vec3> moved_to;
-      // Merges into one point first, in a batch of their own (no round of
-      // collapses): each merges whole or not at all, which the collapses' blame
-      // cannot say.
-      std::vector<std::pair<int64_t, int64_t>> chosen;
-      if (!merges_looked_for) chosen = choose_point_merges(rings, target, *field, params, blame, moved_to);
-      merges_looked_for = true;
-      const bool point_merges = !chosen.empty();
-      if (point_merges) --round;
-      else chosen = choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
-      if (chosen.empty()) break;
-      std::vector<int64_t> ids(m.num_nodes());
-      std::iota(ids.begin(), ids.end(), 0);
-      std::vector<int32_t> kept_triangles, kept_nodes;
-      const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids,
-                                                kept_triangles, moved_to, nullptr, nullptr, point_merges);
-      if (done == 0) {
-        if (point_merges) continue;
-        break;
-      }
-      (point_merges ? stats.point_merges : stats.collapses) += done;
-      detail::drop_unused_nodes(m, kept_nodes);
-      follow(triangle_was, kept_triangles);
-      follow(node_was, kept_nodes);
-      collapsed = true;
-      target_current = false; // its nodes were renumbered
+      std::vector<std::pair<int64_t, int64_t>> chosen =
+          choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
+      if (chosen.empty() || !apply(chosen, blame, moved_to, false)) break;
     }
   };
   // Splits in rounds too (new nodes take the mean target of their edge), so an
@@ -439,6 +450,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     stats.splits += done;
     node_was.resize(m.num_nodes(), -1); // the splits' midpoints, after every old node
   };
+  merge_points();
   if (params.split_first) {
     split_long_edges_in_rounds();
     collapse_short_edges();
