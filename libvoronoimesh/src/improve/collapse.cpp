@@ -160,33 +160,49 @@ std::vector<SliverCollapse> find_slivers(const InterfaceMesh& mesh, const Collap
       else continue;
       to = onto;
     }
-    // A collapse that leaves a triangle no better than the sliver would trade
-    // one sliver for another (voronoi30 at grid 48 with collapse_below=0.15:
-    // min q 0.065 -> 0.012), and the quality floor cannot undo it.
-    // Then one of its corners may merge into a node off it instead.
-    if (const auto [a, b] = best.second;
-        a < 0 || detail::quality_after_merge(mesh, b, a, to.allFinite() ? to : pos[size_t(a)], to.allFinite()) <= q) {
+    // Junction nodes huddled round where a goes (closer than a tenth of the
+    // sliver's longest edge, with their constraints among a's there) merge into
+    // a with b: where quadruple points and curve nodes bunch, b alone would fold
+    // the cluster's faces onto each other (30 Voronoi cells: a 5-phase point with
+    // a curve node 0.01 h and a quadruple point 0.03 h from it, duplicate
+    // triangles whichever merged alone; min q 0.039, which no pass could mend).
+    // They are judged together with b: where a moves onto the box, each alone
+    // can leave a triangle as bad as the sliver (seeds30_2: a curve end 0.1 h
+    // from a box edge, between two nodes on it, which both merge into it). If
+    // they do worse together, b goes alone; if that too leaves a triangle no
+    // better than the sliver, nothing: that would trade one sliver for another
+    // (voronoi30 at grid 48 with collapse_below=0.15: min q 0.065 -> 0.012),
+    // and the quality floor cannot undo it.
+    const double huddle = std::pow(kHuddle, 2) * longest2;
+    auto merged_with = [&](const std::array<int32_t, 2>& edge, const Vec3& moved) {
+      const auto [a, b] = edge;
+      const bool moves = moved.allFinite();
+      const Vec3 at = moves ? moved : pos[size_t(a)];
+      const auto& box = mesh.box_faces();
+      const uint8_t box_there = uint8_t(box[size_t(a)] | (moves ? box[size_t(b)] : 0));
+      std::vector<int32_t> merged{b};
+      for (int32_t w : mesh.neighbours(a))
+        if (w != b && junction_order(mesh, w) >= 3 && (pos[size_t(w)] - at).squaredNorm() <= huddle &&
+            detail::constraints_within(mesh.phases()[size_t(w)], box[size_t(w)], mesh.phases()[size_t(a)], box_there))
+          merged.push_back(w);
+      if (merged.size() > 1 && detail::quality_after_merges(mesh, merged, a, at, moves) <= q) merged.resize(1);
+      if (detail::quality_after_merges(mesh, merged, a, at, moves) <= q) merged.clear();
+      return merged;
+    };
+    std::vector<int32_t> merged;
+    if (best.second[0] >= 0) merged = merged_with(best.second, to);
+    // Else one of its corners may merge into a node off it instead.
+    if (merged.empty()) {
       best.second = merge_off_the_sliver(mesh, c, q, node_ids);
       to = Vec3::Constant(NAN);
+      if (best.second[0] >= 0) merged = merged_with(best.second, to);
     }
     SliverCollapse s{q, triangle_ids[face], -1, -1, {}, to};
     const auto [a, b] = best.second;
-    if (a < 0) {
+    if (merged.empty()) {
       slivers.push_back(std::move(s));
       continue;
     }
-    // Junction nodes huddled round a (closer than a tenth of the sliver's
-    // longest edge, with their constraints among a's) merge into a with b:
-    // where quadruple points and curve nodes bunch, b alone would fold the
-    // cluster's faces onto each other (30 Voronoi cells: a 5-phase point with a
-    // curve node 0.01 h and a quadruple point 0.03 h from it, duplicate
-    // triangles whichever merged alone; min q 0.039, which no pass could mend).
-    std::vector<int32_t> merged{b};
-    const double huddle = std::pow(kHuddle, 2) * longest2;
-    for (int32_t w : mesh.neighbours(a))
-      if (w != b && junction_order(mesh, w) >= 3 && (pos[size_t(w)] - pos[size_t(a)]).squaredNorm() <= huddle &&
-          mesh.constraints_within(w, a) && detail::quality_after_merge(mesh, w, a, pos[size_t(a)], false) > q)
-        merged.push_back(w);
     s.a = node_ids[size_t(a)];
     s.b = node_ids[size_t(b)];
     for (int32_t n : merged) {

@@ -31,28 +31,38 @@ void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& 
                  std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr,
                  bool close_folds = false);
 
-/// The smallest quality of the triangles that change when node b merges into a
-/// placed at `to` (those at b, and at a if `a_moves`), after the merge: 0 if one
-/// turns over; those at both vanish. With `before`, also their smallest quality
-/// before it. For the remesh pass's NodeRings and the junction-sliver
+/// The smallest quality of the triangles that change when the nodes `merged`
+/// merge into a placed at `to` (those at a merged node, and at a if
+/// `a_moves`), after the merge: 0 if one turns over; those with two corners
+/// among a and the merged nodes vanish. With `before`, also their smallest
+/// quality before it. For the remesh pass's NodeRings and the junction-sliver
 /// collapse's InterfaceMesh alike.
 template <class Mesh>
-double quality_after_merge(const Mesh& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves,
-                           double* before = nullptr) {
+double quality_after_merges(const Mesh& mesh, std::span<const int32_t> merged, int32_t a, const Vec3& to,
+                            bool a_moves, double* before = nullptr) {
   const auto& pos = mesh.positions();
+  auto goes = [&](int32_t n) { return n == a || std::find(merged.begin(), merged.end(), n) != merged.end(); };
   double old_q = 1, new_q = 1;
-  for (int32_t n : {b, a}) {
-    if (n == a && !a_moves) continue; // a's triangles stay as they are
+  auto judge = [&](int32_t n) {
     mesh.for_each_triangle_at(n, [&](int32_t x, int32_t y) {
       const Vec3 &p = pos[size_t(n)], &px = pos[size_t(x)], &py = pos[size_t(y)];
       old_q = std::min(old_q, triangle_quality(p, px, py));
-      if (x == a || y == a || x == b || y == b) return; // this triangle disappears
+      if (goes(x) || goes(y)) return; // this triangle disappears
       const bool turned = (px - p).cross(py - p).dot((px - to).cross(py - to)) <= 0;
       new_q = turned ? 0 : std::min(new_q, triangle_quality(to, px, py));
     });
-  }
+  };
+  for (int32_t n : merged) judge(n);
+  if (a_moves) judge(a); // else a's triangles stay as they are
   if (before) *before = old_q;
   return new_q;
+}
+
+/// quality_after_merges() of node b alone.
+template <class Mesh>
+double quality_after_merge(const Mesh& mesh, int32_t b, int32_t a, const Vec3& to, bool a_moves,
+                           double* before = nullptr) {
+  return quality_after_merges(mesh, std::span<const int32_t>(&b, 1), a, to, a_moves, before);
 }
 
 /// Drops nodes no triangle uses and renumbers the rest in order; appends the
