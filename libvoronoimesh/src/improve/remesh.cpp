@@ -349,8 +349,8 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   };
   std::vector<double> target;
   bool collapsed = false, target_current = false;
-  // Applies one batch of merges or collapses chosen on `rings` (the current m
-  // with its targets); false if none passed.
+  // Applies one batch of merges or collapses, chosen on m as it is, to m;
+  // false if none passed.
   auto apply = [&](std::vector<std::pair<int64_t, int64_t>>& chosen, detail::Blame& blame,
                    std::vector<Vec3>& moved_to, bool point_merges) {
     std::vector<int64_t> ids(m.num_nodes());
@@ -371,8 +371,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // collapse changes the nodes around the points: each merges whole or not at
   // all, which the collapses' blame cannot say.
   auto merge_points = [&] {
-    if (params.merge_digons <= 0 && !params.merge_overshoots) return;
-    if (!field) return;
+    if ((params.merge_digons <= 0 && !params.merge_overshoots) || !field) return;
     const NodeRings rings(m);
     target = targets(m.points, rings.phases(), field, reference, params);
     target_current = true;
