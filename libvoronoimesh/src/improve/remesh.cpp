@@ -349,6 +349,18 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   };
   std::vector<double> target;
   bool collapsed = false, target_current = false;
+  // The node tables of m and the targets of its nodes, made when first asked
+  // for and kept while m is unchanged: the point merges' serve the first
+  // round of collapses when none passed.
+  std::optional<NodeRings> rings;
+  auto current_rings = [&]() -> const NodeRings& {
+    if (!rings) {
+      rings.emplace(m);
+      target = targets(m.points, rings->phases(), field, reference, params);
+      target_current = true;
+    }
+    return *rings;
+  };
   // Applies one batch of merges or collapses, chosen on m as it is, to m;
   // false if none passed.
   auto apply = [&](std::vector<std::pair<int64_t, int64_t>>& chosen, detail::Blame& blame,
@@ -364,6 +376,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     follow(triangle_was, kept_triangles);
     follow(node_was, kept_nodes);
     collapsed = true;
+    rings.reset();
     target_current = false; // its nodes were renumbered
     return true;
   };
@@ -372,26 +385,22 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // all, which the collapses' blame cannot say.
   auto merge_points = [&] {
     if ((params.merge_digons <= 0 && !params.merge_overshoots) || !field) return;
-    const NodeRings rings(m);
-    target = targets(m.points, rings.phases(), field, reference, params);
-    target_current = true;
+    const NodeRings& tables = current_rings(); // before `target` is read: it sets it
     detail::Blame blame;
     std::vector<Vec3> moved_to;
-    std::vector<std::pair<int64_t, int64_t>> chosen = choose_point_merges(rings, target, *field, params, blame,
-                                                                        moved_to);
+    std::vector<std::pair<int64_t, int64_t>> chosen =
+        choose_point_merges(tables, target, *field, params, blame, moved_to);
     if (!chosen.empty()) apply(chosen, blame, moved_to, true);
   };
   // Collapses in rounds: each claims the rings around it, so one round reaches
   // a fraction of the short edges.
   auto collapse_short_edges = [&] {
     for (int round = 0; round < params.collapse_rounds; ++round) {
-      const NodeRings rings(m);
-      target = targets(m.points, rings.phases(), field, reference, params);
-      target_current = true;
+      const NodeRings& tables = current_rings(); // before `target` is read: it sets it
       detail::Blame blame;
       std::vector<Vec3> moved_to;
       std::vector<std::pair<int64_t, int64_t>> chosen =
-          choose_collapses(rings, target, in_small_pieces(m), params, blame, moved_to);
+          choose_collapses(tables, target, in_small_pieces(m), params, blame, moved_to);
       if (chosen.empty() || !apply(chosen, blame, moved_to, false)) break;
     }
   };
@@ -401,7 +410,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // coplanar neighbour's plane: with the guard, splits whose triangles cross
   // another are undone and the nodes around them held from splitting.
   auto split_long_edges_in_rounds = [&] {
-    if (!target_current) target = targets(m.points, NodeRings(m).phases(), field, reference, params);
+    if (!target_current) current_rings();
     target_current = true; // the midpoints' targets are appended
     const NodeMesh unsplit = m;
     const std::vector<double> unsplit_target = target;
@@ -447,6 +456,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
       }
     }
     stats.splits += done;
+    if (done > 0) rings.reset();
     node_was.resize(m.num_nodes(), -1); // the splits' midpoints, after every old node
   };
   merge_points();
