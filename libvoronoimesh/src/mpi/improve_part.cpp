@@ -210,8 +210,8 @@ private:
 /// largest move; or, when the moves turned out too large for the flips'
 /// window, minus that move, with nothing changed (the caller builds wider
 /// windows and runs the iteration again).
-double iterate(Run& run, double edge, double margin, double quality_floor, std::vector<TriangleRecord>& sending,
-               std::unordered_map<int64_t, Vec3>& moved_to) {
+double iterate(Run& run, int iteration, double edge, double margin, double quality_floor,
+               std::vector<TriangleRecord>& sending, std::unordered_map<int64_t, Vec3>& moved_to) {
   Comm& comm = run.comm;
   const Bands& bands = run.bands;
   const int me = comm.rank();
@@ -231,6 +231,7 @@ double iterate(Run& run, double edge, double margin, double quality_floor, std::
   WindowAgreement parts(run, w, own, edge, margin, reach);
   PassContext context(mesh, &run.field);
   context.guard_crossings = run.guard_crossings;
+  context.iteration = iteration; // passes may depend on it (the flip pass's collapses do)
   context.quality_floor = quality_floor;
   context.parts = &parts;
   try {
@@ -319,7 +320,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
       if (expected_move < 0) expected_move = 0.25 * edge;
       while (true) {
         const double margin = (flips ? flip_reach(edge, expected_move) : 2 * edge) + run.tolerance;
-        const double moved = iterate(run, edge, margin, worst, sending, moved_to);
+        const double moved = iterate(run, it, edge, margin, worst, sending, moved_to);
         expected_move = 1.5 * std::abs(moved);
         if (moved >= 0) break;
         ++run.wider_windows;
