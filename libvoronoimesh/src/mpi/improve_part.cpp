@@ -205,11 +205,11 @@ private:
   std::optional<detail::WindowCollapsePeers> collapse_peers_;
 };
 
-/// One iteration on windows reaching `margin` from the bands, edges up to
-/// `edge` long, no move leaving a triangle below `quality_floor`. Returns the
-/// largest move; or, when the moves turned out too large for the flips'
-/// window, minus that move, with nothing changed (the caller builds wider
-/// windows and runs the iteration again).
+/// Iteration `iteration` (1-based, as PassContext::iteration) on windows
+/// reaching `margin` from the bands, edges up to `edge` long, no move leaving a
+/// triangle below `quality_floor`. Returns the largest move; or, when the moves
+/// turned out too large for the flips' window, minus that move, with nothing
+/// changed (the caller builds wider windows and runs the iteration again).
 double iterate(Run& run, int iteration, double edge, double margin, double quality_floor,
                std::vector<TriangleRecord>& sending, std::unordered_map<int64_t, Vec3>& moved_to) {
   Comm& comm = run.comm;
