@@ -136,8 +136,9 @@ void register_builtin_passes(PassRegistry& registry) {
        {"collapse_below", FlipParams{}.collapse_below, 0.0, 1.0, false,
         "then collapse junction triangles below this quality that flips cannot remove (0: off; not in the paper)"},
        {"collapse_last", kLastCollapseIteration, 0, 1000000, true,
-        "the last iteration it collapses every sliver in; later only those within 0.01 of the worst triangle (on "
-        "1,000 grains the others, 60 an iteration, took a third of it and never raised the worst)"}},
+        detail::cat("the last iteration it collapses every sliver in; later only those within ", kWorstMargin,
+                    " of the worst triangle (on 1,000 grains the others, 60 an iteration, took a third of it and "
+                    "never raised the worst)")}},
       false, false, true, [](PassContext& c, const ParamValues& p) {
         double collapse_below = p.at("collapse_below");
         if (c.iteration > p.at("collapse_last"))
