@@ -149,6 +149,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const std::vector<std::unique_ptr<Pass>> passes = make_passes();
   PassContext context(mesh, field);
   context.guard_crossings = options.guard_crossings;
+  context.iterations = options.iterations;
   auto [best_min, best_mean] = quality_summary(mesh);
   if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
   double worst_now = best_min;

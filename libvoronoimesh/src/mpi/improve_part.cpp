@@ -133,6 +133,7 @@ struct Run {
   bool guard_crossings;
   const MeshPart& part; // domain and phases for the windows
   double tolerance;
+  int iterations; // the run's last iteration
   uint64_t window_triangles = 0, own_triangles = 0;
   int wider_windows = 0;
 };
@@ -232,6 +233,7 @@ double iterate(Run& run, int iteration, double edge, double margin, double quali
   PassContext context(mesh, &run.field);
   context.guard_crossings = run.guard_crossings;
   context.iteration = iteration; // passes may depend on it (the flip pass's collapses do)
+  context.iterations = run.iterations;
   context.quality_floor = quality_floor;
   context.parts = &parts;
   try {
@@ -301,7 +303,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
       if (part.owners[v] == comm.rank()) own_z.push_back(part.points[v].z());
     const Bands bands(comm, std::move(own_z));
     Run run{comm,           bands, pipeline, pipeline.make_passes(), field,
-            guard_crossings, part,  1e-9 * (part.domain.max - part.domain.min).norm()};
+            guard_crossings, part,  1e-9 * (part.domain.max - part.domain.min).norm(), iterations};
     // The triangles this rank sends to windows: its created ones, then its own.
     std::vector<TriangleRecord> sending = detail::records_of(part);
     std::unordered_map<int64_t, Vec3> moved_to;

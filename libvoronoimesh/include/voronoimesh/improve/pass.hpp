@@ -45,6 +45,7 @@ struct PassContext {
   std::vector<Vec3> delta;           ///< pending displacement of every node
   bool pending = false;              ///< delta holds moves not yet committed
   int iteration = 0;                 ///< the current iteration, 1-based
+  int iterations = 0;                ///< the run's last iteration (0: not known)
   size_t flips = 0;                  ///< flips in the current iteration
   /// Commit through the crossing guard (improve/guard.hpp), so that no move makes two
   /// triangles intersect.
