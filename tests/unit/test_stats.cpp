@@ -81,6 +81,7 @@ TEST(Stats, quality_angles_and_edges_of_right_isosceles_triangles) {
   EXPECT_EQ(s.slivers, 0u);
   EXPECT_NEAR(s.min_angle_deg, 45, 1e-9);
   EXPECT_NEAR(s.max_angle_deg, 90, 1e-9);
+  EXPECT_EQ(s.smallest_angles, (std::array<size_t, 6>{0, 0, 0, 0, s.triangles, 0})); // 45 degrees: [40, 50)
   EXPECT_DOUBLE_EQ(s.min_edge, 1);
   EXPECT_DOUBLE_EQ(s.max_edge, std::sqrt(2.0));
   // 20 cube edges of length 1 and 11 face diagonals of length sqrt 2.
@@ -95,6 +96,21 @@ TEST(Stats, slivers_are_counted) {
   EXPECT_EQ(s.slivers, 1u);
   EXPECT_EQ(s.below_half, 1u);
   EXPECT_NEAR(s.max_angle_deg, 180 - 2 * std::atan(0.02) * 180 / M_PI, 1e-9);
+  // Smallest angles 1.1 and 38.7 degrees.
+  EXPECT_EQ(s.smallest_angles, (std::array<size_t, 6>{1, 0, 0, 1, 0, 0}));
+}
+
+TEST(Stats, an_equilateral_triangle_is_in_the_last_angle_bin) {
+  test::Builder b;
+  b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(0.75), 0), 0, 1);
+  b.tri(Vec3(0, 0, 0), Vec3(1e-3, 0, 0), Vec3(0.5e-3, std::sqrt(0.75) * 1e-3, 1e-3), 0, 2);
+  const MeshStats s = compute_stats(b.mesh);
+  EXPECT_EQ(s.smallest_angles.back(), 1u);
+  EXPECT_EQ(s.smallest_angles[4], 1u); // the second, tilted out of its plane: 41 degrees
+  const std::string text = to_text(s);
+  EXPECT_NE(text.find("smallest angle         <10/<20/<30/<40/<50/<=60 deg: 0 / 0 / 0 / 0 / 1 / 1 triangles\n"),
+            std::string::npos)
+      << text;
 }
 
 TEST(Stats, empty_mesh_gives_zeros) {
@@ -110,7 +126,7 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_NE(text.find("surfaces               10\n"), std::string::npos) << text;
   EXPECT_NE(text.find("quadruple points       5\n"), std::string::npos) << text;
   const auto j = nlohmann::json::parse(to_json(s));
-  EXPECT_EQ(j.size(), 17u);
+  EXPECT_EQ(j.size(), 19u);
   EXPECT_EQ(j.at("vertices").get<size_t>(), s.vertices);
   EXPECT_EQ(j.at("surfaces").get<size_t>(), 10u);
   EXPECT_EQ(j.at("triple_curves").get<size_t>(), 10u);
@@ -122,6 +138,12 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_LE(s.quality_p01, s.mean_quality);
   EXPECT_EQ(j.at("rms_edge").get<double>(), s.rms_edge);
   EXPECT_EQ(j.at("max_angle_deg").get<double>(), s.max_angle_deg);
+  EXPECT_EQ(j.at("smallest_angle_bin_deg").get<int>(), MeshStats::kAngleBinDeg);
+  EXPECT_EQ(j.at("smallest_angles").get<std::vector<size_t>>(),
+            std::vector<size_t>(s.smallest_angles.begin(), s.smallest_angles.end()));
+  size_t binned = 0;
+  for (size_t n : s.smallest_angles) binned += n;
+  EXPECT_EQ(binned, s.triangles);
 }
 
 TEST(Stats, the_first_percentile_is_the_qualitys_own) {

@@ -79,10 +79,15 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     ++counted;
     s.below_half += q < 0.5;
     s.slivers += q < 0.1;
+    double smallest = 180;
     for (double angle : {angle_deg(b - a, c - a), angle_deg(c - b, a - b), angle_deg(a - c, b - c)}) {
       s.min_angle_deg = std::min(s.min_angle_deg, angle);
       s.max_angle_deg = std::max(s.max_angle_deg, angle);
+      smallest = std::min(smallest, angle);
     }
+    // Round-off can put an equilateral triangle's smallest angle a hair over 60.
+    const auto bin = std::min(size_t(smallest / MeshStats::kAngleBinDeg), s.smallest_angles.size() - 1);
+    ++s.smallest_angles[bin];
   }
   if (counted == 0) {
     s.min_quality = s.min_angle_deg = 0;
@@ -160,6 +165,15 @@ std::string to_text(const MeshStats& s) {
   line("quality < 0.5", std::to_string(s.below_half));
   line("slivers (q < 0.1)", std::to_string(s.slivers));
   line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));
+  std::string bounds, counts; // "<10/<20/.../<=60", "a / b / ..."
+  const size_t bins = s.smallest_angles.size();
+  for (size_t i = 0; i < bins; ++i) {
+    bounds += i == 0 ? "<" : i + 1 < bins ? "/<" : "/<=";
+    bounds += std::to_string((i + 1) * MeshStats::kAngleBinDeg);
+    counts += i == 0 ? "" : " / ";
+    counts += std::to_string(s.smallest_angles[i]);
+  }
+  line("smallest angle", bounds + " deg: " + counts + " triangles");
   line("edge min / max / rms", num("%.6g / %.6g / %.6g", s.min_edge, s.max_edge, s.rms_edge));
   if (s.self_intersections) line("self-intersections", std::to_string(*s.self_intersections) + " triangle pairs");
   return out;
@@ -181,6 +195,8 @@ std::string to_json(const MeshStats& s) {
       {"slivers", s.slivers},
       {"min_angle_deg", s.min_angle_deg},
       {"max_angle_deg", s.max_angle_deg},
+      {"smallest_angle_bin_deg", MeshStats::kAngleBinDeg},
+      {"smallest_angles", s.smallest_angles},
       {"min_edge", s.min_edge},
       {"max_edge", s.max_edge},
       {"rms_edge", s.rms_edge},

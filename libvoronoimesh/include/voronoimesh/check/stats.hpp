@@ -5,6 +5,7 @@
 #include "voronoimesh/mesh/node_mesh.hpp"
 #include "voronoimesh/mesh/triangle_quality.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -26,6 +27,13 @@ struct MeshStats {
   size_t slivers = 0;           ///< triangles with q < 0.1
   /// Smallest angle of any triangle, in degrees.
   double min_angle_deg = 0, max_angle_deg = 0; ///< largest angle of any triangle, in degrees
+  /// Width of the bins of smallest_angles, in degrees.
+  static constexpr int kAngleBinDeg = 10;
+  /// Triangles by their smallest angle, in bins of kAngleBinDeg degrees from 0
+  /// (the last bin ends at 60, the most a smallest angle can be): what meshers
+  /// that bound angles are compared by (CGAL's facet_angle: 30 degrees, the
+  /// first three bins empty).
+  std::array<size_t, 60 / kAngleBinDeg> smallest_angles{};
   /// Shortest edge (distinct node edges), in the units of the points.
   double min_edge = 0, max_edge = 0, rms_edge = 0; ///< RMS edge length, in the units of the points
   /// @var max_edge
