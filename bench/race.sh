@@ -119,6 +119,9 @@ done
 
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 json_field() { grep -oE "\"$2\": [0-9.eE+-]+" "$1" | head -1 | awk '{print $2}'; }
+# Triangles whose smallest angle is below 30 degrees (CGAL's facet_angle bound),
+# from voronoimesh stats --json's bins of 10 degrees.
+below_30() { python3 -c 'import json, sys; print(sum(json.load(open(sys.argv[1]))["smallest_angles"][:3]))' "$1"; }
 
 # "valid, N triple curves" or "INVALID: N problems (kinds)" from voronoimesh's own checks.
 validity() {
@@ -143,8 +146,8 @@ validity() {
 
 table=$OUT/race.md
 {
-  echo "| tool | case | options | threads | wall s (median of $REPS) | peak MiB | triangles | min q | mean q | min angle | junctions / validity (voronoimesh stats) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| tool | case | options | threads | wall s (median of $REPS) | peak MiB | triangles | min q | mean q | min angle | smallest angle < 30 | junctions / validity (voronoimesh stats) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
   for c in "${cases[@]}"; do
     IFS='|' read -r name tool case_ options threads _ <<<"$c"
     wall=$(for ((r = 1; r <= REPS; ++r)); do awk '{print $1}' "$OUT/$name.time.$r"; done | median)
@@ -155,9 +158,10 @@ table=$OUT/race.md
     if [ "$threads" = TBTHREADS ]; then
       threads="$(json_field "$OUT/$name.log.$REPS" threads) (TBB default, Parallel_tag)"
     fi
-    printf '| %s | %s | %s | %s | %.2f | %d | %s | %.3f | %.3f | %.1f | %s |\n' "$tool" "$case_" "$options" "$threads" \
+    printf '| %s | %s | %s | %s | %.2f | %d | %s | %.3f | %.3f | %.1f | %s | %s |\n' "$tool" "$case_" "$options" "$threads" \
       "$wall" "$((peak / 1024))" "$(json_field "$s" triangles)" "$(json_field "$s" min_quality)" \
-      "$(json_field "$s" mean_quality)" "$(json_field "$s" min_angle_deg)" "$(validity "$mesh" "$OUT/$name.stats.txt")"
+      "$(json_field "$s" mean_quality)" "$(json_field "$s" min_angle_deg)" "$(below_30 "$s")" \
+      "$(validity "$mesh" "$OUT/$name.stats.txt")"
   done
 
   echo
