@@ -36,6 +36,9 @@ struct Entry {
 
 constexpr int kAxisBits = 19; // cells per axis below 2^19 (see Grid::Grid)
 
+/// Pairs a thread gathers before it hands them on (for_each_overlapping_box_pair).
+constexpr size_t kHandedOn = 4096;
+
 class Grid {
 public:
   explicit Grid(std::span<const Bounds> boxes) {
@@ -133,10 +136,11 @@ void sort_by_cell(std::vector<Entry>& entries, const Grid& grid, int top_level) 
 
 } // namespace
 
-std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved) {
+void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<const uint8_t> involved,
+                                   const std::function<void(std::span<const BoxPair>)>& visit) {
   const size_t n = boxes.size();
   auto is_involved = [&](size_t t) { return uint8_t(involved.empty() || involved[t]); };
-  if (n < 2) return {};
+  if (n < 2) return;
   const Grid grid(boxes);
   std::vector<int8_t> level(n);
   std::vector<size_t> offset(n + 1, 0);
@@ -162,11 +166,18 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
   std::vector<bool> level_used(size_t(top_level) + 1, false);
   for (int8_t l : level) level_used[size_t(l)] = true;
 
-  tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
-  auto consider = [](std::vector<BoxPair>& out, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s,
+  // Each thread's pairs since it last handed them on: a buffer that stays in cache.
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> found([] {
+    std::vector<BoxPair> buffer;
+    buffer.reserve(kHandedOn);
+    return buffer;
+  });
+  auto consider = [&](std::vector<BoxPair>& out, int32_t t, int32_t s, uint8_t first_t, uint8_t first_s,
                       const Bounds& box_t, const Bounds& box_s) {
     if ((first_t | first_s) != 7) return; // not the pair's own cell
-    if (box_t.overlaps(box_s)) out.push_back({std::min(t, s), std::max(t, s)});
+    if (!box_t.overlaps(box_s)) return;
+    out.push_back({std::min(t, s), std::max(t, s)});
+    if (out.size() == kHandedOn) visit(out), out.clear();
   };
   // Pairs of one level, in their common cell. A cell's boxes are read once,
   // into a local copy: its pairs read them up to a cell's count of times each,
@@ -206,6 +217,16 @@ std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::s
           });
         }
     });
+  for (const auto& rest : found)
+    if (!rest.empty()) visit(rest);
+}
+
+std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved) {
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
+  for_each_overlapping_box_pair(boxes, involved, [&](std::span<const BoxPair> some) {
+    auto& mine = found.local();
+    mine.insert(mine.end(), some.begin(), some.end());
+  });
   size_t total = 0;
   for (const auto& part : found) total += part.size();
   std::vector<BoxPair> pairs;

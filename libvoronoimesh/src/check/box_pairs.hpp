@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -36,5 +37,13 @@ using BoxPair = std::array<int32_t, 2>;
 /// the pairs with at least one involved box: checking a few moved triangles
 /// against the rest then costs little more than finding their neighbours.
 std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved = {});
+
+/// The same pairs, handed to `visit` a few thousand at a time as they are
+/// found, from several threads at once (`visit` must be safe to call so), in
+/// an order that depends on the thread count. Where each pair is looked at
+/// once (a check), this spares the list: on 1.7M triangles after the remesh
+/// pass's splits, 8.3M pairs, 66 MB written to fresh memory and read back.
+void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<const uint8_t> involved,
+                                   const std::function<void(std::span<const BoxPair>)>& visit);
 
 } // namespace vm::detail

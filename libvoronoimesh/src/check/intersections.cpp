@@ -169,13 +169,11 @@ IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<con
     boxes[t] = detail::triangle_bounds(m.points, tri);
     axis[t] = detail::projection_axis(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
   });
-  const std::vector<detail::BoxPair> candidates = detail::overlapping_box_pairs(boxes, involved);
-
+  // Each candidate pair is tested as it is found.
   tbb::enumerable_thread_specific<Found> found;
-  detail::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+  detail::for_each_overlapping_box_pair(boxes, involved, [&](std::span<const detail::BoxPair> candidates) {
     Found& f = found.local();
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      const auto [t, s] = candidates[i];
+    for (const auto [t, s] : candidates) {
       if (across_surfaces_only && m.pairs[size_t(t)] == m.pairs[size_t(s)]) continue;
       if (detail::intersect_improperly(m.points, m.triangles[size_t(t)], m.triangles[size_t(s)], axis[size_t(t)],
                                        axis[size_t(s)]))

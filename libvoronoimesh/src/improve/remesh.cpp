@@ -20,7 +20,6 @@
 #include <numeric>
 #include <optional>
 #include <tuple>
-#include <unordered_map>
 
 namespace vm {
 namespace {
@@ -234,78 +233,111 @@ std::vector<uint8_t> in_small_pieces(const NodeMesh& m) {
 /// Returns the number of edges split.
 size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<uint8_t>& held,
                         std::vector<std::array<int32_t, 2>>& parents, std::vector<int32_t>& origin) {
-  std::unordered_map<uint64_t, int32_t> midpoint; // edge (low, high) -> new node
-  auto key = [](int32_t u, int32_t v) { return uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)); };
-  for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t u = t[size_t(k)], v = t[size_t((k + 1) % 3)];
-      const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
-      if (len <= kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) || held[size_t(u)] || held[size_t(v)])
-        continue;
-      if (midpoint.emplace(key(u, v), int32_t(m.points.size())).second) {
-        m.points.push_back(0.5 * (m.points[size_t(u)] + m.points[size_t(v)]));
-        target.push_back(0.5 * (target[size_t(u)] + target[size_t(v)]));
-        held.push_back(0);
-        parents.push_back({u, v});
-      }
-    }
-  if (midpoint.empty()) return 0;
-  std::vector<std::array<int32_t, 3>> triangles;
-  std::vector<PhasePair> pairs;
-  std::vector<int32_t> origins;
-  auto add = [&](int32_t a, int32_t b, int32_t c, const PhasePair& p) {
-    triangles.push_back({a, b, c});
-    pairs.push_back(p);
-    origins.push_back(-1);
+  const size_t nt = m.num_triangles(), old_nodes = m.num_nodes();
+  // Side 3 t + k of triangle t runs from its corner k to the next.
+  auto ends = [&](size_t side) {
+    const auto& t = m.triangles[side / 3];
+    return std::pair{t[side % 3], t[(side + 1) % 3]};
   };
-  for (size_t i = 0; i < m.num_triangles(); ++i) {
+  std::vector<uint8_t> is_long(3 * nt);
+  detail::parallel_for_each_index(3 * nt, [&](size_t side) {
+    const auto [u, v] = ends(side);
+    const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
+    is_long[side] = len > kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) && !held[size_t(u)] && !held[size_t(v)];
+  });
+  // The long sides by edge, then by place: each edge's first side leads its
+  // group. Midpoints are numbered in the order of their edges' first sides,
+  // as a scan of the triangles meets them (the same mesh for any thread count).
+  struct Side {
+    uint64_t edge;
+    uint32_t at;
+  };
+  std::vector<Side> sides;
+  for (size_t side = 0; side < 3 * nt; ++side)
+    if (is_long[side]) {
+      const auto [u, v] = ends(side);
+      sides.push_back({uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)), uint32_t(side)});
+    }
+  if (sides.empty()) return 0;
+  detail::parallel_sort(sides.begin(), sides.end(),
+                        [](const Side& x, const Side& y) { return std::tie(x.edge, x.at) < std::tie(y.edge, y.at); });
+  std::vector<std::pair<uint32_t, uint32_t>> leads; // (first side, its group's start in `sides`)
+  for (size_t i = 0; i < sides.size(); ++i)
+    if (i == 0 || sides[i].edge != sides[i - 1].edge) leads.push_back({sides[i].at, uint32_t(i)});
+  detail::parallel_sort(leads.begin(), leads.end(), std::less<std::pair<uint32_t, uint32_t>>());
+  std::vector<int32_t> mid(3 * nt, -1); // the midpoint on each side, or -1
+  const size_t made = leads.size();
+  m.points.resize(old_nodes + made);
+  target.resize(old_nodes + made);
+  held.resize(old_nodes + made, 0);
+  parents.resize(parents.size() + made);
+  const size_t first_parent = parents.size() - made;
+  detail::parallel_for_each_index(made, [&](size_t r) {
+    const auto [u, v] = ends(leads[r].first);
+    const auto node = int32_t(old_nodes + r);
+    m.points[size_t(node)] = 0.5 * (m.points[size_t(u)] + m.points[size_t(v)]);
+    target[size_t(node)] = 0.5 * (target[size_t(u)] + target[size_t(v)]);
+    parents[first_parent + r] = {u, v};
+    for (size_t i = leads[r].second; i < sides.size() && sides[i].edge == sides[leads[r].second].edge; ++i)
+      mid[sides[i].at] = node;
+  });
+  // Each triangle's pieces, at their place in the new list (in triangle order).
+  auto pieces = [&](size_t t) {
+    const int split = (mid[3 * t] >= 0) + (mid[3 * t + 1] >= 0) + (mid[3 * t + 2] >= 0);
+    return size_t(split == 0 ? 1 : split + 1);
+  };
+  std::vector<size_t> first_piece(nt + 1, 0);
+  for (size_t t = 0; t < nt; ++t) first_piece[t + 1] = first_piece[t] + pieces(t);
+  std::vector<std::array<int32_t, 3>> triangles(first_piece[nt]);
+  std::vector<PhasePair> pairs(first_piece[nt]);
+  std::vector<int32_t> origins(first_piece[nt], -1);
+  detail::parallel_for_each_index(nt, [&](size_t i) {
     const auto t = m.triangles[i];
     const PhasePair p = m.pairs[i];
-    std::array<int32_t, 3> mid;
-    int split = 0;
-    for (int k = 0; k < 3; ++k) {
-      const auto at = midpoint.find(key(t[size_t(k)], t[size_t((k + 1) % 3)]));
-      mid[size_t(k)] = at == midpoint.end() ? -1 : at->second;
-      split += mid[size_t(k)] >= 0;
-    }
+    size_t at = first_piece[i];
+    auto add = [&](int32_t a, int32_t b, int32_t c) {
+      triangles[at] = {a, b, c};
+      pairs[at++] = p;
+    };
+    const std::array<int32_t, 3> on{mid[3 * i], mid[3 * i + 1], mid[3 * i + 2]};
+    const int split = (on[0] >= 0) + (on[1] >= 0) + (on[2] >= 0);
     if (split == 0) {
-      add(t[0], t[1], t[2], p);
-      origins.back() = origin[i];
+      add(t[0], t[1], t[2]);
+      origins[first_piece[i]] = origin[i];
     } else if (split == 3) {
-      add(t[0], mid[0], mid[2], p);
-      add(mid[0], t[1], mid[1], p);
-      add(mid[2], mid[1], t[2], p);
-      add(mid[0], mid[1], mid[2], p);
+      add(t[0], on[0], on[2]);
+      add(on[0], t[1], on[1]);
+      add(on[2], on[1], t[2]);
+      add(on[0], on[1], on[2]);
     } else {
       // Rotate so that edge (r0, r1) is split, and with two splits also (r1, r2).
       int k = 0;
-      while (!(mid[size_t(k)] >= 0 && (split == 1 || mid[size_t((k + 1) % 3)] >= 0))) ++k;
+      while (!(on[size_t(k)] >= 0 && (split == 1 || on[size_t((k + 1) % 3)] >= 0))) ++k;
       const int32_t r0 = t[size_t(k)], r1 = t[size_t((k + 1) % 3)], r2 = t[size_t((k + 2) % 3)];
-      const int32_t m01 = mid[size_t(k)];
+      const int32_t m01 = on[size_t(k)];
       if (split == 1) {
-        add(r0, m01, r2, p);
-        add(m01, r1, r2, p);
+        add(r0, m01, r2);
+        add(m01, r1, r2);
       } else {
-        const int32_t m12 = mid[size_t((k + 1) % 3)];
-        add(m01, r1, m12, p);
+        const int32_t m12 = on[size_t((k + 1) % 3)];
+        add(m01, r1, m12);
         // The quad r0, m01, m12, r2 by its shorter diagonal.
         const auto& x = m.points;
         if ((x[size_t(r0)] - x[size_t(m12)]).squaredNorm() <= (x[size_t(m01)] - x[size_t(r2)]).squaredNorm()) {
-          add(r0, m01, m12, p);
-          add(r0, m12, r2, p);
+          add(r0, m01, m12);
+          add(r0, m12, r2);
         } else {
-          add(r0, m01, r2, p);
-          add(m01, m12, r2, p);
+          add(r0, m01, r2);
+          add(m01, m12, r2);
         }
       }
     }
-  }
+  });
   m.triangles = std::move(triangles);
   m.pairs = std::move(pairs);
   origin = std::move(origins);
-  return midpoint.size();
+  return made;
 }
-
 
 /// target_edge_lengths() of nodes at `positions` with phase sets `phases`.
 std::vector<double> targets(const std::vector<Vec3>& positions, const std::vector<PhaseSet>& phases,
