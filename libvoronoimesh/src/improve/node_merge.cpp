@@ -90,7 +90,8 @@ void close_folds_at_targets(const std::vector<int32_t>& into, NodeMesh& out, std
 } // namespace
 
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
-                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points, bool close_folds) {
+                 std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points, bool close_folds,
+                 std::vector<uint8_t>* reshaped) {
   kept_triangles.clear();
   out = m.empty_like();
   out.points = points ? *points : m.points;
@@ -117,6 +118,7 @@ void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& 
   for (size_t i = 0; i < out.num_triangles(); ++i)
     if (moved[i] && normal(out, out.triangles[i]).dot(normal(m, m.triangles[size_t(kept_triangles[i])])) <= 0)
       turned.insert(turned.end(), out.triangles[i].begin(), out.triangles[i].end());
+  if (reshaped) *reshaped = std::move(moved);
 }
 
 void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
@@ -137,7 +139,7 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
 
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed,
-                         const NodeMesh* before, const CrossingIndex* index) {
+                         const NodeMesh* before, const CrossingIndex* index, std::span<const uint8_t> reshaped) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -185,6 +187,10 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
     report_trial_crossings(trial, involved, *before, into, *index, nodes);
     return true;
   }
+  // A triangle at a target as it was (only its target's other triangles
+  // changed) can cross only a reshaped one, whose search finds the pair.
+  if (!reshaped.empty())
+    for (size_t t = 0; t < trial.num_triangles(); ++t) involved[t] &= reshaped[t];
   if (!changed.empty()) {
     searched.assign(trial.num_triangles(), 0);
     for (size_t t = 0; t < trial.num_triangles(); ++t)
@@ -216,6 +222,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
   std::vector<char> active(chosen.size(), 1);
   if (made) made->assign(chosen.size(), 0);
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
+  std::vector<uint8_t> reshaped; // per triangle of the trial
   // Once a trial has searched for crossings: the ends of the collapses dropped since.
   std::vector<uint8_t> changed;
   NodeMesh trial;
@@ -230,13 +237,13 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
         if (!moved_to.empty() && moved_to[i].allFinite()) points[size_t(a)] = moved_to[i];
       }
     failed.clear();
-    merge_nodes(m, into, trial, failed, kept_triangles, moved_to.empty() ? nullptr : &points, close_folds);
+    merge_nodes(m, into, trial, failed, kept_triangles, moved_to.empty() ? nullptr : &points, close_folds, &reshaped);
     if (peers) std::erase_if(failed, [&](int32_t n) { return !peers->answers_for(n); });
     // Triangles that turn over are failures enough; only without them is the
     // merged mesh validated (by every rank, if any rank saw them).
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
     if (!blamed) {
-      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index);
+      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index, reshaped);
       changed.assign(m.num_nodes(), 0);
     }
     if (peers) blamed = !peers->any(!blamed);

@@ -26,10 +26,11 @@ class CrossingIndex; // check/crossing_index.hpp
 /// a target that became one triangle turned both ways (a strip one triangle
 /// wide between merged nodes) disappear too. Appends to `turned` the corners
 /// of remaining triangles that would turn over, and sets `kept_triangles` to
-/// the index in `m` of each triangle of `out`.
+/// the index in `m` of each triangle of `out` and, if given, `reshaped` to
+/// whether each lost a merged corner or has a corner that moved.
 void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& out, std::vector<int32_t>& turned,
                  std::vector<int32_t>& kept_triangles, const std::vector<Vec3>* points = nullptr,
-                 bool close_folds = false);
+                 bool close_folds = false, std::vector<uint8_t>* reshaped = nullptr);
 
 /// The smallest quality of the triangles that change when the nodes `merged`
 /// merge into a placed at `to` (those at a merged node, and at a if
@@ -81,10 +82,13 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 /// `index`: null, or an index up to date with `before`, the mesh `trial` was
 /// merged from (CrossingIndex::refresh()), through which the crossings of the
 /// triangles at targets are found (the same pairs, found around them instead
-/// of in a search of the whole trial).
+/// of in a search of the whole trial). `reshaped`: empty, or merge_nodes()'s
+/// flags for `trial` (without an index): then only pairs with a reshaped
+/// triangle are searched, since two triangles as they were cannot have come to cross.
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
-                         const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr);
+                         const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr,
+                         std::span<const uint8_t> reshaped = {});
 
 /// Which collapses of a batch to drop for a failure at a node: (node id, index
 /// of the collapse in the batch) pairs, sorted. A flat list, not a hash
