@@ -243,7 +243,8 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
   detail::parallel_for_each_index(3 * nt, [&](size_t side) {
     const auto [u, v] = ends(side);
     const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
-    is_long[side] = len > kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) && !held[size_t(u)] && !held[size_t(v)];
+    is_long[side] =
+        len > kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) && !held[size_t(u)] && !held[size_t(v)];
   });
   // The long sides by edge, then by place: each edge's first side leads its
   // group. Midpoints are numbered in the order of their edges' first sides,
@@ -281,13 +282,14 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
     for (size_t i = leads[r].second; i < sides.size() && sides[i].edge == sides[leads[r].second].edge; ++i)
       mid[sides[i].at] = node;
   });
-  // Each triangle's pieces, at their place in the new list (in triangle order).
-  auto pieces = [&](size_t t) {
-    const int split = (mid[3 * t] >= 0) + (mid[3 * t + 1] >= 0) + (mid[3 * t + 2] >= 0);
-    return size_t(split == 0 ? 1 : split + 1);
-  };
+  // Each triangle's pieces (one, or one more than its split sides), at their
+  // place in the new list (in triangle order).
+  auto splits = [&](size_t t) { return (mid[3 * t] >= 0) + (mid[3 * t + 1] >= 0) + (mid[3 * t + 2] >= 0); };
   std::vector<size_t> first_piece(nt + 1, 0);
-  for (size_t t = 0; t < nt; ++t) first_piece[t + 1] = first_piece[t] + pieces(t);
+  for (size_t t = 0; t < nt; ++t) {
+    const int split = splits(t);
+    first_piece[t + 1] = first_piece[t] + size_t(split == 0 ? 1 : split + 1);
+  }
   std::vector<std::array<int32_t, 3>> triangles(first_piece[nt]);
   std::vector<PhasePair> pairs(first_piece[nt]);
   std::vector<int32_t> origins(first_piece[nt], -1);
@@ -300,7 +302,7 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
       pairs[at++] = p;
     };
     const std::array<int32_t, 3> on{mid[3 * i], mid[3 * i + 1], mid[3 * i + 2]};
-    const int split = (on[0] >= 0) + (on[1] >= 0) + (on[2] >= 0);
+    const int split = splits(i);
     if (split == 0) {
       add(t[0], t[1], t[2]);
       origins[first_piece[i]] = origin[i];
