@@ -386,6 +386,38 @@ TEST(Clamp, keeps_a_node_inside_the_domain_box) {
   EXPECT_EQ(box_step(Vec3(0, 0.2, 0), Vec3(0.5, 1.1, 0.5), unit, 0), INFINITY); // already out: no limit
 }
 
+// eq. 5 on a whole mesh after flips (whose faces clamp_displacements() reads
+// from triangles()): every node's move is scaled by the least of 1 and half
+// its box step and of each of its triangles' clamp steps, found here node by
+// node through OpenMesh, for moves large enough to hold many nodes back.
+TEST(Clamp, scales_each_move_by_the_least_step_of_the_nodes_triangles) {
+  Scene scene = example("voronoi7.json", 24);
+  InterfaceMesh mesh = initial_mesh(scene);
+  FlipParams flips_only;
+  flips_only.collapse_below = 0;
+  ASSERT_GT(flip_edges(mesh, flips_only).flips, 0u);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0, 0.02);
+  std::vector<Vec3> delta(mesh.num_nodes());
+  for (size_t v = 0; v < delta.size(); ++v)
+    if (v % 5 != 0) delta[v] = Vec3(g(rng), g(rng), g(rng)); // every fifth node stays
+  std::vector<Vec3> clamped = delta;
+  clamp_displacements(mesh, ClampParams{}, clamped);
+  const auto& pos = mesh.positions();
+  size_t held = 0;
+  for (size_t v = 0; v < delta.size(); ++v) {
+    double scale = delta[v].isZero(0) ? 1 : std::min(1.0, 0.5 * box_step(delta[v], pos[v], mesh.domain(),
+                                                                          mesh.box_faces()[v]));
+    if (!delta[v].isZero(0))
+      mesh.for_each_triangle_at(int32_t(v), [&](int32_t a, int32_t b) {
+        scale = std::min(scale, 0.5 * clamp_step(delta[v], pos[v], pos[size_t(a)], pos[size_t(b)]));
+      });
+    ASSERT_EQ(clamped[v], Vec3(scale * delta[v])) << "node " << v;
+    held += scale < 1;
+  }
+  EXPECT_GT(held, delta.size() / 4);
+}
+
 TEST(Project, step_lands_on_a_plane_and_a_sphere_interface) {
   Scene s = parse_scene(R"({"phases": [{"kind": "constant", "value": 0},
       {"kind": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]},

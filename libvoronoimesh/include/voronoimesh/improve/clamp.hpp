@@ -42,9 +42,10 @@ double box_step(const Vec3& delta, const Vec3& x, const Box& domain, uint8_t box
 /// clamp_step) (eq. 5), and by factor x box_step() besides, so that a node never
 /// leaves the domain box nor reaches its faces: a surface meeting a box face at
 /// a grazing angle would otherwise pull its nodes out through the face (not in
-/// the paper, whose domains are periodic or closed). Each node is clamped on its
-/// own, in parallel.
-/// @param mesh   the mesh, at the positions before the move
+/// the paper, whose domains are periodic or closed). Each node's scale depends
+/// on its own move alone, so the result is the same for any thread count.
+/// @param mesh   the mesh, at the positions before the move, with triangles()
+///               current (as every pass leaves it)
 /// @param params the fraction of the largest safe step (ClampParams::factor)
 /// @param delta  the displacement of every node, one entry per node; scaled in place
 void clamp_displacements(const InterfaceMesh& mesh, const ClampParams& params, std::vector<Vec3>& delta);
