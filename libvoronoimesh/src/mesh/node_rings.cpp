@@ -3,17 +3,19 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <memory>
 
 namespace vm::detail {
 
 std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain) {
   const double tol = 1e-9 * (domain.max - domain.min).norm();
   std::vector<uint8_t> box(points.size(), 0);
-  for (size_t n = 0; n < points.size(); ++n)
+  parallel_for_each_index(points.size(), [&](size_t n) {
     for (int a = 0; a < 3; ++a) {
       if (std::abs(points[n][a] - domain.min[a]) <= tol) box[n] |= uint8_t(1u << (2 * a));
       if (std::abs(points[n][a] - domain.max[a]) <= tol) box[n] |= uint8_t(1u << (2 * a + 1));
     }
+  });
   return box;
 }
 
@@ -26,32 +28,31 @@ bool constraints_within(const PhaseSet& phases_a, uint8_t box_a, const PhaseSet&
 NodeRings::NodeRings(const NodeMesh& m)
     : m_(m), at_(node_triangles(m.num_nodes(), m.triangles)), box_(box_faces_of(m.points, m.domain)) {
   const size_t n = m.num_nodes();
-  // Each node's ring, at most two new nodes per triangle, sorted in parallel.
-  adj_off_.assign(n + 1, 0);
-  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + 2 * int32_t(at_.of(v).size());
-  std::vector<int32_t> ring(static_cast<size_t>(adj_off_[n]));
-  std::vector<int32_t> count(n, 0);
+  // Each node's ring, sorted and made unique in parallel in room for two new
+  // nodes per triangle at it (left uninitialised: zeroing it cost as much as
+  // filling it), then packed in parallel. The remesh pass builds these tables
+  // after every round of collapses.
+  const auto room = std::make_unique_for_overwrite<int32_t[]>(2 * m.triangles.size() * 3);
+  std::vector<int32_t> count(n);
   parallel_for_each_index(n, [&](size_t v) {
-    int32_t* out = ring.data() + adj_off_[v];
+    int32_t* out = room.get() + 2 * size_t(at_.off[v]);
     int32_t* end = out;
     for_each_triangle_at(int32_t(v), [&](int32_t a, int32_t b) { *end++ = a, *end++ = b; });
     std::sort(out, end);
     count[v] = int32_t(std::unique(out, end) - out);
   });
-  adj_.reserve(ring.size() / 2);
-  for (size_t v = 0; v < n; ++v) {
-    const int32_t* from = ring.data() + adj_off_[v];
-    adj_off_[v] = int32_t(adj_.size());
-    adj_.insert(adj_.end(), from, from + count[v]);
-  }
-  adj_off_[n] = int32_t(adj_.size());
+  adj_off_.assign(n + 1, 0);
+  for (size_t v = 0; v < n; ++v) adj_off_[v + 1] = adj_off_[v] + count[v];
+  adj_.resize(size_t(adj_off_[n]));
+  phases_.resize(n);
   const NodePhases np = node_phases(at_, m.pairs);
-  phases_.assign(n, PhaseSet{});
-  for (size_t v = 0; v < n; ++v) {
+  parallel_for_each_index(n, [&](size_t v) {
+    const int32_t* ring = room.get() + 2 * size_t(at_.off[v]);
+    std::copy(ring, ring + count[v], adj_.begin() + adj_off_[v]);
     phases_[v].fill(-1);
     const auto ph = np.of(v);
     std::copy(ph.begin(), ph.begin() + std::min(ph.size(), phases_[v].size()), phases_[v].begin());
-  }
+  });
 }
 
 bool NodeRings::has_phase(int32_t n, int32_t p) const {
