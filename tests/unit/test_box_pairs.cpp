@@ -1,8 +1,10 @@
 // Candidate pairs of the intersection tests (check/box_pairs.hpp) against
 // brute force, on boxes of very different sizes (several grid levels), with and
-// without a mask of involved boxes.
+// without a mask of involved boxes; and the sort of grid entries by cell
+// (check/cell_sort.hpp) against a stable comparison sort.
 
 #include "check/box_pairs.hpp"
+#include "check/cell_sort.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,6 +87,36 @@ TEST(BoxPairs, every_overlapping_pair_once_where_boxes_fill_the_grid) {
   for (int trial = 0; trial < 3; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
     expect_every_pair_once(rng, even_boxes(rng, 3000), 100);
+  }
+}
+
+// Entries as the grids make them, in triangle order, one to eight cells each,
+// enough of them for the counting sort's many blocks and runs of cells (and
+// cells no entry has): the same order as sorting by cell, stably.
+TEST(CellSort, counted_into_cells_as_a_stable_sort_orders_them) {
+  struct Entry {
+    uint64_t key;
+    int32_t tri;
+  };
+  std::mt19937_64 rng(3);
+  for (const uint64_t cells : {uint64_t(1000), uint64_t(1) << 20}) {
+    SCOPED_TRACE("cells " + std::to_string(cells));
+    std::uniform_int_distribution<uint64_t> cell(0, cells - 1);
+    std::uniform_int_distribution<int> per_triangle(1, 8);
+    std::vector<Entry> entries;
+    for (int32_t t = 0; entries.size() < 400000; ++t) {
+      std::vector<uint64_t> own(size_t(per_triangle(rng)));
+      for (uint64_t& c : own) c = cell(rng);
+      std::sort(own.begin(), own.end());
+      own.erase(std::unique(own.begin(), own.end()), own.end());
+      for (uint64_t c : own) entries.push_back({3 * c + 7, t}); // keys: any increasing function of the cell
+    }
+    std::vector<Entry> expected = entries;
+    std::stable_sort(expected.begin(), expected.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+    detail::sort_by_cell_key(entries, cells, [](const Entry& e) { return (e.key - 7) / 3; });
+    ASSERT_EQ(entries.size(), expected.size());
+    for (size_t i = 0; i < entries.size(); ++i)
+      ASSERT_TRUE(entries[i].key == expected[i].key && entries[i].tri == expected[i].tri) << "entry " << i;
   }
 }
 

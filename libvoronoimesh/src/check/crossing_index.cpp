@@ -73,6 +73,8 @@ std::array<int64_t, 3> CrossingIndex::key_cell(uint64_t k) {
           int64_t(k & mask) - kBias};
 }
 
+size_t CrossingIndex::key_level(uint64_t k) { return size_t(k >> (3 * kAxisBits)); }
+
 std::array<int64_t, 3> CrossingIndex::cell_of(const Vec3& x, int level) const {
   const double inverse = inverse_cell_size_[size_t(level)];
   return {int64_t(std::floor((x.x() - origin_.x()) * inverse)), int64_t(std::floor((x.y() - origin_.y()) * inverse)),

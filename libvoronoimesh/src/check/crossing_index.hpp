@@ -137,6 +137,7 @@ private:
   std::array<int64_t, 3> cell_of(const Vec3& x, int level) const;
   static uint64_t key(int level, int64_t i, int64_t j, int64_t k);
   static std::array<int64_t, 3> key_cell(uint64_t key); ///< the cell of a key, without its level
+  static size_t key_level(uint64_t key);                 ///< the level of a key
   template <class F> void for_cells(const Filing& f, F&& f_of_key) const;
   static CellEntry cell_entry(int32_t t, const Filing& f); ///< t's entry in each cell of its filing f
   int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none

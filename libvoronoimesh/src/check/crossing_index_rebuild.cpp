@@ -66,7 +66,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     level_start[l + 1] = level_start[l] + cells;
   }
   sort_by_cell_key(entries, level_start.back(), [&](const Entry& e) {
-    const auto l = size_t(filed_[size_t(e.tri)].level);
+    const size_t l = key_level(e.key); // not the filing's: a cache miss per call, and the sort calls it four times
     const auto c = key_cell(e.key);
     return level_start[l] + uint64_t(((c[0] - lowest[l][0]) * across[l][1] + c[1] - lowest[l][1]) * across[l][2] +
                                       c[2] - lowest[l][2]);
