@@ -78,7 +78,8 @@ void clamp_displacements(const InterfaceMesh& mesh, const ClampParams& params, s
   auto moves = [&](size_t v) { return !delta[v].isZero(0); };
   std::vector<double> scale(mesh.num_nodes(), 1.0);
   detail::parallel_for_each_index(scale.size(), [&](size_t v) {
-    if (moves(v)) scale[v] = std::min(1.0, params.factor * box_step(delta[v], pos[v], mesh.domain(), mesh.box_faces()[v]));
+    if (moves(v))
+      scale[v] = std::min(1.0, params.factor * box_step(delta[v], pos[v], mesh.domain(), mesh.box_faces()[v]));
   });
   // Each triangle lowers the scale of each moving corner, in one loop over the
   // flat triangle array that finds the triangle's midlines once for its three

@@ -29,9 +29,9 @@ NodeRings::NodeRings(const NodeMesh& m)
     : m_(m), at_(node_triangles(m.num_nodes(), m.triangles)), box_(box_faces_of(m.points, m.domain)) {
   const size_t n = m.num_nodes();
   // Each node's ring, sorted and made unique in parallel in room for two new
-  // nodes per triangle at it (left uninitialised: zeroing it cost as much as
-  // filling it), then packed in parallel. The remesh pass builds these tables
-  // after every round of collapses.
+  // nodes per triangle at it (left uninitialised: each node writes its room
+  // before it reads it), then packed in parallel. The remesh pass builds these
+  // tables after every round of collapses.
   const auto room = std::make_unique_for_overwrite<int32_t[]>(2 * m.triangles.size() * 3);
   std::vector<int32_t> count(n);
   parallel_for_each_index(n, [&](size_t v) {
