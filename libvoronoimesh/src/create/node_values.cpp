@@ -1,5 +1,6 @@
 #include "create/node_values.hpp"
 
+#include "core/atomic_lowest.hpp"
 #include "core/parallel.hpp"
 
 #include <tbb/blocked_range.h>
@@ -160,8 +161,7 @@ NodeValues::NodeValues(const NodeSource& source, const TetLattice& lattice, doub
             const GridPoint p{row.x0 + row.step * x, row.y, row.z};
             if (!source.try_at(p, buffer, at)) {
               const int64_t n = grid.node_index(p[0], p[1], p[2]);
-              int64_t seen = first_bad.load();
-              while (n < seen && !first_bad.compare_exchange_weak(seen, n)) {}
+              lower_atomically(first_bad, n);
               continue;
             }
             const size_t id = size_t(row.first_id + x);

@@ -2,6 +2,7 @@
 
 #include "voronoimesh/core/errors.hpp"
 
+#include "core/atomic_lowest.hpp"
 #include "core/parallel.hpp"
 #include "fields/node_sampling.hpp"
 
@@ -91,8 +92,7 @@ SampledField SampledField::sample_nodes(const PhaseField& field, const GridSpec&
         const std::span<int32_t> ids{&s.ids_[size_t(at) * kk], kk};
         const std::span<double> vals{&s.values_[size_t(at) * kk], kk};
         if (!detail::sample_node(field, grid, i, j, kz, ids, vals, s.floor_[size_t(at)])) {
-          int64_t seen = first_bad.load();
-          while (n - s.first_node_ < seen && !first_bad.compare_exchange_weak(seen, n - s.first_node_)) {}
+          detail::lower_atomically(first_bad, n - s.first_node_);
           return;
         }
       }

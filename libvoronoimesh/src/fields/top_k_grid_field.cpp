@@ -1,5 +1,6 @@
 #include "fields/top_k_grid_field.hpp"
 
+#include "core/atomic_lowest.hpp"
 #include "core/parallel.hpp"
 #include "fields/top_k.hpp"
 
@@ -121,7 +122,7 @@ int64_t TopKGridField::finish(float far) {
           const size_t s = slot(i3, j3, k3);
           if (filled_[s] == 0) {
             const int64_t n = grid_.node_index(i3, j3, k3);
-            for (int64_t seen = empty.load(); n < seen && !empty.compare_exchange_weak(seen, n);) {}
+            detail::lower_atomically(empty, n);
           }
           int16_t* ids = &ids_[s * k];
           float* vals = &values_[s * k];

@@ -1,5 +1,6 @@
 #include "voronoimesh/improve/clamp.hpp"
 
+#include "core/atomic_lowest.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
@@ -93,11 +94,7 @@ void clamp_displacements(const InterfaceMesh& mesh, const ClampParams& params, s
     for (size_t k = 0; k < 3; ++k) {
       const auto v = size_t(tri[k]);
       if (!moves(v)) continue;
-      const double s = params.factor * corner_step(delta[v], lines, k);
-      std::atomic_ref<double> lowest(scale[v]);
-      double now = lowest.load(std::memory_order_relaxed);
-      while (s < now && !lowest.compare_exchange_weak(now, s, std::memory_order_relaxed)) {
-      }
+      detail::lower_atomically(std::atomic_ref<double>(scale[v]), params.factor * corner_step(delta[v], lines, k));
     }
   });
   detail::parallel_for_each_index(scale.size(), [&](size_t v) {
