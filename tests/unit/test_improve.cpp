@@ -398,7 +398,7 @@ TEST(Clamp, scales_each_move_by_the_least_step_of_the_nodes_triangles) {
   ASSERT_GT(flip_edges(mesh, flips_only).flips, 0u);
   std::mt19937 rng(11);
   std::normal_distribution<double> g(0, 0.02);
-  std::vector<Vec3> delta(mesh.num_nodes());
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero()); // Eigen leaves a default Vec3 unset
   for (size_t v = 0; v < delta.size(); ++v)
     if (v % 5 != 0) delta[v] = Vec3(g(rng), g(rng), g(rng)); // every fifth node stays
   std::vector<Vec3> clamped = delta;
