@@ -122,10 +122,20 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
   const int order = constraint_order(mesh, b);
   if (order > 3) return best_corner_merge(mesh, target, b, params);
   const auto& pos = mesh.positions();
-  std::optional<Candidate> best;
-  for (int32_t a : mesh.neighbours(b)) {
-    const double ratio = (pos[size_t(a)] - pos[size_t(b)]).norm() / std::min(target[size_t(a)], target[size_t(b)]);
-    if (ratio >= kShortEdge || (best && std::tie(best->ratio, best->a) <= std::tie(ratio, a))) continue;
+  auto ratio_of = [&](int32_t a) {
+    return (pos[size_t(a)] - pos[size_t(b)]).norm() / std::min(target[size_t(a)], target[size_t(b)]);
+  };
+  // The short edges are judged shortest first (ties by a), and the first that
+  // passes is the best: most nodes need one link condition and one quality
+  // check, not one per short edge.
+  std::pair<double, int32_t> judged{-1, -1};
+  for (;;) {
+    std::pair<double, int32_t> next{kShortEdge, -1};
+    for (int32_t a : mesh.neighbours(b))
+      if (const std::pair edge{ratio_of(a), a}; judged < edge && edge < next) next = edge;
+    if (next.second < 0) return std::nullopt;
+    judged = next;
+    const auto [ratio, a] = next;
     // A curve node moves only into its neighbour along the same curve, never
     // into the curve's end: a curve of one edge between two corners would fold
     // onto another curve between them.
@@ -139,9 +149,8 @@ std::optional<Candidate> best_collapse(const NodeRings& mesh, std::span<const do
     double old_q;
     const double new_q = detail::quality_after_merge(mesh, b, a, pos[size_t(a)], false, &old_q);
     if (new_q < std::min(params.min_quality, old_q)) continue;
-    best = Candidate{ratio, b, a};
+    return Candidate{ratio, b, a};
   }
-  return best;
 }
 
 /// The collapses of one round, shortest first. No two nodes b that collapse
