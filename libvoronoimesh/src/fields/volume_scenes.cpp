@@ -11,6 +11,9 @@
 #include "fields/top_k_grid_field.hpp"
 #include "fields/voxel_grid.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -211,15 +214,23 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;
   std::vector<int16_t> table(span <= (1 << 20) ? size_t(span) : 0);
   for (size_t i = 0; i < present.size() && !table.empty(); ++i) table[size_t(present[i] - first)] = int16_t(phase_of[i]);
-  parallel_for_each_index(v.labels.size(), [&](size_t n) {
-    pv.phase[n] = !table.empty() ? table[size_t(v.labels[n] - first)]
-                                 : int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(), v.labels[n]) -
-                                                           present.begin())]);
-  }, 1 << 16);
+  // Each phase's voxels counted on the way, by each thread on its own (a
+  // serial count after the map took 50 ms of the liver's 25M voxels).
+  tbb::enumerable_thread_specific<std::vector<int64_t>> counted(std::vector<int64_t>(pv.labels.size(), 0));
+  parallel_for(tbb::blocked_range<size_t>(0, v.labels.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<int64_t>& mine = counted.local();
+    for (size_t n = r.begin(); n != r.end(); ++n) {
+      const int16_t p = !table.empty() ? table[size_t(v.labels[n] - first)]
+                                       : int16_t(phase_of[size_t(std::lower_bound(present.begin(), present.end(),
+                                                                                  v.labels[n]) - present.begin())]);
+      pv.phase[n] = p;
+      if (p >= 0) ++mine[size_t(p)];
+    }
+  });
   v.labels = {}; // the phases replace the labels: free them before the field grows
   std::vector<int64_t> voxels(pv.labels.size(), 0);
-  for (int16_t p : pv.phase)
-    if (p >= 0) ++voxels[size_t(p)];
+  for (const std::vector<int64_t>& part : counted)
+    for (size_t p = 0; p < voxels.size(); ++p) voxels[p] += part[p];
   LabelFieldParams params;
   params.signed_distance = o.label_function == LabelFunction::signed_distance;
   params.smoothing = o.smoothing;
