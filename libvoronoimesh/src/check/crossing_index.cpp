@@ -262,15 +262,19 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
     const Filing& old = filed_[size_t(slot)];
     fresh[i] = filing_for(boxes_[size_t(t)], triangles[size_t(t)],
                           corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)]);
-    // The cells both filings have (none across levels) keep the entry, renewed.
+    // The cells both filings have (none across levels, none for a triangle
+    // not filed yet, level -1) keep the entry, renewed.
+    const bool same_level = old.level >= 0 && old.level == fresh[i].level;
     std::array<int64_t, 3> lo{}, hi{};
-    const auto old_last = cell_of(old.box.hi, old.level), new_last = cell_of(fresh[i].box.hi, fresh[i].level);
-    for (size_t a = 0; a < 3; ++a)
-      lo[a] = std::max(old.first[a], fresh[i].first[a]), hi[a] = std::min(old_last[a], new_last[a]);
+    if (same_level) {
+      const auto old_last = cell_of(old.box.hi, old.level), new_last = cell_of(fresh[i].box.hi, fresh[i].level);
+      for (size_t a = 0; a < 3; ++a)
+        lo[a] = std::max(old.first[a], fresh[i].first[a]), hi[a] = std::min(old_last[a], new_last[a]);
+    }
     auto kept = [&](uint64_t k) {
       const auto c = key_cell(k);
-      return old.level == fresh[i].level && c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1] &&
-             c[2] >= lo[2] && c[2] <= hi[2];
+      return same_level && c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1] && c[2] >= lo[2] &&
+             c[2] <= hi[2];
     };
     for_cells(old, [&](uint64_t k) {
       if (!kept(k)) edits[i].left.push_back(k);
