@@ -35,7 +35,8 @@ std::vector<vm::detail::SliverCollapse> WindowCollapsePeers::all(const std::vect
     at += sizeof head;
     vm::detail::SliverCollapse s{head.quality, head.triangle, head.a, head.b, std::vector<int64_t>(size_t(head.claims)),
                                  Vec3(head.to[0], head.to[1], head.to[2])};
-    std::memcpy(s.claims.data(), everyone.data() + at, s.claims.size() * sizeof(int64_t));
+    if (!s.claims.empty()) // an empty vector's data() may be null, which memcpy may not be given
+      std::memcpy(s.claims.data(), everyone.data() + at, s.claims.size() * sizeof(int64_t));
     at += s.claims.size() * sizeof(int64_t);
     out.push_back(std::move(s));
   }
