@@ -378,9 +378,9 @@ void TetCutter::cut_box_faces(const std::array<int64_t, 4>& nodes, int32_t outsi
     if (!collected) {
       nodes_ = nodes;
       // Only nodes near interfaces and on the box hold values, so the corner
-      // off the box may hold none (reading them read before the start of the
-      // stored values). The face's phases are decided at its own corners: one
-      // of them stands in for it.
+      // off the box may hold none (asking for them read from before the start
+      // of NodeValues' arrays). The face's phases are decided at its own
+      // corners: one of them stands in for it.
       std::array<int64_t, 4> held = nodes;
       for (int64_t& n : held)
         if (!values_.held(n)) n = nodes[size_t(face[0])];
