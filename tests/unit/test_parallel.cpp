@@ -2,6 +2,7 @@
 /// and on four; in ThreadSanitizer builds a race between the tasks of a call
 /// is still reported (the annotations order only what TBB orders).
 
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
@@ -65,6 +66,22 @@ TEST(Parallel, sort_orders_as_std_sort) {
     std::sort(expected.begin(), expected.end(), std::greater<>());
     detail::parallel_sort(items.begin(), items.end(), std::greater<>());
     EXPECT_EQ(items, expected) << threads << " threads";
+  }
+}
+
+TEST(Parallel, indices_where_lists_what_a_serial_scan_finds_in_order) {
+  // Sizes around the block of 2^14 indices, so that blocks end mid-list and
+  // some blocks keep nothing; every fifth-or-so index kept, in a pattern with no period.
+  for (size_t threads : kThreadCounts) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    for (size_t n : {size_t(0), size_t(1), size_t(16383), size_t(16384), size_t(16385), size_t(100003)}) {
+      auto keep = [](size_t i) { return (i * 2654435761u >> 7) % 5 == 0 || (i >= 40000 && i < 60000 && i % 2); };
+      std::vector<int32_t> expected;
+      for (size_t i = 0; i < n; ++i)
+        if (keep(i)) expected.push_back(int32_t(i));
+      EXPECT_EQ(detail::indices_where(n, keep), expected) << n << " indices, " << threads << " threads";
+    }
+    EXPECT_TRUE(detail::indices_where(50000, [](size_t) { return false; }).empty());
   }
 }
 

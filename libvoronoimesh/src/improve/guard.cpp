@@ -4,6 +4,7 @@
 #include "voronoimesh/improve/project.hpp"
 
 #include "check/crossing_index.hpp"
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "improve/field_orientation.hpp"
 #include "improve/kept_points.hpp"
@@ -50,8 +51,8 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   std::vector<int32_t> watched;
   std::vector<uint8_t> agreed;
   if (field) {
-    for (size_t t = 0; t < triangles.size(); ++t)
-      if (detail::touches_junction(mesh, triangles[t])) watched.push_back(int32_t(t));
+    watched = detail::indices_where(triangles.size(),
+                                    [&](size_t t) { return detail::touches_junction(mesh, triangles[t]); });
     agreed.resize(watched.size());
     detail::parallel_for_each_index(watched.size(), [&](size_t i) { agreed[i] = agrees(size_t(watched[i])); });
   }
@@ -104,8 +105,8 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     for (const auto& pair : crossings(mesh, involved)) culprits.insert(culprits.end(), pair.begin(), pair.end());
     for (size_t i = 0; i < watched.size(); ++i)
       if (turned[i]) culprits.push_back(watched[i]);
-    for (size_t t = 0; t < spoilt.size(); ++t)
-      if (spoilt[t]) culprits.push_back(int32_t(t));
+    for (int32_t t : detail::indices_where(spoilt.size(), [&](size_t t) { return spoilt[t] != 0; }))
+      culprits.push_back(t);
     if (field && field->keeps_points())
       for (int32_t t : detail::triangles_losing_kept_points(mesh, before, involved, *field)) culprits.push_back(t);
     std::fill(changed.begin(), changed.end(), 0);
@@ -120,10 +121,10 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
         if (moved[size_t(n)]) put_back(n);
     if (quality_floor > 0) {
       const std::vector<double>& quality = mesh.qualities(); // kept by place_nodes() between rounds
-      for (size_t t = 0; t < involved.size(); ++t)
-        if (involved[t] && quality[t] < quality_floor)
-          for (int32_t n : triangles[t])
-            if (moved[size_t(n)] && !closes_in(n, triangles[t])) put_back(n);
+      const auto below = [&](size_t t) { return involved[t] && quality[t] < quality_floor; };
+      for (int32_t t : detail::indices_where(involved.size(), below))
+        for (int32_t n : triangles[size_t(t)])
+          if (moved[size_t(n)] && !closes_in(n, triangles[size_t(t)])) put_back(n);
     }
     // Clean, or only what the mesh had before the move: done. Ranks go on while
     // any of them undoes something, with every rank's culprits put back here too.

@@ -1,0 +1,45 @@
+#pragma once
+/// @file core/indices_where.hpp
+/// The indices that pass a test, tested in parallel and listed in increasing
+/// order: the list a serial scan makes, for any thread count. For scans of a
+/// whole mesh that pick out a few of its triangles or nodes, which serial took
+/// 10-20 ms each on 1M triangles, on one core while the other waited.
+
+#include "core/parallel.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace vm::detail {
+
+/// The i in [0, n) for which keep(i) is true, increasing. keep is called once
+/// for each index, from any thread, and may only read shared data.
+template <class Index = int32_t, class Keep> std::vector<Index> indices_where(size_t n, const Keep& keep) {
+  // Each block counts its own, then writes from its place in the list.
+  constexpr size_t kBlock = size_t(1) << 14;
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<uint8_t> kept(n);
+  std::vector<size_t> start(blocks + 1, 0);
+  parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        size_t count = 0;
+        for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) count += kept[i] = keep(i) ? 1 : 0;
+        start[b + 1] = count;
+      },
+      1);
+  for (size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  std::vector<Index> out(start[blocks]);
+  parallel_for_each_index(
+      blocks,
+      [&](size_t b) {
+        size_t at = start[b];
+        for (size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+          if (kept[i]) out[at++] = Index(i);
+      },
+      1);
+  return out;
+}
+
+} // namespace vm::detail
