@@ -47,7 +47,13 @@ std::vector<Bounds> even_boxes(std::mt19937_64& rng, size_t n) {
   return boxes;
 }
 
-std::vector<BoxPair> sorted(std::vector<BoxPair> pairs) {
+/// The threads' parts of the pairs, joined and sorted.
+std::vector<BoxPair> sorted(const std::vector<std::vector<BoxPair>>& parts) {
+  std::vector<BoxPair> pairs;
+  for (const auto& part : parts) {
+    EXPECT_FALSE(part.empty());
+    pairs.insert(pairs.end(), part.begin(), part.end());
+  }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }

@@ -6,6 +6,7 @@
 
 #include "check/cell_sort.hpp"
 #include "core/parallel.hpp"
+#include "core/unset_vector.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -116,7 +117,7 @@ private:
 
 /// Sorts entries by cell key, and by triangle within a cell
 /// (check/cell_sort.hpp): the cells up to `top_level` numbered densely.
-void sort_by_cell(std::vector<Entry>& entries, const Grid& grid, int top_level) {
+void sort_by_cell(UnsetVector<Entry>& entries, const Grid& grid, int top_level) {
   std::vector<uint64_t> level_start(size_t(top_level) + 2, 0);
   std::vector<std::array<int64_t, 3>> cells(size_t(top_level) + 1);
   for (int l = 0; l <= top_level; ++l) {
@@ -151,7 +152,7 @@ void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<cons
     offset[t + 1] = cells;
   });
   for (size_t t = 0; t < n; ++t) offset[t + 1] += offset[t];
-  std::vector<Entry> entries(offset[n]);
+  UnsetVector<Entry> entries(offset[n]); // each written below, by the thread of its triangle
   detail::parallel_for(size_t(0), n, [&](size_t t) {
     size_t e = offset[t];
     grid.for_cells(boxes[t], level[t],
@@ -221,18 +222,17 @@ void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<cons
     if (!rest.empty()) visit(rest);
 }
 
-std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved) {
+std::vector<std::vector<BoxPair>> overlapping_box_pairs(std::span<const Bounds> boxes,
+                                                        std::span<const uint8_t> involved) {
   tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
   for_each_overlapping_box_pair(boxes, involved, [&](std::span<const BoxPair> some) {
     auto& mine = found.local();
     mine.insert(mine.end(), some.begin(), some.end());
   });
-  size_t total = 0;
-  for (const auto& part : found) total += part.size();
-  std::vector<BoxPair> pairs;
-  pairs.reserve(total);
-  for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
-  return pairs;
+  std::vector<std::vector<BoxPair>> parts;
+  for (auto& part : found)
+    if (!part.empty()) parts.push_back(std::move(part));
+  return parts;
 }
 
 } // namespace vm::detail

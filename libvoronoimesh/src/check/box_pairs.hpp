@@ -36,7 +36,10 @@ using BoxPair = std::array<int32_t, 2>;
 /// must be finite. With `involved` (one flag per box; empty: all boxes), only
 /// the pairs with at least one involved box: checking a few moved triangles
 /// against the rest then costs little more than finding their neighbours.
-std::vector<BoxPair> overlapping_box_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved = {});
+/// The pairs come in parts, as the threads found them: joined into one list,
+/// 9.2M pairs on 1M triangles were a copy of 74 MB in one thread.
+std::vector<std::vector<BoxPair>> overlapping_box_pairs(std::span<const Bounds> boxes,
+                                                        std::span<const uint8_t> involved = {});
 
 /// The same pairs, handed to `visit` a few thousand at a time as they are
 /// found, from several threads at once (`visit` must be safe to call so), in

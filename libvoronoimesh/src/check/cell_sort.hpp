@@ -18,7 +18,8 @@ namespace vm::detail {
 /// keys densely in their order: where they are no more than a few per entry,
 /// the entries are counted into their cells (stable, so by triangle within
 /// one); else sorted by comparison.
-template <class Entry, class Cell> void sort_by_cell_key(std::vector<Entry>& entries, uint64_t cells, Cell cell) {
+template <class Entry, class Allocator, class Cell>
+void sort_by_cell_key(std::vector<Entry, Allocator>& entries, uint64_t cells, Cell cell) {
   if (cells > 4 * uint64_t(entries.size()) + 1024) {
     parallel_sort(entries.begin(), entries.end(),
                   [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.tri < b.tri; });
