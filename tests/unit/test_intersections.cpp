@@ -286,6 +286,13 @@ TEST(Intersections, grid_agrees_with_all_pairs_on_a_random_soup) {
 
 TEST(Intersections, bad_node_ids_are_rejected) {
   EXPECT_THROW(find_self_intersections(soup({O, X, Y}, {{0, 1, 2}, {0, 1, 3}})), InvalidInput);
+  // The first bad triangle is named, and its bad id (the whole mesh is scanned in parallel).
+  try {
+    find_self_intersections(soup({O, X, Y}, {{0, 1, 2}, {0, 1, 3}, {7, 1, 2}, {0, -1, 2}}));
+    ADD_FAILURE() << "bad node ids accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1 has node id 3 out of range"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(find_self_intersections(soup({O, X, Vec3(NAN, 0, 0)}, {{0, 1, 2}})), InvalidInput);
   EXPECT_EQ(count(NodeMesh{}), 0u);
 }

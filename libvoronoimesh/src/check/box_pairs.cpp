@@ -5,6 +5,7 @@
 #include "check/box_pairs.hpp"
 
 #include "check/cell_sort.hpp"
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "core/unset_vector.hpp"
 
@@ -43,13 +44,20 @@ constexpr size_t kHandedOn = 4096;
 class Grid {
 public:
   explicit Grid(std::span<const Bounds> boxes) {
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    std::vector<double> extent(boxes.size());
-    for (size_t t = 0; t < boxes.size(); ++t) {
-      lo = lo.cwiseMin(boxes[t].lo);
-      hi = hi.cwiseMax(boxes[t].hi);
-      extent[t] = (boxes[t].hi - boxes[t].lo).maxCoeff();
-    }
+    // The boxes' reach (a minimum and maximum: the same in any order) and sizes, in parallel.
+    const Vec3 infinite = Vec3::Constant(std::numeric_limits<double>::infinity());
+    UnsetVector<double> extent(boxes.size());
+    const Bounds reach = parallel_reduce(
+        tbb::blocked_range<size_t>(0, boxes.size()), Bounds{infinite, -infinite},
+        [&](const tbb::blocked_range<size_t>& r, Bounds b) {
+          for (size_t t = r.begin(); t != r.end(); ++t) {
+            b = {b.lo.cwiseMin(boxes[t].lo), b.hi.cwiseMax(boxes[t].hi)};
+            extent[t] = (boxes[t].hi - boxes[t].lo).maxCoeff();
+          }
+          return b;
+        },
+        [](const Bounds& a, const Bounds& b) { return Bounds{a.lo.cwiseMin(b.lo), a.hi.cwiseMax(b.hi)}; });
+    const Vec3 lo = reach.lo, hi = reach.hi;
     origin_ = lo;
     extent_hi_ = hi;
     const double span = (hi - lo).maxCoeff();
@@ -160,9 +168,8 @@ void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<cons
   });
   const int top_level = *std::max_element(level.begin(), level.end());
   sort_by_cell(entries, grid, top_level);
-  std::vector<size_t> cell_start;
-  for (size_t e = 0; e < entries.size(); ++e)
-    if (e == 0 || entries[e].key != entries[e - 1].key) cell_start.push_back(e);
+  std::vector<size_t> cell_start = indices_where<size_t>(
+      entries.size(), [&](size_t e) { return e == 0 || entries[e].key != entries[e - 1].key; });
   cell_start.push_back(entries.size());
   std::vector<bool> level_used(size_t(top_level) + 1, false);
   for (int8_t l : level) level_used[size_t(l)] = true;

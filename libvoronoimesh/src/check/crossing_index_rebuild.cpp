@@ -98,7 +98,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   // then dealt to both triangles' lists (in whatever order the threads deal
   // them) and sorted.
   const std::vector<std::vector<BoxPair>> pairs = [&] {
-    std::vector<Bounds> filing(n);
+    UnsetVector<Bounds> filing(n); // each written below
     detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box; });
     return overlapping_box_pairs(filing);
   }();

@@ -9,14 +9,17 @@
 
 #include "check/box_pairs.hpp"
 #include "check/triangle_pair.hpp"
+#include "core/indices_where.hpp"
 #include "core/key_set.hpp"
 #include "core/parallel.hpp"
+#include "core/unset_vector.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 namespace vm {
@@ -47,14 +50,19 @@ struct Found {
 void check_input(const NodeMesh& m, bool needs_pairs) {
   if (needs_pairs && m.pairs.size() != m.triangles.size())
     throw InvalidInput("find_self_intersections: one phase pair per triangle expected");
-  for (const Vec3& p : m.points)
-    if (!p.allFinite()) throw InvalidInput("find_self_intersections: non-finite node coordinate");
+  // Scanned in parallel (each check scans the whole mesh); the first bad one is named.
+  if (!detail::indices_where(m.points.size(), [&](size_t v) { return !m.points[v].allFinite(); }).empty())
+    throw InvalidInput("find_self_intersections: non-finite node coordinate");
   const auto n = int32_t(m.points.size());
-  for (size_t t = 0; t < m.triangles.size(); ++t)
-    for (int32_t id : m.triangles[t])
-      if (id < 0 || id >= n)
-        throw InvalidInput("find_self_intersections: triangle " + std::to_string(t) + " has node id " +
-                           std::to_string(id) + " out of range");
+  auto out_of_range = [&](int32_t id) { return id < 0 || id >= n; };
+  const std::vector<int32_t> bad = detail::indices_where(m.triangles.size(), [&](size_t t) {
+    return std::any_of(m.triangles[t].begin(), m.triangles[t].end(), out_of_range);
+  });
+  if (!bad.empty()) {
+    const auto& tri = m.triangles[size_t(bad.front())];
+    throw InvalidInput("find_self_intersections: triangle " + std::to_string(bad.front()) + " has node id " +
+                       std::to_string(*std::find_if(tri.begin(), tri.end(), out_of_range)) + " out of range");
+  }
 }
 
 
@@ -65,19 +73,26 @@ void check_input(const NodeMesh& m, bool needs_pairs) {
 std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> flagged) {
   const size_t nt = m.triangles.size();
   auto box_of = [&](size_t t) { return detail::triangle_bounds(m.points, m.triangles[t]); };
-  std::vector<int32_t> all;
-  size_t count = 0;
-  double cell = 0;
-  for (size_t t = 0; t < flagged.size(); ++t)
-    if (flagged[t]) {
-      const Bounds b = box_of(t);
-      ++count, cell = std::max(cell, (b.hi - b.lo).maxCoeff());
-    }
-  if (flagged.empty() || 3 * count >= nt) {
-    all.resize(nt);
-    for (size_t t = 0; t < nt; ++t) all[t] = int32_t(t);
+  // Every scan of the whole mesh here runs in parallel: a remesh call checks it a dozen times.
+  const std::vector<int32_t> flagged_ids =
+      flagged.empty() ? std::vector<int32_t>{} : detail::indices_where(nt, [&](size_t t) { return flagged[t] != 0; });
+  if (flagged.empty() || 3 * flagged_ids.size() >= nt) {
+    std::vector<int32_t> all(nt);
+    std::iota(all.begin(), all.end(), 0);
     return all;
   }
+  // Coarse cells the size of the largest flagged box (the largest is the same
+  // whatever order the boxes are taken in).
+  double cell = detail::parallel_reduce(
+      tbb::blocked_range<size_t>(0, flagged_ids.size()), 0.0,
+      [&](const tbb::blocked_range<size_t>& r, double largest) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const Bounds b = box_of(size_t(flagged_ids[i]));
+          largest = std::max(largest, (b.hi - b.lo).maxCoeff());
+        }
+        return largest;
+      },
+      [](double a, double b) { return std::max(a, b); });
   if (!(cell > 0)) cell = 1;
   auto key = [](int64_t i, int64_t j, int64_t k) {
     return uint64_t(i) * 0x9E3779B97F4A7C15ull ^ uint64_t(j) * 0xC2B2AE3D27D4EB4Full ^ uint64_t(k) * 0x165667B19E3779F9ull;
@@ -99,9 +114,6 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
     return true;
   };
   // The flagged triangles' cells, listed in parallel.
-  std::vector<int32_t> flagged_ids;
-  for (size_t t = 0; t < nt; ++t)
-    if (flagged[t]) flagged_ids.push_back(int32_t(t));
   std::vector<size_t> offset(flagged_ids.size() + 1, 0);
   detail::parallel_for(size_t(0), flagged_ids.size(), [&](size_t i) {
     cells(box_of(size_t(flagged_ids[i])), [&](uint64_t) { ++offset[i + 1]; });
@@ -115,15 +127,11 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
   // Every triangle's cells are looked up: in a hash set, not a sorted list
   // (its binary searches were the largest share of the liver's one-off checks).
   const detail::KeySet covered_set(covered);
-  std::vector<uint8_t> keep(nt, 0);
-  detail::parallel_for(size_t(0), nt, [&](size_t t) {
+  return detail::indices_where(nt, [&](size_t t) {
     bool near = false;
     const bool listed = cells(box_of(t), [&](uint64_t k) { near = near || covered_set.contains(k); });
-    keep[t] = flagged[t] || !listed || near;
+    return flagged[t] || !listed || near;
   });
-  for (size_t t = 0; t < nt; ++t)
-    if (keep[t]) all.push_back(int32_t(t));
-  return all;
 }
 
 IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
@@ -162,8 +170,8 @@ IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<con
   IntersectionReport report;
   if (nt < 2) return report;
 
-  std::vector<Bounds> boxes(nt);
-  std::vector<int8_t> axis(nt);
+  detail::UnsetVector<Bounds> boxes(nt); // each written below, by the thread of its triangle
+  detail::UnsetVector<int8_t> axis(nt);
   detail::parallel_for(size_t(0), nt, [&](size_t t) {
     const auto& tri = m.triangles[t];
     boxes[t] = detail::triangle_bounds(m.points, tri);
