@@ -227,8 +227,13 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index,
                      bool close_folds) {
-  // Ids back to this mesh's nodes (ids ascend with the nodes).
+  // Ids back to this mesh's nodes (ids ascend with the nodes). Ids from 0 to
+  // the last node are the nodes themselves (one process): no search, which
+  // took 10 ms a round on 1M triangles.
+  const auto count = int64_t(node_ids.size());
+  const bool own_ids = count == 0 || (node_ids.front() == 0 && node_ids.back() == count - 1);
   auto local = [&](int64_t id) {
+    if (own_ids) return id >= 0 && id < count ? int32_t(id) : -1;
     const auto at = std::lower_bound(node_ids.begin(), node_ids.end(), id);
     return at != node_ids.end() && *at == id ? int32_t(at - node_ids.begin()) : -1;
   };

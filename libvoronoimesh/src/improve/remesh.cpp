@@ -1,5 +1,6 @@
 #include "voronoimesh/improve/remesh.hpp"
 
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "core/union_find.hpp"
 #include "improve/curve_overshoots.hpp"
@@ -166,11 +167,14 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
   std::vector<std::optional<Candidate>> found(mesh.num_nodes());
   detail::parallel_for_each_index(mesh.num_nodes(),
                                   [&](size_t b) { found[b] = best_collapse(mesh, target, int32_t(b), params); });
-  std::vector<Candidate> candidates;
-  for (const auto& c : found)
-    if (c) candidates.push_back(*c);
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& x, const Candidate& y) { return std::tie(x.ratio, x.b) < std::tie(y.ratio, y.b); });
+  // Gathered and sorted in parallel (a node is b of one candidate at most, so
+  // the order is total and the same for any thread count).
+  const std::vector<int32_t> with = detail::indices_where(found.size(), [&](size_t b) { return found[b].has_value(); });
+  std::vector<Candidate> candidates(with.size());
+  detail::parallel_for_each_index(with.size(), [&](size_t i) { candidates[i] = *found[size_t(with[i])]; });
+  detail::parallel_sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.ratio, x.b) < std::tie(y.ratio, y.b);
+  });
   std::vector<std::pair<int64_t, int64_t>> chosen;
   std::vector<uint8_t> near_b(mesh.num_nodes(), 0), is_b(mesh.num_nodes(), 0);
   const auto& pos = mesh.positions();
