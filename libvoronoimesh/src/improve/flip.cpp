@@ -5,6 +5,7 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/improve/collapse.hpp"
 
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "improve/field_orientation.hpp"
 #include "improve/flip_log.hpp"
@@ -13,6 +14,7 @@
 #include "mesh/node_rings.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -165,9 +167,13 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
         if (banned[size_t(edges[i])]) return;
         judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
       });
-      for (const FlipCandidate& c : judged)
-        if (c.gain > 0) found.push_back(c);
-      std::sort(found.begin(), found.end(), better);
+      // Gathered and sorted in parallel: `better` is a total order (an edge's
+      // nodes are its own), so the list is the same for any thread count.
+      const std::vector<int32_t> gaining =
+          detail::indices_where(judged.size(), [&](size_t i) { return judged[i].gain > 0; });
+      found.resize(gaining.size());
+      detail::parallel_for_each_index(gaining.size(), [&](size_t i) { found[i] = judged[size_t(gaining[i])]; });
+      detail::parallel_sort(found.begin(), found.end(), better);
       if (round == 0) first = {quality.values(), found};
     }
     if (peers ? !peers->any(!found.empty()) : found.empty()) break;
@@ -190,7 +196,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
         for (auto e : om.fe_range(f)) edges.push_back(e.idx());
       }
     }
-    std::sort(edges.begin(), edges.end());
+    detail::parallel_sort(edges.begin(), edges.end(), std::less<int32_t>());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
   }
