@@ -252,9 +252,15 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
   for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
   std::vector<Filing> fresh(m);
+  /// A kept neighbour's entry for the stale triangle: in list `list`, at `at`, the corner to set.
+  struct Renewed {
+    int32_t list;
+    uint32_t at, corner;
+  };
   struct Edits {
     std::vector<uint64_t> left, entered; // cells
     std::vector<int32_t> lost, gained; // slots that stay
+    std::vector<Renewed> renewed;
   };
   std::vector<Edits> edits(m);
   detail::parallel_for_each_index(m, [&](size_t i) {
@@ -312,7 +318,10 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
         near(slot, found[i]);
         // The old list against the new, both sorted by id; stale neighbours
         // write their own lists. A neighbour kept has its entry for this slot
-        // renewed here (no other task writes it): the corner they share may differ.
+        // renewed (no other task writes it): the corner they share may differ.
+        // It is only found here and written below, once every search is done:
+        // an entry's corner shares its 32-bit word with the id that other
+        // tasks' searches of the same list read (ThreadSanitizer saw the race).
         const auto old = near_.at(size_t(slot));
         size_t o = 0;
         for (const Neighbour& s : found[i]) {
@@ -328,10 +337,17 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
           const auto list = near_.at(size_t(s.id));
           const auto mine = std::lower_bound(list.begin(), list.end(), slot,
                                              [](const Neighbour& x, int32_t id) { return x.id < id; });
-          mine->corner = shared_corner(filed_[size_t(s.id)].fans, filed_[size_t(slot)].fans);
+          edits[i].renewed.push_back({s.id, uint32_t(mine - list.begin()),
+                                      shared_corner(filed_[size_t(s.id)].fans, filed_[size_t(slot)].fans)});
         }
         for (; o < old.size(); ++o)
           if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o].id);
+      },
+      16);
+  detail::parallel_for_each_index(
+      m,
+      [&](size_t i) {
+        for (const Renewed& r : edits[i].renewed) near_.at(size_t(r.list))[r.at].corner = r.corner;
       },
       16);
   for (size_t i = 0; i < m; ++i) {
