@@ -50,7 +50,7 @@ struct Found {
 void check_input(const NodeMesh& m, bool needs_pairs) {
   if (needs_pairs && m.pairs.size() != m.triangles.size())
     throw InvalidInput("find_self_intersections: one phase pair per triangle expected");
-  // Scanned in parallel (each check scans the whole mesh); the first bad one is named.
+  // Scanned in parallel (each check scans the whole mesh); of bad node ids, the first bad triangle's is named.
   if (!detail::indices_where(m.points.size(), [&](size_t v) { return !m.points[v].allFinite(); }).empty())
     throw InvalidInput("find_self_intersections: non-finite node coordinate");
   const auto n = int32_t(m.points.size());
