@@ -237,8 +237,13 @@ PYBIND11_MODULE(_voronoimesh, m) {
       .def("junctions", &junctions,
            "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
       .def(
-          "stats_json", [](const Mesh& self) { return vm::to_json(vm::compute_stats(self.mesh)); },
-          "Counts and quality, as 'voronoimesh stats --json' prints them")
+          "stats_json",
+          [](const Mesh& self, size_t worst) {
+            return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh);
+          },
+          py::arg("worst") = 0,
+          "Counts and quality, as 'voronoimesh stats --json [--worst N]' prints them: with worst=N, also the N "
+          "triangles of lowest quality and what meets at their corners ('worst_triangles')")
       .def(
           "write", [](const Mesh& self, const std::string& path, bool ascii) {
             vm::RunOutputs outputs;

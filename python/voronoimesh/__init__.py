@@ -17,9 +17,10 @@ from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_valu
 __all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
 
 
-def _stats(self):
-    """Counts and quality as a dict, the keys of 'voronoimesh stats --json'."""
-    return _json.loads(self.stats_json())
+def _stats(self, worst=0):
+    """Counts and quality as a dict, the keys of 'voronoimesh stats --json'; with worst=N also
+    'worst_triangles': the N triangles of lowest quality and what meets at their corners."""
+    return _json.loads(self.stats_json(worst))
 
 
 def _to_meshio(self):

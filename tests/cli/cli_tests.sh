@@ -14,6 +14,10 @@ for want in "surfaces +10" "triple curves +10" "quadruple points +5" "topology +
 done
 if "$vm" stats --json demo.ply | contains '"surfaces": *10'; then pass; else fail "stats --json"; fi
 if "$vm" stats --json demo.ply | contains '"self_intersections": *0'; then pass; else fail "stats self-intersections"; fi
+# --worst N lists N triangles (a first line each, then one per corner), also in JSON; a negative N is refused.
+if [ "$("$vm" stats --worst 4 demo.ply | grep -cE '^triangle [0-9]+: q ')" = 4 ]; then pass; else fail "stats --worst 4"; fi
+if "$vm" stats --json --worst 2 demo.ply | python3 -c 'import json, sys; w = json.load(sys.stdin)["worst_triangles"]; sys.exit(not (len(w) == 2 and w[0]["quality"] <= w[1]["quality"] and len(w[0]["corners"]) == 3))'; then pass; else fail "stats --json --worst 2"; fi
+if "$vm" stats --worst -1 demo.ply >/dev/null 2>worst.err; then fail "stats --worst -1 accepted"; elif grep -q "worst" worst.err; then pass; else fail "stats --worst -1: $(cat worst.err)"; fi
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 using namespace vm;
 
@@ -159,4 +160,86 @@ TEST(Stats, the_first_percentile_is_the_qualitys_own) {
   EXPECT_GT(s.quality_p01, s.min_quality);
   EXPECT_LT(s.quality_p01, s.mean_quality);
   EXPECT_EQ(nlohmann::json::parse(to_json(s)).at("quality_p01").get<double>(), s.quality_p01);
+}
+
+TEST(Stats, worst_triangles_are_the_lowest_quality_ones_in_order) {
+  const NodeMesh m = test::four_spheres(16);
+  std::vector<std::pair<double, size_t>> q;
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    q.emplace_back(triangle_quality(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]), t);
+  }
+  std::sort(q.begin(), q.end());
+  const std::vector<WorstTriangle> worst = worst_triangles(m, 25);
+  ASSERT_EQ(worst.size(), 25u);
+  for (size_t i = 0; i < worst.size(); ++i) {
+    EXPECT_EQ(worst[i].triangle, q[i].second) << i;
+    EXPECT_EQ(worst[i].quality, q[i].first) << i;
+    EXPECT_EQ(worst[i].pair, m.pairs[worst[i].triangle]);
+    for (size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(worst[i].corners[k].node, m.triangles[worst[i].triangle][k]);
+      EXPECT_EQ(worst[i].corners[k].position, m.points[size_t(worst[i].corners[k].node)]);
+    }
+    EXPECT_GT(worst[i].min_angle_deg, 0.0);
+    EXPECT_LE(worst[i].min_angle_deg, 60.0);
+  }
+  EXPECT_EQ(worst_triangles(m, m.triangles.size() + 5).size(), m.triangles.size());
+  EXPECT_TRUE(worst_triangles(m, 0).empty());
+}
+
+TEST(Stats, worst_triangles_say_what_meets_at_each_corner) {
+  // Every triangle of four_phase_point() has a corner at the centroid (phases
+  // 1-4) or is a face of the tetrahedron; corner v0 = (0, 0, 0) lies in cells
+  // 2, 3 and 4 (cell i is opposite corner i - 1) and in phase 0.
+  NodeMesh m = test::four_phase_point();
+  m.phase_labels = {10, 20, 30, 40, 50};
+  m.phase_names = {"outside", "a", "b", "c", "d"};
+  bool saw_centroid = false, saw_origin = false;
+  for (const WorstTriangle& w : worst_triangles(m, m.triangles.size()))
+    for (const TriangleCorner& c : w.corners) {
+      EXPECT_EQ(c.box_faces, 0); // the fixture's box lies far outside
+      if (c.position.isApprox(Vec3::Constant(0.25))) {
+        EXPECT_EQ(c.phases, (std::vector<int32_t>{1, 2, 3, 4}));
+        saw_centroid = true;
+      } else if (c.position.isZero()) {
+        EXPECT_EQ(c.phases, (std::vector<int32_t>{0, 2, 3, 4}));
+        saw_origin = true;
+      }
+    }
+  EXPECT_TRUE(saw_centroid && saw_origin);
+  // Text and JSON show the phases as the mesh's files do: labels, and names in the text.
+  const std::vector<WorstTriangle> worst = worst_triangles(m, 1);
+  const std::string text = to_text(worst, m);
+  EXPECT_NE(text.find("triangle " + std::to_string(worst[0].triangle) + ": q "), std::string::npos) << text;
+  EXPECT_NE(text.find("4-phase point of "), std::string::npos) << text;
+  EXPECT_NE(text.find("a (20)"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(to_json(compute_stats(m), worst, &m));
+  ASSERT_EQ(j.at("worst_triangles").size(), 1u);
+  const auto& first = j.at("worst_triangles")[0];
+  EXPECT_EQ(first.at("triangle").get<size_t>(), worst[0].triangle);
+  EXPECT_EQ(first.at("quality").get<double>(), worst[0].quality);
+  EXPECT_EQ(first.at("pair").get<std::vector<int32_t>>(),
+            (std::vector<int32_t>{m.label_of(worst[0].pair[0]), m.label_of(worst[0].pair[1])}));
+  for (size_t k = 0; k < 3; ++k) {
+    std::vector<int32_t> labels;
+    for (int32_t p : worst[0].corners[k].phases) labels.push_back(m.label_of(p));
+    EXPECT_EQ(first.at("corners")[k].at("phases").get<std::vector<int32_t>>(), labels);
+  }
+  EXPECT_FALSE(nlohmann::json::parse(to_json(compute_stats(m))).contains("worst_triangles"));
+}
+
+TEST(Stats, worst_triangles_count_the_box_faces_a_corner_lies_on) {
+  // box_t_junction(2): the triple curve x = y = 1/2 runs from z = 0 to z = 1;
+  // its end (1/2, 1/2, 0) lies on one box face, (1/2, 0, 0) on two.
+  const NodeMesh m = test::box_t_junction(2);
+  std::map<std::array<double, 3>, const TriangleCorner*> at;
+  const std::vector<WorstTriangle> worst = worst_triangles(m, m.triangles.size());
+  for (const WorstTriangle& w : worst)
+    for (const TriangleCorner& c : w.corners) at[{c.position.x(), c.position.y(), c.position.z()}] = &c;
+  ASSERT_TRUE(at.count({0.5, 0.5, 0.0}) && at.count({0.5, 0.0, 0.0}) && at.count({0.5, 0.5, 0.5}));
+  EXPECT_EQ(at.at({0.5, 0.5, 0.0})->box_faces, 1);
+  EXPECT_EQ(at.at({0.5, 0.5, 0.0})->phases, (std::vector<int32_t>{0, 1, 2}));
+  EXPECT_EQ(at.at({0.5, 0.0, 0.0})->box_faces, 2);
+  EXPECT_EQ(at.at({0.5, 0.5, 0.5})->box_faces, 0);
+  EXPECT_NE(to_text(worst, m).find("triple curve of 0, 1, 2, on a box face"), std::string::npos);
 }

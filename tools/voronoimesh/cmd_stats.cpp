@@ -14,6 +14,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
   struct Options {
     std::string mesh;
     bool json = false;
+    int worst = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -21,6 +22,12 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       "self-intersections) of a mesh; exit code 4 if a check fails.");
   cmd->add_option("mesh", o->mesh, "Mesh file (.ply written by voronoimesh)")->required();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
+  cmd->add_option("--worst", o->worst,
+                  "Also list the N triangles of lowest quality, worst first: their quality, smallest angle and "
+                  "phases, and what meets at each corner (a surface, a triple curve or a quadruple point, of which "
+                  "phases; whether on the box), to see where and why a mesh loses quality")
+      ->check(CLI::Range(0, 1000000))
+      ->option_text("N");
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
@@ -29,13 +36,15 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       // Only a mesh whose topology is sound can be checked for crossings.
       if (report.ok()) s.self_intersections = vm::find_self_intersections(mesh, 0).count;
       const bool crossing = s.self_intersections.value_or(0) > 0;
+      const std::vector<vm::WorstTriangle> worst = vm::worst_triangles(mesh, size_t(o->worst));
       if (o->json) {
-        std::cout << vm::to_json(s) << "\n";
+        std::cout << vm::to_json(s, worst, &mesh) << "\n";
       } else {
         std::cout << vm::to_text(s);
         std::cout << "topology               "
                   << (!report.ok() ? "INVALID" : crossing ? "INVALID (triangles intersect)" : "valid") << "\n";
         for (const auto& p : report.problems) std::cout << "  " << p << "\n";
+        if (!worst.empty()) std::cout << "worst triangles\n" << vm::to_text(worst, mesh);
       }
       return report.ok() && !crossing ? kOk : kTopology;
     });

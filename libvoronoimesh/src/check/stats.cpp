@@ -6,15 +6,18 @@
 
 #include "core/union_find.hpp"
 #include "mesh/junction_tables.hpp"
+#include "mesh/node_rings.hpp"
 #include "mesh/topology.hpp"
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <tuple>
 
@@ -24,6 +27,12 @@ namespace {
 
 using detail::EdgeTable;
 using detail::Triangles;
+
+/// Whether triangle t is well formed and has a pair, so measured: malformed ones are left
+/// out of every measure (validate() reports them).
+bool measured(const NodeMesh& m, size_t t) {
+  return t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
+}
 
 /// Number of distinct representatives among the items with `keep` set.
 template <class Keep>
@@ -123,7 +132,7 @@ MeshStats compute_stats(const NodeMesh& m) {
   std::vector<char> usable(m.triangles.size());
   std::vector<int32_t> phases;
   for (size_t t = 0; t < m.triangles.size(); ++t) {
-    usable[t] = t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
+    usable[t] = measured(m, t);
     if (usable[t]) phases.insert(phases.end(), m.pairs[t].begin(), m.pairs[t].end());
   }
   std::sort(phases.begin(), phases.end());
@@ -140,6 +149,93 @@ MeshStats compute_stats(const NodeMesh& m) {
   quality_stats(m, usable, s);
   edge_stats(m, et, s);
   return s;
+}
+
+std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
+  std::vector<size_t> order;
+  std::vector<double> quality(m.triangles.size(), 0);
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    if (!measured(m, t)) continue;
+    const auto& tri = m.triangles[t];
+    quality[t] = triangle_quality(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
+    order.push_back(t);
+  }
+  count = std::min(count, order.size());
+  const auto by_quality = [&](size_t a, size_t b) { return std::tie(quality[a], a) < std::tie(quality[b], b); };
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(count), order.end(), by_quality);
+  order.resize(count);
+
+  // The phases at their corners, from every triangle at those nodes.
+  std::map<int32_t, std::vector<int32_t>> phases_at;
+  for (size_t t : order)
+    for (int32_t n : m.triangles[t]) phases_at[n];
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    if (!measured(m, t)) continue;
+    for (int32_t n : m.triangles[t])
+      if (const auto at = phases_at.find(n); at != phases_at.end())
+        at->second.insert(at->second.end(), m.pairs[t].begin(), m.pairs[t].end());
+  }
+  std::vector<Vec3> corner_points;
+  for (auto& [n, phases] : phases_at) {
+    std::sort(phases.begin(), phases.end());
+    phases.erase(std::unique(phases.begin(), phases.end()), phases.end());
+    corner_points.push_back(m.points[size_t(n)]);
+  }
+  const std::vector<uint8_t> box = detail::box_faces_of(corner_points, m.domain);
+  std::map<int32_t, int> box_faces_at;
+  size_t i = 0;
+  for (const auto& entry : phases_at) box_faces_at[entry.first] = std::popcount(unsigned(box[i++]));
+
+  std::vector<WorstTriangle> worst;
+  for (size_t t : order) {
+    WorstTriangle w;
+    w.triangle = t;
+    w.quality = quality[t];
+    w.pair = m.pairs[t];
+    const auto& tri = m.triangles[t];
+    w.min_angle_deg = 180;
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3 &a = m.points[size_t(tri[k])], &b = m.points[size_t(tri[(k + 1) % 3])],
+                 &c = m.points[size_t(tri[(k + 2) % 3])];
+      w.min_angle_deg = std::min(w.min_angle_deg, angle_deg(b - a, c - a));
+      w.corners[k] = {tri[k], a, phases_at[tri[k]], box_faces_at[tri[k]]};
+    }
+    worst.push_back(std::move(w));
+  }
+  return worst;
+}
+
+std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m) {
+  auto phase = [&](int32_t p) {
+    const std::string label = std::to_string(m.label_of(p));
+    const bool named = size_t(p) < m.phase_names.size() && !m.phase_names[size_t(p)].empty();
+    return named ? m.phase_names[size_t(p)] + " (" + label + ")" : label;
+  };
+  auto what = [&](const TriangleCorner& c) {
+    const size_t n = c.phases.size();
+    std::string out = n <= 2 ? "surface" : n == 3 ? "triple curve" : std::to_string(n) + "-phase point";
+    std::string list;
+    for (int32_t p : c.phases) list += (list.empty() ? "" : ", ") + phase(p);
+    out += " of " + list;
+    if (c.box_faces) out += c.box_faces == 1 ? ", on a box face" : ", on " + std::to_string(c.box_faces) + " box faces";
+    return out;
+  };
+  std::string out;
+  char buf[192];
+  for (const WorstTriangle& w : worst) {
+    const auto& c = w.corners;
+    std::snprintf(buf, sizeof buf, "triangle %zu: q %.4f, smallest angle %.2f deg, between %s and %s; edges %.4g %.4g %.4g\n",
+                  w.triangle, w.quality, w.min_angle_deg, phase(w.pair[0]).c_str(), phase(w.pair[1]).c_str(),
+                  (c[1].position - c[0].position).norm(), (c[2].position - c[1].position).norm(),
+                  (c[0].position - c[2].position).norm());
+    out += buf;
+    for (const TriangleCorner& corner : c) {
+      std::snprintf(buf, sizeof buf, "  node %d at (%.6g, %.6g, %.6g): ", corner.node, corner.position.x(),
+                    corner.position.y(), corner.position.z());
+      out += buf + what(corner) + "\n";
+    }
+  }
+  return out;
 }
 
 std::string to_text(const MeshStats& s) {
@@ -179,7 +275,7 @@ std::string to_text(const MeshStats& s) {
   return out;
 }
 
-std::string to_json(const MeshStats& s) {
+std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, const NodeMesh* m) {
   nlohmann::ordered_json j = {
       {"vertices", s.vertices},
       {"triangles", s.triangles},
@@ -202,6 +298,27 @@ std::string to_json(const MeshStats& s) {
       {"rms_edge", s.rms_edge},
   };
   if (s.self_intersections) j["self_intersections"] = *s.self_intersections;
+  if (!worst.empty()) {
+    auto label = [&](int32_t p) { return m ? m->label_of(p) : p; };
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const WorstTriangle& w : worst) {
+      nlohmann::ordered_json corners = nlohmann::ordered_json::array();
+      for (const TriangleCorner& c : w.corners) {
+        std::vector<int32_t> phases;
+        for (int32_t p : c.phases) phases.push_back(label(p));
+        corners.push_back({{"node", c.node},
+                           {"position", {c.position.x(), c.position.y(), c.position.z()}},
+                           {"phases", phases},
+                           {"box_faces", c.box_faces}});
+      }
+      list.push_back({{"triangle", w.triangle},
+                      {"quality", w.quality},
+                      {"min_angle_deg", w.min_angle_deg},
+                      {"pair", {label(w.pair[0]), label(w.pair[1])}},
+                      {"corners", corners}});
+    }
+    j["worst_triangles"] = list;
+  }
   return j.dump(2);
 }
 

@@ -7,7 +7,9 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace vm {
 
@@ -51,11 +53,48 @@ struct MeshStats {
 /// @return its counts and measures; self_intersections is left unset
 MeshStats compute_stats(const NodeMesh& m);
 
+/// A corner of a triangle as worst_triangles() reports it: what meets there.
+struct TriangleCorner {
+  int32_t node = -1;            ///< the node's id
+  Vec3 position = Vec3::Zero(); ///< where it is
+  /// The phases of the triangles at the node, ascending: two on a surface,
+  /// three on a triple curve, four or more at a quadruple or higher point.
+  std::vector<int32_t> phases;
+  int box_faces = 0; ///< faces of the domain box the node lies on (0: inside)
+};
+
+/// One of the worst triangles of a mesh (worst_triangles()).
+struct WorstTriangle {
+  size_t triangle = 0;                   ///< its index
+  double quality = 0;                    ///< q (triangle_quality())
+  double min_angle_deg = 0;              ///< its smallest angle
+  PhasePair pair{};                      ///< the phases it separates
+  std::array<TriangleCorner, 3> corners; ///< its corners, in its node order
+};
+
+/// The `count` triangles of lowest quality, worst first (ties by index), with
+/// what meets at their corners: where a mesh loses its quality and why (a
+/// sliver between two triple curves, at a quadruple point, on the box).
+/// Malformed triangles (validate() reports them) are left out. Linear in the
+/// mesh size.
+/// @param m the mesh
+/// @param count how many at most
+/// @return the worst triangles, worst first
+std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count);
+
 /// Human-readable multi-line summary.
 /// @param s the measures to show
 std::string to_text(const MeshStats& s);
 /// One JSON object.
 /// @param s the measures to write
-std::string to_json(const MeshStats& s);
+/// @param worst worst_triangles() to add as "worst_triangles" (none: the key is left out)
+/// @param m the mesh they are of: phases are written as its files show them (NodeMesh::phase_labels)
+std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst = {}, const NodeMesh* m = nullptr);
+
+/// The worst triangles as text, a few lines each, with phases as `m`'s files
+/// show them and their names where `m` has them.
+/// @param worst worst_triangles() of `m`
+/// @param m the mesh
+std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m);
 
 } // namespace vm
