@@ -32,8 +32,9 @@ void Report::stage(vm::Stage, const std::string& what) { status(what); }
 
 void Report::input_read(const std::string&, const vm::Scene& scene, double seconds) {
   if (!tell_input_) return;
+  // The input's own grid, which --grid overrides (the create line names the grid used).
   char line[160];
-  std::snprintf(line, sizeof line, "input: %d phases, grid %dx%dx%d; read and phase functions %.3f s",
+  std::snprintf(line, sizeof line, "input: %d phases, default grid %dx%dx%d; read and phase functions %.3f s",
                 scene.field->num_phases(), scene.grid.cells[0], scene.grid.cells[1], scene.grid.cells[2], seconds);
   say(scene.world.empty() ? std::string(line) : std::string(line) + "; world " + scene.world);
 }
