@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the project with sanitizers and runs the test suite under them:
 #   asan  AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, every test (build-asan/)
-#   tsan  ThreadSanitizer, every test (build-tsan/): each parallel pass runs on TBB's
+#   tsan  ThreadSanitizer, every test but install (build-tsan/; see below): each parallel pass runs on TBB's
 #         threads in the create, improve, sample, guard, flip and determinism tests.
 #         Debian's libtbb is not instrumented; the library's parallel calls tell TSan
 #         what TBB guarantees instead (libvoronoimesh/src/core/tbb_sanitizer.hpp).
@@ -36,9 +36,17 @@ export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:verify_asan_link_order=0:stri
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
 
+# Under ThreadSanitizer the install test's consumers (uninstrumented programs
+# linked against the instrumented library) deadlock as they exit: libp11-kit's
+# destructor (HDF5 -> curl -> gnutls -> p11-kit) waits in freelocale() on
+# glibc's locale lock, with no other thread running (gdb, 2026-12-02). Nothing
+# of ours is on that stack, and each consumer would hang until the timeout, so
+# the tsan build leaves that test out.
+tsan_skip=(-E '^install$')
+
 case "$variant" in
   asan) run asan address,undefined "$@" ;;
-  tsan) run tsan thread "$@" ;;
-  all) run asan address,undefined "$@" && run tsan thread "$@" ;;
+  tsan) run tsan thread "${tsan_skip[@]}" "$@" ;;
+  all) run asan address,undefined "$@" && run tsan thread "${tsan_skip[@]}" "$@" ;;
   *) echo "usage: scripts/test_sanitizers.sh [asan|tsan|all] [ctest arguments]" >&2; exit 2 ;;
 esac

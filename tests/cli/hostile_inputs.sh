@@ -92,10 +92,11 @@ else fail "a failing write: exit $got, $(cat limit.txt), left $(find limited -ty
 # 8. A gzip NRRD whose header claims far more than its data: memory touched grows
 # with what inflates, not with the claim (2 GiB claimed, run within 600 MB).
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2048 1024 1024\nencoding: gzip\n\n'; head -c 2200000 /dev/urandom; } >claims.nrrd
-# AddressSanitizer reserves terabytes of address space for its shadow, so an
-# instrumented build (scripts/test_sanitizers.sh) runs without the limit.
+# AddressSanitizer and ThreadSanitizer reserve terabytes of address space for
+# their shadow, so an instrumented build (scripts/test_sanitizers.sh) runs
+# without the limit.
 limit=600000
-if [ "$(ldd "$vm" 2>/dev/null | grep -c libasan || true)" != 0 ]; then limit=unlimited; fi
+if [ "$(ldd "$vm" 2>/dev/null | grep -cE 'lib(asan|tsan)' || true)" != 0 ]; then limit=unlimited; fi
 expect_error "gzip NRRD claiming 2 GiB" 2 "claims\.nrrd: its file is not valid gzip data" -- \
   bash -c 'ulimit -v "$1" && exec "$0" create claims.nrrd -o out.ply' "$vm" "$limit"
 
