@@ -105,10 +105,14 @@ fi
 
 command_of() { local c=${1##*|}; echo "${c//OUTPUT/$OUT/$2.ply}"; }
 
-# Alternate: round r runs every case once, in order, so slow drifts of the
-# machine (heat, other load) spread over all of them.
+# Alternate: round r runs every case once, so slow drifts of the machine (heat,
+# other load) spread over all of them; and each round starts one case further
+# on, so no case always follows the same one (in a fixed order the default
+# liver run always came after CGAL's sequential grains run, and its reading of
+# the volume took 0.7-0.8 s there against 0.3 s after a run of its own).
 for ((r = 1; r <= REPS; ++r)); do
-  for c in "${cases[@]}"; do
+  for ((i = 0; i < ${#cases[@]}; ++i)); do
+    c=${cases[(i + r - 1) % ${#cases[@]}]}
     name=${c%%|*}
     echo "run $r/$REPS: $name" >&2
     # shellcheck disable=SC2046 # the command is split into words on purpose
