@@ -106,13 +106,19 @@ fi
 command_of() { local c=${1##*|}; echo "${c//OUTPUT/$OUT/$2.ply}"; }
 
 # Alternate: round r runs every case once, so slow drifts of the machine (heat,
-# other load) spread over all of them; and each round starts one case further
-# on, so no case always follows the same one (in a fixed order the default
-# liver run always came after CGAL's sequential grains run, and its reading of
-# the volume took 0.7-0.8 s there against 0.3 s after a run of its own).
+# other load) spread over all of them; and each round takes them in another
+# order (a stride through the list coprime with its length: 1, then the next),
+# so a case follows another case each round. In one fixed order the default
+# liver run always came after CGAL's sequential grains run; reading the volume
+# then took 0.75-0.8 s, and 0.28 s right after another voronoimesh run.
+gcd() { local a=$1 b=$2; while ((b)); do local t=$((a % b)); a=$b; b=$t; done; echo "$a"; }
+stride=0
 for ((r = 1; r <= REPS; ++r)); do
-  for ((i = 0; i < ${#cases[@]}; ++i)); do
-    c=${cases[(i + r - 1) % ${#cases[@]}]}
+  n=${#cases[@]}
+  stride=$((stride + 1))
+  while (($(gcd "$stride" "$n") != 1)); do stride=$((stride + 1)); done
+  for ((i = 0; i < n; ++i)); do
+    c=${cases[(i * stride + r - 1) % n]}
     name=${c%%|*}
     echo "run $r/$REPS: $name" >&2
     # shellcheck disable=SC2046 # the command is split into words on purpose
