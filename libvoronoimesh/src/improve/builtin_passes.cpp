@@ -128,9 +128,14 @@ void register_builtin_passes(PassRegistry& registry) {
   registry.add(make_info(
       "project", "Newton steps onto surfaces, triple curves and quadruple points with the original phases (eq. 4)",
       {{"min_gradient_gap", ProjectParams{}.min_gradient_gap, 0.0, 1.0, false,
-        "skip phase pairs whose gradients differ by less (sect. 4.2.2)"}},
+        "skip phase pairs whose gradients differ by less (sect. 4.2.2)"},
+       {"least_squares_from", double(ProjectParams{}.least_squares_from), 0, 8, true,
+        "nodes of this many phases or more (0: none; 4: quadruple points) take a least-squares Newton step onto "
+        "all their pairs at once instead of eq. 4's mean: junctions exact where eq. 4 converges slowly, at the "
+        "cost of the worst triangle (not in the paper)"}},
       true, true, true, [](PassContext& c, const ParamValues& p) {
-        add_projection(c.mesh, *c.field, ProjectParams{p.at("min_gradient_gap")}, c.displacement());
+        add_projection(c.mesh, *c.field, ProjectParams{p.at("min_gradient_gap"), int(p.at("least_squares_from"))},
+                       c.displacement());
       }));
   registry.add(make_info(
       "clamp", "scale each pending move so that no triangle can invert (Alg. 3, eq. 5)",

@@ -5,9 +5,41 @@
 #include "core/parallel.hpp"
 #include "improve/field_checks.hpp"
 
+#include <Eigen/SVD>
+
 #include <array>
 
 namespace vm {
+
+namespace {
+
+/// Singular values below this share of the largest are taken as zero: the step
+/// has no part along directions no pair's equation constrains (along a curve).
+constexpr double kRankThreshold = 1e-3;
+
+/// The least-norm step d with (grad_i - grad_j) . d = -(phi_i - phi_j) for
+/// every pair, in the least-squares sense (ProjectParams::least_squares_from);
+/// pairs whose gradients differ by no more than sqrt(min_gap2) are left out.
+Vec3 least_squares_step(std::span<const double> phi, std::span<const Vec3> grad, double min_gap2) {
+  const size_t n = phi.size();
+  Eigen::Matrix<double, Eigen::Dynamic, 3> J(n * (n - 1) / 2, 3);
+  Eigen::VectorXd r(n * (n - 1) / 2);
+  Eigen::Index rows = 0;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j) {
+      const Vec3 dg = grad[i] - grad[j];
+      if (dg.squaredNorm() <= min_gap2) continue;
+      J.row(rows) = dg.transpose();
+      r(rows++) = -(phi[i] - phi[j]);
+    }
+  if (rows == 0) return Vec3::Zero();
+  Eigen::JacobiSVD<Eigen::Matrix<double, Eigen::Dynamic, 3>> svd(J.topRows(rows),
+                                                                 Eigen::ComputeThinU | Eigen::ComputeThinV);
+  svd.setThreshold(kRankThreshold);
+  return svd.solve(r.head(rows));
+}
+
+} // namespace
 
 Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
                      const ProjectParams& params) {
@@ -20,6 +52,8 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
     grad[i] = field.gradient(phases[i], x);
   }
   const double min_gap2 = params.min_gradient_gap * params.min_gradient_gap;
+  if (params.least_squares_from > 0 && n >= size_t(params.least_squares_from))
+    return least_squares_step({phi.data(), n}, {grad.data(), n}, min_gap2);
   Vec3 p = Vec3::Zero();
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
