@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <tuple>
 
@@ -152,10 +151,13 @@ MeshStats compute_stats(const NodeMesh& m) {
 }
 
 std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
-  std::vector<size_t> order;
+  if (count == 0) return {}; // `stats` without --worst: no pass over the triangles
+  std::vector<char> usable(m.triangles.size());
   std::vector<double> quality(m.triangles.size(), 0);
+  std::vector<size_t> order;
   for (size_t t = 0; t < m.triangles.size(); ++t) {
-    if (!measured(m, t)) continue;
+    usable[t] = measured(m, t);
+    if (!usable[t]) continue;
     const auto& tri = m.triangles[t];
     quality[t] = triangle_quality(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
     order.push_back(t);
@@ -165,27 +167,10 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
   std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(count), order.end(), by_quality);
   order.resize(count);
 
-  // The phases at their corners, from every triangle at those nodes.
-  std::map<int32_t, std::vector<int32_t>> phases_at;
-  for (size_t t : order)
-    for (int32_t n : m.triangles[t]) phases_at[n];
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    if (!measured(m, t)) continue;
-    for (int32_t n : m.triangles[t])
-      if (const auto at = phases_at.find(n); at != phases_at.end())
-        at->second.insert(at->second.end(), m.pairs[t].begin(), m.pairs[t].end());
-  }
-  std::vector<Vec3> corner_points;
-  for (auto& [n, phases] : phases_at) {
-    std::sort(phases.begin(), phases.end());
-    phases.erase(std::unique(phases.begin(), phases.end()), phases.end());
-    corner_points.push_back(m.points[size_t(n)]);
-  }
-  const std::vector<uint8_t> box = detail::box_faces_of(corner_points, m.domain);
-  std::map<int32_t, int> box_faces_at;
-  size_t i = 0;
-  for (const auto& entry : phases_at) box_faces_at[entry.first] = std::popcount(unsigned(box[i++]));
-
+  // What meets at their corners: the node tables compute_stats() builds.
+  const detail::NodePhases np =
+      detail::node_phases(detail::node_triangles(m.points.size(), m.triangles, &usable), m.pairs);
+  const std::vector<uint8_t> box = detail::box_faces_of(m.points, m.domain);
   std::vector<WorstTriangle> worst;
   for (size_t t : order) {
     WorstTriangle w;
@@ -195,10 +180,11 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
     const auto& tri = m.triangles[t];
     w.min_angle_deg = 180;
     for (size_t k = 0; k < 3; ++k) {
-      const Vec3 &a = m.points[size_t(tri[k])], &b = m.points[size_t(tri[(k + 1) % 3])],
-                 &c = m.points[size_t(tri[(k + 2) % 3])];
+      const auto n = size_t(tri[k]);
+      const Vec3 &a = m.points[n], &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
       w.min_angle_deg = std::min(w.min_angle_deg, angle_deg(b - a, c - a));
-      w.corners[k] = {tri[k], a, phases_at[tri[k]], box_faces_at[tri[k]]};
+      const auto phases = np.of(n);
+      w.corners[k] = {tri[k], a, {phases.begin(), phases.end()}, std::popcount(unsigned(box[n]))};
     }
     worst.push_back(std::move(w));
   }
