@@ -21,24 +21,27 @@ inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 /// remeshing, curve nodes bunch where a triple curve turns tightly and leave
 /// triangles with three corners on the curve: 0.15 lifts the worst triangle of
 /// the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain polycrystal from
-/// 0.052 to 0.158. Label volumes collapse below 0.3 (kLabelVolumePipeline),
-/// the scenes below 0.5 (kScenePipeline).
+/// 0.052 to 0.158. The remeshing defaults for label volumes
+/// (kLabelVolumePipeline) and scenes (kScenePipeline) collapse below 0.5.
 inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:collapse_below=0.15";
 
 /// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
 /// is the voxel grid, finer than their surfaces need, so the remesh pass first
 /// coarsens the mesh to edges 1.4 times the lattice's (about half the triangles),
-/// then the paper's passes, with junction slivers below q 0.3 collapsed. Against
-/// 0.15 (kPassesAfterRemesh), measured 2026-11-27 on 17 volume and cell-size
-/// pairs: the 60-grain polycrystal's worst triangle rose at every cell size
-/// (0.174 -> 0.293 at its default and 1 voxel per cell, 0.166 -> 0.223 at 1.4,
-/// 0.163 -> 0.234 at 2, 0.161 -> 0.305 at 3; closed 0.158 -> 0.293) for 4-7%
-/// more time; the liver fell at 1 voxel per cell (0.352 -> 0.328); the other 11
-/// (the liver at its default, 1.4, 2 and 3, the CT-like volume at its default,
-/// 1, 1.5, 2 and 3, 20 grains at 1 and 1.4) made the same worst triangle. An
-/// earlier try (before curve ends past their quadruple point merged into it)
-/// had found no gain on the 60 grains.
-inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.3";
+/// then the paper's passes, with junction slivers below q 0.5 collapsed, as in
+/// the scenes' default. Against 0.3 (the default from 2026-11-27, when it beat
+/// 0.15 on the 60 grains), measured 2026-12-02 on 33 volume and cell-size pairs
+/// (the liver at its default cells and 1, 1.4, 2 and 3 voxels per cell, the
+/// CT-like volume at its default, 1.5, 2, 2.4 and 3, seven 60-grain and three
+/// 150-grain polycrystals, 20 and 30 grains, two ellipsoid volumes, random and
+/// tiny volumes): the worst triangle rose on 17 (the liver 0.424 -> 0.511, at 3
+/// voxels per cell 0.339 -> 0.551; the 60 grains 0.293 -> 0.335, at 1.4 voxels
+/// per cell 0.220 -> 0.315; 20 grains at 1.4 0.331 -> 0.527), fell on 2 (128^3
+/// ellipsoids 0.573 -> 0.561, 150 grains 0.169 -> 0.168) and was the same on the
+/// rest, for about 0.06 s more flipping on the liver (the collapses of
+/// iterations 2 to 6). 0.3 came before curve ends past their quadruple point
+/// merged into it, which is when the scenes went to 0.5.
+inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.5";
 
 /// The default for every other input created from phase functions (scenes,
 /// distance grids, point clouds; run/meshing.hpp, pipeline_for()): the remesh
