@@ -17,6 +17,8 @@ namespace {
 /// The quality floor lets a node approach its interface (see commit()) only
 /// when it is farther off than this fraction of the spoilt triangle's longest edge.
 constexpr double kFarFromInterface = 0.02;
+/// Moves of fewer than one node in this many are placed node by node.
+constexpr size_t kFewMoves = 16;
 
 } // namespace
 
@@ -48,18 +50,33 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   auto agrees = [&](size_t t) {
     return detail::agrees_with_field(points, triangles[t], mesh.pair(OMesh::FaceHandle(int(t))), *field);
   };
+  std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
+  detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
+  // Only a triangle with a moved corner can turn against its pair, now or in
+  // a later round (which puts back nodes that moved): the others need not be
+  // asked (a commit of a few polished nodes asked every junction triangle).
   std::vector<int32_t> watched;
   std::vector<uint8_t> agreed;
   if (field) {
-    watched = detail::indices_where(triangles.size(),
-                                    [&](size_t t) { return detail::touches_junction(mesh, triangles[t]); });
+    watched = detail::indices_where(triangles.size(), [&](size_t t) {
+      const auto& tri = triangles[t];
+      return (moved[size_t(tri[0])] | moved[size_t(tri[1])] | moved[size_t(tri[2])]) &&
+             detail::touches_junction(mesh, tri);
+    });
     agreed.resize(watched.size());
     detail::parallel_for_each_index(watched.size(), [&](size_t i) { agreed[i] = agrees(size_t(watched[i])); });
   }
   const std::vector<Vec3> before = points;
-  mesh.move_nodes(delta);
-  std::vector<uint8_t> moved(mesh.num_nodes()), changed(mesh.num_nodes());
-  detail::parallel_for_each_index(moved.size(), [&](size_t n) { changed[n] = moved[n] = !delta[n].isZero(0); });
+  // A few moves (the polish pass's) are placed one by one, which keeps the
+  // mesh's qualities current for the floor below instead of computing all anew.
+  const std::vector<int32_t> movers = detail::indices_where(moved.size(), [&](size_t n) { return moved[n] != 0; });
+  if (kFewMoves * movers.size() < moved.size()) {
+    std::vector<Vec3> to(movers.size());
+    for (size_t i = 0; i < movers.size(); ++i) to[i] = points[size_t(movers[i])] + delta[size_t(movers[i])];
+    mesh.place_nodes(movers, to);
+  } else {
+    mesh.move_nodes(delta);
+  }
   std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), spoilt(triangles.size());
   // The floor does not hold a node far from its surface or curve: a move that at
   // least halves the node's eq. 4 step (to first order, its distance from where
