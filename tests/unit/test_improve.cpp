@@ -305,21 +305,25 @@ TEST(Improve, paper_pipeline_reaches_the_quality_aim_on_the_four_spheres) {
   EXPECT_EQ(s.quadruple_points, 5u);
 }
 
+// The paper's pipeline, and the scenes' default (remesh, collapses, and the
+// polish pass from iteration 6).
 TEST(Improve, output_is_identical_for_any_thread_count) {
   Scene scene = example("voronoi30.json", 32);
-  NodeMesh reference;
-  for (int threads : {1, 2, 8}) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    InterfaceMesh mesh = initial_mesh(scene);
-    Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(8));
-    NodeMesh m = mesh.to_node_mesh();
-    if (threads == 1) {
-      reference = m;
-      continue;
+  for (const char* pipeline : {kDefaultPipeline, kScenePipeline}) {
+    NodeMesh reference;
+    for (int threads : {1, 2, 8}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+      InterfaceMesh mesh = initial_mesh(scene);
+      Pipeline::parse(pipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(8));
+      NodeMesh m = mesh.to_node_mesh();
+      if (threads == 1) {
+        reference = m;
+        continue;
+      }
+      EXPECT_EQ(m.points, reference.points) << pipeline << ", " << threads << " threads";
+      EXPECT_EQ(m.triangles, reference.triangles) << pipeline << ", " << threads << " threads";
+      EXPECT_EQ(m.pairs, reference.pairs) << pipeline << ", " << threads << " threads";
     }
-    EXPECT_EQ(m.points, reference.points) << threads << " threads";
-    EXPECT_EQ(m.triangles, reference.triangles) << threads << " threads";
-    EXPECT_EQ(m.pairs, reference.pairs) << threads << " threads";
   }
 }
 
@@ -416,55 +420,6 @@ TEST(Clamp, scales_each_move_by_the_least_step_of_the_nodes_triangles) {
     held += scale < 1;
   }
   EXPECT_GT(held, delta.size() / 4);
-}
-
-TEST(Project, step_lands_on_a_plane_and_a_sphere_interface) {
-  Scene s = parse_scene(R"({"phases": [{"kind": "constant", "value": 0},
-      {"kind": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]},
-      {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.25}]})",
-                        "inline");
-  std::array<int32_t, 2> pair01{0, 1}, pair02{0, 2};
-  Vec3 x(0.3, 0.6, 0.55);
-  x += projection_step(*s.field, x, pair01);
-  EXPECT_NEAR(x.z(), 0.5, 1e-12); // linear: exact in one step
-  Vec3 y(0.5, 0.5, 0.9);
-  for (int i = 0; i < 5; ++i) y += projection_step(*s.field, y, pair02);
-  EXPECT_NEAR((y - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-12);
-  std::array<int32_t, 3> triple{0, 1, 2};
-  Vec3 z(0.6, 0.5, 0.6);
-  for (int i = 0; i < 30; ++i) z += projection_step(*s.field, z, triple);
-  EXPECT_NEAR(z.z(), 0.5, 1e-9); // on the circle where the plane cuts the sphere
-  EXPECT_NEAR((z - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-9);
-}
-
-// Four Voronoi seeds almost in one plane: their quadruple point is well defined
-// (the four distances equal), but the six pairs' gradient differences nearly
-// share a plane, and eq. 4's mean of the pairs' steps crawls along its normal.
-// The least-squares step (ProjectParams::least_squares_from) converges at
-// Newton's rate; for two phases it is eq. 4's own step.
-TEST(Project, least_squares_reaches_a_quadruple_point_that_eq4_approaches_slowly) {
-  Scene s = parse_scene(R"({"phases": [{"kind": "seeds", "points": [[0.2, 0.2, 0.5]]},
-      {"kind": "seeds", "points": [[0.8, 0.2, 0.5]]}, {"kind": "seeds", "points": [[0.2, 0.8, 0.5]]},
-      {"kind": "seeds", "points": [[0.8, 0.8, 0.56]]}]})",
-                        "inline");
-  const std::array<int32_t, 4> all{0, 1, 2, 3};
-  // The point equidistant from the four seeds: x = y = 0.5 by symmetry, z from |p - s0| = |p - s3|.
-  const double z = (0.56 * 0.56 - 0.5 * 0.5) / (2 * (0.56 - 0.5));
-  const Vec3 exact(0.5, 0.5, z);
-  auto iterate = [&](const ProjectParams& params, int steps) {
-    Vec3 x = exact + Vec3(0.02, -0.01, 0.05);
-    for (int i = 0; i < steps; ++i) x += projection_step(*s.field, x, all, params);
-    return (x - exact).norm();
-  };
-  ProjectParams least_squares;
-  least_squares.least_squares_from = 4;
-  EXPECT_LT(iterate(least_squares, 6), 1e-9);
-  EXPECT_GT(iterate(ProjectParams{}, 60), 0.02); // eq. 4: most of the 0.055 still to go after sixty
-  // Two phases: one pair, and the same step either way.
-  const std::array<int32_t, 2> pair{0, 3};
-  least_squares.least_squares_from = 2;
-  const Vec3 x(0.4, 0.45, 0.7);
-  EXPECT_LT((projection_step(*s.field, x, pair, least_squares) - projection_step(*s.field, x, pair)).norm(), 1e-15);
 }
 
 TEST(Flip, improves_quality_and_never_touches_junctions) {
@@ -588,7 +543,7 @@ TEST(Registry, lists_the_builtin_passes_with_schemas) {
   const PassRegistry registry = builtin_registry();
   std::vector<std::string> names;
   for (const PassInfo* p : registry.all()) names.push_back(p->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "project", "remesh", "smooth", "stats"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "polish", "project", "remesh", "smooth", "stats"}));
   EXPECT_EQ(registry.get("smooth").params.at(0).default_value, 1.2);
   PassRegistry r2 = builtin_registry();
   PassInfo dup;

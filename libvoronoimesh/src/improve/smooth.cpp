@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 #include "improve/field_checks.hpp"
 #include "improve/edge_lengths.hpp"
+#include "improve/tangential.hpp"
 #include "mesh/node_rings.hpp"
 
 #include <algorithm>
@@ -11,41 +12,6 @@
 #include <cmath>
 
 namespace vm {
-namespace {
-
-/// Phases of node n as a span of ids.
-std::span<const int16_t> phases_of(const InterfaceMesh& m, int32_t n) {
-  const PhaseSet& s = m.phases()[size_t(n)];
-  return {s.data(), size_t(phase_count(s))};
-}
-
-/// Removes from `force` its components across the node's constraints: the
-/// normals grad phi_0 - grad phi_i of its phases and the axes of its box faces.
-/// False when a gradient is not finite.
-bool keep_tangential(const PhaseField& field, std::span<const int16_t> phases, uint8_t box_faces, const Vec3& x,
-                     Vec3& force) {
-  std::array<Vec3, 5> normals;
-  size_t count = 0;
-  if (phases.size() >= 2) {
-    const Vec3 g0 = field.gradient(phases[0], x);
-    for (size_t i = 1; i < phases.size() && count < 2; ++i) normals[count++] = g0 - field.gradient(phases[i], x);
-  }
-  for (int a = 0; a < 3; ++a)
-    if (box_faces >> (2 * a) & 3u) normals[count++] = Vec3::Unit(a);
-  // Gram-Schmidt: each normal loses its parts along the earlier ones; one that
-  // is (almost) in their span adds no constraint.
-  for (size_t i = 0; i < count; ++i) {
-    Vec3 n = normals[i];
-    if (!n.allFinite()) return false;
-    for (size_t j = 0; j < i; ++j) n -= n.dot(normals[j]) * normals[j];
-    const double len = n.norm();
-    normals[i] = len > 1e-6 * normals[i].norm() ? Vec3(n / len) : Vec3::Zero();
-    force -= force.dot(normals[i]) * normals[i];
-  }
-  return true;
-}
-
-} // namespace
 
 int junction_order(const InterfaceMesh& mesh, int32_t n) {
   return detail::junction_order(mesh.phases()[size_t(n)], mesh.box_faces()[size_t(n)]);
@@ -141,7 +107,7 @@ void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const Phas
     // Laplacian's pull toward the curve's centre of curvature is such a
     // component too, and would hold curve nodes off their curve by O(h) in
     // balance with the projection.
-    if (!keep_tangential(field, phases_of(mesh, v), mesh.box_faces()[vi], x, force)) {
+    if (!detail::keep_tangential(mesh, field, v, x, force)) {
       not_finite[vi] = 1;
       return;
     }

@@ -1,0 +1,65 @@
+/// @file test_project.cpp
+/// Newton steps onto surfaces, triple curves and quadruple points (eq. 4 and
+/// the least-squares step, improve/project.hpp).
+
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/project.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+
+namespace {
+
+using namespace vm;
+
+TEST(Project, step_lands_on_a_plane_and_a_sphere_interface) {
+  Scene s = parse_scene(R"({"phases": [{"kind": "constant", "value": 0},
+      {"kind": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]},
+      {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.25}]})",
+                        "inline");
+  std::array<int32_t, 2> pair01{0, 1}, pair02{0, 2};
+  Vec3 x(0.3, 0.6, 0.55);
+  x += projection_step(*s.field, x, pair01);
+  EXPECT_NEAR(x.z(), 0.5, 1e-12); // linear: exact in one step
+  Vec3 y(0.5, 0.5, 0.9);
+  for (int i = 0; i < 5; ++i) y += projection_step(*s.field, y, pair02);
+  EXPECT_NEAR((y - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-12);
+  std::array<int32_t, 3> triple{0, 1, 2};
+  Vec3 z(0.6, 0.5, 0.6);
+  for (int i = 0; i < 30; ++i) z += projection_step(*s.field, z, triple);
+  EXPECT_NEAR(z.z(), 0.5, 1e-9); // on the circle where the plane cuts the sphere
+  EXPECT_NEAR((z - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-9);
+}
+
+// Four Voronoi seeds almost in one plane: their quadruple point is well defined
+// (the four distances equal), but the six pairs' gradient differences nearly
+// share a plane, and eq. 4's mean of the pairs' steps crawls along its normal.
+// The least-squares step (ProjectParams::least_squares_from) converges at
+// Newton's rate; for two phases it is eq. 4's own step.
+TEST(Project, least_squares_reaches_a_quadruple_point_that_eq4_approaches_slowly) {
+  Scene s = parse_scene(R"({"phases": [{"kind": "seeds", "points": [[0.2, 0.2, 0.5]]},
+      {"kind": "seeds", "points": [[0.8, 0.2, 0.5]]}, {"kind": "seeds", "points": [[0.2, 0.8, 0.5]]},
+      {"kind": "seeds", "points": [[0.8, 0.8, 0.56]]}]})",
+                        "inline");
+  const std::array<int32_t, 4> all{0, 1, 2, 3};
+  // The point equidistant from the four seeds: x = y = 0.5 by symmetry, z from |p - s0| = |p - s3|.
+  const double z = (0.56 * 0.56 - 0.5 * 0.5) / (2 * (0.56 - 0.5));
+  const Vec3 exact(0.5, 0.5, z);
+  auto iterate = [&](const ProjectParams& params, int steps) {
+    Vec3 x = exact + Vec3(0.02, -0.01, 0.05);
+    for (int i = 0; i < steps; ++i) x += projection_step(*s.field, x, all, params);
+    return (x - exact).norm();
+  };
+  ProjectParams least_squares;
+  least_squares.least_squares_from = 4;
+  EXPECT_LT(iterate(least_squares, 6), 1e-9);
+  EXPECT_GT(iterate(ProjectParams{}, 60), 0.02); // eq. 4: most of the 0.055 still to go after sixty
+  // Two phases: one pair, and the same step either way.
+  const std::array<int32_t, 2> pair{0, 3};
+  least_squares.least_squares_from = 2;
+  const Vec3 x(0.4, 0.45, 0.7);
+  EXPECT_LT((projection_step(*s.field, x, pair, least_squares) - projection_step(*s.field, x, pair)).norm(), 1e-15);
+}
+
+} // namespace
