@@ -60,6 +60,19 @@ double fan_quality(std::span<const Vec3> p, const Fan& fan, const Vec3& y) {
   return worst;
 }
 
+/// True when a move of node n from x to y goes at most half its distance
+/// towards each box face it is not on (the smooth pass's rule), so that no
+/// node leaves the box.
+bool stays_in_box(const InterfaceMesh& mesh, int32_t n, const Vec3& x, const Vec3& y) {
+  const Box& box = mesh.domain();
+  const uint8_t on = mesh.box_faces()[size_t(n)];
+  for (int a = 0; a < 3; ++a) {
+    if (!(on >> (2 * a) & 1u) && y[a] - box.min[a] < 0.5 * (x[a] - box.min[a])) return false;
+    if (!(on >> (2 * a + 1) & 1u) && box.max[a] - y[a] < 0.5 * (box.max[a] - x[a])) return false;
+  }
+  return true;
+}
+
 /// The directions a node of `order` 2 or 3 tries at x, tangential to its constraints.
 std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
                                    const Fan& fan) {
@@ -73,6 +86,7 @@ std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& 
       if (!detail::keep_tangential(mesh, field, n, x, d)) return directions;
       if (d.norm() > tangent.norm()) tangent = d;
     }
+    constrain_to_box(tangent, mesh.box_faces()[size_t(n)]); // exactly: Gram-Schmidt leaves round-off
     if (!(tangent.norm() > 1e-6)) return directions;
     tangent.normalize();
     return {tangent, -tangent};
@@ -86,6 +100,8 @@ std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& 
   Vec3 u = normal.unitOrthogonal(), v = normal.cross(u);
   if (!detail::keep_tangential(mesh, field, n, x, u) || !detail::keep_tangential(mesh, field, n, x, v))
     return directions;
+  constrain_to_box(u, mesh.box_faces()[size_t(n)]); // exactly: Gram-Schmidt leaves round-off
+  constrain_to_box(v, mesh.box_faces()[size_t(n)]);
   if (!(u.norm() > 1e-6)) return directions;
   u.normalize();
   v -= v.dot(u) * u;
@@ -107,12 +123,13 @@ size_t add_polish_moves(const InterfaceMesh& mesh, const PhaseField& field, cons
   const auto& p = mesh.positions();
   const std::vector<int32_t> bad =
       detail::indices_where(triangles.size(), [&](size_t t) { return quality[t] < params.below; });
-  // The candidates: movable corners of bad triangles, worst triangle first (ties by node).
+  // The candidates: movable corners of bad triangles (junction order 2 or 3:
+  // box faces count), worst triangle first (ties by node).
   std::vector<std::pair<double, int32_t>> candidates;
   for (int32_t t : bad)
     for (int32_t n : triangles[size_t(t)]) {
       const int order = junction_order(mesh, n);
-      if ((order == 2 || order == 3) && mesh.box_faces()[size_t(n)] == 0) candidates.emplace_back(quality[size_t(t)], n);
+      if (order == 2 || order == 3) candidates.emplace_back(quality[size_t(t)], n);
     }
   std::sort(candidates.begin(), candidates.end());
   // No two taken nodes share a triangle: each is judged with its neighbours
@@ -141,11 +158,13 @@ size_t add_polish_moves(const InterfaceMesh& mesh, const PhaseField& field, cons
     for (const Vec3& d : trial_directions(mesh, field, n, x, fan))
       for (double step : kSteps) {
         const Vec3 y = x + step * mean_edge * d;
+        if (!stays_in_box(mesh, n, x, y)) continue;
         if (const double q = fan_quality(p, fan, y); q > best) best = q, best_y = y;
       }
     if (best_y == x) return;
     for (int newton = 0; newton < kNewtonSteps; ++newton) best_y += node_projection_step(mesh, field, n, best_y);
-    if (best_y.allFinite() && fan_quality(p, fan, best_y) > now + kGain) move[i] = best_y - x;
+    if (best_y.allFinite() && stays_in_box(mesh, n, x, best_y) && fan_quality(p, fan, best_y) > now + kGain)
+      move[i] = best_y - x;
   });
   size_t moved = 0;
   for (size_t i = 0; i < taken.size(); ++i)

@@ -71,7 +71,7 @@ inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,proj
 /// six of four random balls, the four shipped) the worst triangle rose on 15
 /// and fell on none (mean 0.364 -> 0.380, 25 at q 0.3 or more either way; 30
 /// cells at grid 64 0.370 -> 0.393), over 23 label volumes and cell sizes on
-/// 15 and on none (mean 0.394 -> 0.430; the liver 0.511 -> 0.543), for about
+/// 16 and on none (mean 0.394 -> 0.446; the liver 0.511 -> 0.543), for about
 /// 4 ms an iteration on the liver (146k triangles) and 0.05 s on 1M. From the
 /// first iteration it raised more (the liver to 0.654, the mean over the
 /// volumes to 0.471) but lowered 5 scenes and the 60 grains: polished nodes

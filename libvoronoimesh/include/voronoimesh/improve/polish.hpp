@@ -22,7 +22,9 @@ struct PolishParams {
 /// the node's triangles: surface nodes in their tangent plane, curve nodes
 /// along their curve, the best of a few trial moves, taken back to the node's
 /// surface or curve by Newton steps (eq. 4), if it still beats where the node
-/// is. Quadruple and higher points and nodes on the box stay. Nodes are
+/// is. A node on the box moves within its box faces (a surface node there
+/// along the line where its surface meets them); quadruple and higher points,
+/// and curve nodes on the box, stay. Nodes are
 /// taken worst triangles first, none next to another one taken (each judged
 /// with its neighbours where they are), so the moves do not depend on the
 /// threads. No triangle of a moved node turns by 60 degrees or more.
