@@ -69,8 +69,8 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   const std::vector<Vec3> before = points;
   // A few moves (the polish pass's) are placed one by one, which keeps the
   // mesh's qualities current for the floor below instead of computing all anew.
-  const std::vector<int32_t> movers = detail::indices_where(moved.size(), [&](size_t n) { return moved[n] != 0; });
-  if (kFewMoves * movers.size() < moved.size()) {
+  if (kFewMoves * size_t(std::count(moved.begin(), moved.end(), 1)) < moved.size()) {
+    const std::vector<int32_t> movers = detail::indices_where(moved.size(), [&](size_t n) { return moved[n] != 0; });
     std::vector<Vec3> to(movers.size());
     for (size_t i = 0; i < movers.size(); ++i) to[i] = points[size_t(movers[i])] + delta[size_t(movers[i])];
     mesh.place_nodes(movers, to);

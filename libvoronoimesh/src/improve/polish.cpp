@@ -3,6 +3,7 @@
 
 #include "voronoimesh/improve/polish.hpp"
 
+#include "voronoimesh/improve/clamp.hpp"
 #include "voronoimesh/improve/project.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 #include "voronoimesh/mesh/triangle_quality.hpp"
@@ -37,8 +38,9 @@ struct Fan {
   std::vector<Vec3> normal;                ///< each triangle's normal where the node is
 };
 
-Fan fan_of(const InterfaceMesh& mesh, std::span<const Vec3> p, int32_t n) {
+Fan fan_of(const InterfaceMesh& mesh, int32_t n) {
   Fan fan;
+  const auto& p = mesh.positions();
   const Vec3& x = p[size_t(n)];
   mesh.for_each_triangle_at(n, [&](int32_t a, int32_t b) {
     fan.far.push_back({a, b});
@@ -60,17 +62,11 @@ double fan_quality(std::span<const Vec3> p, const Fan& fan, const Vec3& y) {
   return worst;
 }
 
-/// True when a move of node n from x to y goes at most half its distance
-/// towards each box face it is not on (the smooth pass's rule), so that no
-/// node leaves the box.
+/// True when the move of node n from x to y goes at most half its distance
+/// towards each box face it is not on (the clamp pass's rule, box_step() with
+/// its factor 1/2), so that no node leaves the box.
 bool stays_in_box(const InterfaceMesh& mesh, int32_t n, const Vec3& x, const Vec3& y) {
-  const Box& box = mesh.domain();
-  const uint8_t on = mesh.box_faces()[size_t(n)];
-  for (int a = 0; a < 3; ++a) {
-    if (!(on >> (2 * a) & 1u) && y[a] - box.min[a] < 0.5 * (x[a] - box.min[a])) return false;
-    if (!(on >> (2 * a + 1) & 1u) && box.max[a] - y[a] < 0.5 * (box.max[a] - x[a])) return false;
-  }
-  return true;
+  return box_step(y - x, x, mesh.domain(), mesh.box_faces()[size_t(n)]) >= 2;
 }
 
 /// The directions a node of `order` 2 or 3 tries at x, tangential to its constraints.
@@ -91,8 +87,8 @@ std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& 
     tangent.normalize();
     return {tangent, -tangent};
   }
-  // A surface node: an orthonormal pair spanning its tangent plane, from two
-  // directions across the fan's normal kept on the surface (and box faces).
+  // A surface node off the box (order 2): an orthonormal pair spanning its
+  // tangent plane, from two directions across the fan's normal kept on the surface.
   Vec3 normal = Vec3::Zero();
   for (const Vec3& v : fan.normal) normal += v;
   if (!(normal.norm() > 0)) return directions;
@@ -100,8 +96,6 @@ std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& 
   Vec3 u = normal.unitOrthogonal(), v = normal.cross(u);
   if (!detail::keep_tangential(mesh, field, n, x, u) || !detail::keep_tangential(mesh, field, n, x, v))
     return directions;
-  constrain_to_box(u, mesh.box_faces()[size_t(n)]); // exactly: Gram-Schmidt leaves round-off
-  constrain_to_box(v, mesh.box_faces()[size_t(n)]);
   if (!(u.norm() > 1e-6)) return directions;
   u.normalize();
   v -= v.dot(u) * u;
@@ -146,7 +140,7 @@ size_t add_polish_moves(const InterfaceMesh& mesh, const PhaseField& field, cons
   detail::parallel_for_each_index(taken.size(), [&](size_t i) {
     const int32_t n = taken[i];
     const Vec3& x = p[size_t(n)];
-    const Fan fan = fan_of(mesh, p, n);
+    const Fan fan = fan_of(mesh, n);
     double edges = 0;
     for (const auto& ab : fan.far) edges += (p[size_t(ab[0])] - x).norm();
     const double mean_edge = fan.far.empty() ? 0 : edges / double(fan.far.size());
