@@ -35,8 +35,12 @@ constexpr uint64_t kThreadsEvery = 6;
 /// domain box (clamp), 4756 -> 4759: shards 1 and 3 up by 1 and 2, nodes near a
 /// box face being held inside it. Since a sliver no edge of which may collapse
 /// can lose a curve node beside it, 4759 -> 4757: shards 3, 4, 6 up by 5, 5, 1,
-/// shards 0, 1 down by 11, 2.
-constexpr std::array<size_t, kShards> kAgainstAtMost = {650, 864, 100, 1310, 789, 191, 557, 296};
+/// shards 0, 1 down by 11, 2. Since the crossing guard puts back only the
+/// farthest mover of a crossing pair in each round, 4757 -> 4810: shards 0, 1,
+/// 3, 5, 6 up by 14, 7, 11, 7, 22, shards 2, 4, 7 down by 2, 4, 2; nearly all
+/// in thin slabs at grids of 9 to 12, where nodes that now keep their moves
+/// fold the slab's sheets.
+constexpr std::array<size_t, kShards> kAgainstAtMost = {664, 871, 98, 1321, 785, 198, 579, 294};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

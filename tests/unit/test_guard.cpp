@@ -61,6 +61,51 @@ TEST(Guard, undoes_exactly_the_move_that_would_cross_and_keeps_the_others) {
   EXPECT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
 }
 
+// Two triangles cross after a move: the one whose corner moved farther goes
+// back, and the other's move stays (putting both back froze a flat face of the
+// CT-like volume for a whole run: a node below it kept jumping through). A slab
+// 0.1 thick: a node of its lower face rises 0.08, the node of its upper face
+// above it sinks 0.03. Either move alone is safe, both cross.
+TEST(Guard, puts_back_the_farther_mover_of_a_crossing_pair_and_keeps_the_other) {
+  const Scene slab = parse_scene(R"({"phases": [{"kind": "plane", "point": [0.5, 0.5, 0.45], "normal": [0, 0, -1]},
+      {"kind": "constant", "value": 0}, {"kind": "plane", "point": [0.5, 0.5, 0.55], "normal": [0, 0, 1]}]})",
+                                 "inline");
+  InterfaceMesh mesh = test::initial_mesh(slab);
+  const std::vector<Vec3> before = mesh.positions();
+  auto nearest_on = [&](const Vec3& at) {
+    int32_t best = -1;
+    for (size_t n = 0; n < mesh.num_nodes(); ++n)
+      if (phase_count(mesh.phases()[n]) == 2 && std::abs(before[n].z() - at.z()) < 1e-9 &&
+          (best < 0 || (before[n] - at).norm() < (before[size_t(best)] - at).norm()))
+        best = int32_t(n);
+    return best;
+  };
+  const int32_t low = nearest_on({0.5, 0.5, 0.45});
+  ASSERT_GE(low, 0);
+  const int32_t high = nearest_on({before[size_t(low)].x(), before[size_t(low)].y(), 0.55});
+  ASSERT_GE(high, 0);
+  ASSERT_LT((before[size_t(high)] - before[size_t(low)]).head<2>().norm(), 1e-9); // right above it
+  std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+  delta[size_t(low)] = Vec3(0, 0, 0.08);
+  delta[size_t(high)] = Vec3(0, 0, -0.03);
+  for (const int32_t alone : {low, high}) {
+    InterfaceMesh moved = mesh;
+    std::vector<Vec3> one(mesh.num_nodes(), Vec3::Zero());
+    one[size_t(alone)] = delta[size_t(alone)];
+    moved.move_nodes(one);
+    ASSERT_TRUE(find_self_intersections(moved.to_node_mesh()).ok());
+  }
+  InterfaceMesh both = mesh;
+  both.move_nodes(delta);
+  ASSERT_GT(find_self_intersections(both.to_node_mesh()).count, 0u);
+
+  const GuardReport report = commit_without_crossings(mesh, delta);
+  EXPECT_EQ(report.undone_nodes, 1u);
+  EXPECT_EQ(mesh.positions()[size_t(low)], before[size_t(low)]);
+  EXPECT_EQ(mesh.positions()[size_t(high)], before[size_t(high)] + Vec3(0, 0, -0.03));
+  EXPECT_TRUE(find_self_intersections(mesh.to_node_mesh()).ok());
+}
+
 // The quality floor (the pipeline passes the worst quality an iteration starts
 // with): a move that leaves a triangle below it is undone, unless it brings a
 // node that is visibly off its surface (over 2% of the triangle's longest edge;

@@ -93,6 +93,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     return was > kFarFromInterface * longest &&
            node_projection_step(mesh, *field, n, points[size_t(n)]).norm() < 0.5 * was;
   };
+  auto moved_by = [&](int32_t n) { return (points[size_t(n)] - before[size_t(n)]).squaredNorm(); };
   auto normal = [&](const std::vector<Vec3>& p, const std::array<int32_t, 3>& t) {
     return (p[size_t(t[1])] - p[size_t(t[0])]).cross(p[size_t(t[2])] - p[size_t(t[0])]);
   };
@@ -118,8 +119,21 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       turned[i] = involved[size_t(watched[i])] && agreed[i] && !agrees(size_t(watched[i]));
     });
     ++report.rounds;
-    std::vector<int32_t> culprits;
-    for (const auto& pair : crossings(mesh, involved)) culprits.insert(culprits.end(), pair.begin(), pair.end());
+    std::vector<int32_t> culprits, movers;
+    // Of two triangles that cross, the corner that moved farthest goes back
+    // first (all that moved as far); the next round sees whether that was
+    // enough. The others may have moved where they belong: putting back every
+    // corner froze a flat face of the CT-like volume for the whole run, a node
+    // below it jumping through it in every iteration.
+    for (const auto& pair : crossings(mesh, involved)) {
+      double farthest = 0;
+      for (int32_t t : pair)
+        for (int32_t n : triangles[size_t(t)])
+          if (moved[size_t(n)]) farthest = std::max(farthest, moved_by(n));
+      for (int32_t t : pair)
+        for (int32_t n : triangles[size_t(t)])
+          if (moved[size_t(n)] && moved_by(n) == farthest) movers.push_back(n);
+    }
     for (size_t i = 0; i < watched.size(); ++i)
       if (turned[i]) culprits.push_back(watched[i]);
     for (int32_t t : detail::indices_where(spoilt.size(), [&](size_t t) { return spoilt[t] != 0; }))
@@ -133,6 +147,8 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       changed[size_t(n)] = 1;
       undo.push_back(n);
     };
+    for (int32_t n : movers)
+      if (moved[size_t(n)]) put_back(n);
     for (int32_t t : culprits)
       for (int32_t n : triangles[size_t(t)])
         if (moved[size_t(n)]) put_back(n);

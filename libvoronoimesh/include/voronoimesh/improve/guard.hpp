@@ -56,9 +56,11 @@ public:
   CrossingGuard& operator=(CrossingGuard&&) noexcept;
 
   /// Moves every node by delta[n], then finds the triangle pairs that intersect
-  /// improperly (exactly, check/intersections.hpp) and have a moved node, puts the moved
-  /// nodes of both triangles back exactly where they were, and repeats until no
-  /// such pair is left. Pairs among unmoved triangles are not looked at, so
+  /// improperly (exactly, check/intersections.hpp) and have a moved node, puts the
+  /// corner of each pair that moved farthest (all that moved as far) back exactly
+  /// where it was, and repeats until no such pair is left: the other corners may
+  /// have moved where they belong (putting back every moved corner froze a flat
+  /// face of the CT-like volume for a whole run). Pairs among unmoved triangles are not looked at, so
   /// crossings the mesh already had are neither counted nor cured; a mesh free of
   /// them stays free. Undoing moves never inverts a triangle that clamping made
   /// safe: any subset of clamped moves is safe (eq. 5's factor 1/2). Deterministic
