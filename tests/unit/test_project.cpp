@@ -4,10 +4,14 @@
 
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/project.hpp"
+#include "voronoimesh/improve/smooth.hpp"
+
+#include "fixtures.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <string>
 
 namespace {
 
@@ -60,6 +64,33 @@ TEST(Project, least_squares_reaches_a_quadruple_point_that_eq4_approaches_slowly
   least_squares.least_squares_from = 2;
   const Vec3 x(0.4, 0.45, 0.7);
   EXPECT_LT((projection_step(*s.field, x, pair, least_squares) - projection_step(*s.field, x, pair)).norm(), 1e-15);
+}
+
+// A mesh of the plane z = 0.5 projected onto the plane z = 0.9: 0.4 off, about
+// six edges at grid 16. Each node's step is cut to its mean edge length, along
+// the uncut step; with max_step 0 (the paper's) it is the whole 0.4.
+TEST(Project, steps_are_cut_to_the_mean_edge_length_at_the_node) {
+  const auto plane_at = [](double z) {
+    return parse_scene(R"({"phases": [{"kind": "constant", "value": 0},
+        {"kind": "plane", "point": [0.5, 0.5, )" + std::to_string(z) + R"(], "normal": [0, 0, 1]}]})",
+                       "inline");
+  };
+  const InterfaceMesh mesh = test::initial_mesh(plane_at(0.5));
+  const Scene far = plane_at(0.9);
+  ProjectParams uncut;
+  uncut.max_step = 0;
+  std::vector<Vec3> cut_steps(mesh.num_nodes(), Vec3::Zero()), whole_steps = cut_steps;
+  add_projection(mesh, *far.field, ProjectParams{}, cut_steps);
+  add_projection(mesh, *far.field, uncut, whole_steps);
+  ASSERT_GT(mesh.num_nodes(), 100u);
+  for (size_t n = 0; n < mesh.num_nodes(); ++n) {
+    const Vec3& x = mesh.positions()[n];
+    EXPECT_NEAR(whole_steps[n].z(), 0.9 - x.z(), 1e-12);
+    const double edge = mean_edge_length_at(mesh, int32_t(n));
+    ASSERT_LT(edge, 0.2); // so the cut is real
+    EXPECT_NEAR(cut_steps[n].norm(), edge, 1e-12);
+    EXPECT_LT((cut_steps[n].normalized() - whole_steps[n].normalized()).norm(), 1e-12);
+  }
 }
 
 } // namespace

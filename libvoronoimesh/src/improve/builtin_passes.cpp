@@ -145,9 +145,13 @@ void register_builtin_passes(PassRegistry& registry) {
        {"least_squares_from", double(ProjectParams{}.least_squares_from), 0, 8, true,
         "nodes of this many phases or more (0: none; 4: quadruple points) take a least-squares Newton step onto "
         "all their pairs at once instead of eq. 4's mean: junctions exact where eq. 4 converges slowly, at the "
-        "cost of the worst triangle (not in the paper)"}},
+        "cost of the worst triangle (not in the paper)"},
+       {"max_step", ProjectParams{}.max_step, 0, 100, false,
+        "cut each step to this many times the node's mean edge length (0: uncut, the paper's): where gradients "
+        "nearly agree, a Newton step can ask for tens of edges (not in the paper)"}},
       true, true, true, [](PassContext& c, const ParamValues& p) {
-        add_projection(c.mesh, *c.field, ProjectParams{p.at("min_gradient_gap"), int(p.at("least_squares_from"))},
+        add_projection(c.mesh, *c.field,
+                       ProjectParams{p.at("min_gradient_gap"), int(p.at("least_squares_from")), p.at("max_step")},
                        c.displacement());
       }));
   registry.add(make_info(

@@ -79,10 +79,14 @@ void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const Pr
                     std::vector<Vec3>& delta) {
   std::vector<uint8_t> not_finite(mesh.num_nodes(), 0);
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t v) {
-    const Vec3 p = node_projection_step(mesh, field, int32_t(v), mesh.positions()[v], params);
+    Vec3 p = node_projection_step(mesh, field, int32_t(v), mesh.positions()[v], params);
     if (!p.allFinite()) {
       not_finite[v] = 1;
       return;
+    }
+    if (params.max_step > 0) {
+      const double longest = params.max_step * mean_edge_length_at(mesh, int32_t(v));
+      if (p.squaredNorm() > longest * longest) p *= longest / p.norm();
     }
     delta[v] += p;
   });

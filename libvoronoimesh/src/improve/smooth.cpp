@@ -64,6 +64,14 @@ double rms_edge_length(const InterfaceMesh& mesh) {
   return s.edges ? std::sqrt(s.sum.total() / double(s.edges)) : 0.0;
 }
 
+double mean_edge_length_at(const InterfaceMesh& mesh, int32_t n) {
+  const auto ring = mesh.neighbours(n);
+  const Vec3& x = mesh.positions()[size_t(n)];
+  double sum = 0;
+  for (int32_t m : ring) sum += (mesh.positions()[size_t(m)] - x).norm();
+  return ring.empty() ? 0.0 : sum / double(ring.size());
+}
+
 void add_smoothing_forces(const InterfaceMesh& mesh, const PhaseField& field, const SmoothParams& params,
                           std::vector<Vec3>& delta) {
   add_smoothing_forces_with_rest_length(mesh, field, params.rest_factor * rms_edge_length(mesh), delta);

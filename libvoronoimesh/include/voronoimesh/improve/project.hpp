@@ -27,6 +27,15 @@ struct ProjectParams {
   /// worst triangle for accuracy: exact junctions show the exact corners' small
   /// angles (docs/algorithm.md, "Why the seed scenes miss min q 0.3").
   int least_squares_from = 0;
+  /// A node's step is cut to this many times the mean length of its edges (0:
+  /// uncut, the paper's). Eq. 4 is a Newton step, good where the node is within
+  /// about an edge of its interface; where the phases' gradients nearly agree
+  /// (a trilinear field's cell across which two labels' values run parallel,
+  /// a one-voxel island's flank) it can ask for tens of edges, and the clamp
+  /// pass lets a move along a node's own triangles through: one node of a
+  /// voxel-faithful liver went 12 mm out (edges of 1.4), a spike of three triangles (not
+  /// in the paper).
+  double max_step = 1;
 };
 
 /// p(x, chi) of eq. 4: the mean of the Newton steps onto phi_i = phi_j over the
@@ -50,10 +59,11 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
 Vec3 node_projection_step(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
                           const ProjectParams& params = {});
 
-/// Adds p(x, chi) of every node to `delta`, kept on the node's box faces.
+/// Adds p(x, chi) of every node to `delta`, kept on the node's box faces and
+/// cut to ProjectParams::max_step of the node's mean edge length.
 /// @param mesh   the mesh; chi of a node is its phase set
 /// @param field  the original (unsnapped) phase functions
-/// @param params which pairs to skip (ProjectParams::min_gradient_gap)
+/// @param params which pairs to skip (ProjectParams::min_gradient_gap), the longest step
 /// @param delta  the displacement of every node, one entry per node; the steps are added to it
 void add_projection(const InterfaceMesh& mesh, const PhaseField& field, const ProjectParams& params,
                     std::vector<Vec3>& delta);

@@ -23,6 +23,12 @@ struct SmoothParams {
 /// @return the RMS edge length, in the units of the points; 0 without edges
 double rms_edge_length(const InterfaceMesh& mesh);
 
+/// Mean length of the edges at node n (to its node-level neighbours).
+/// @param mesh the mesh
+/// @param n    a node id, in [0, mesh.num_nodes())
+/// @return the mean length, in the units of the points; 0 for a node without edges
+double mean_edge_length_at(const InterfaceMesh& mesh, int32_t n);
+
 /// Number of constraints on node n: its phases plus the domain box faces it lies
 /// on. 2 is a surface node, 3 a triple-curve node (or a surface node on the box),
 /// 4 and more a point that forces must not move.
