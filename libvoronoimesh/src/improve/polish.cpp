@@ -141,9 +141,7 @@ size_t add_polish_moves(const InterfaceMesh& mesh, const PhaseField& field, cons
     const int32_t n = taken[i];
     const Vec3& x = p[size_t(n)];
     const Fan fan = fan_of(mesh, n);
-    double edges = 0;
-    for (const auto& ab : fan.far) edges += (p[size_t(ab[0])] - x).norm();
-    const double mean_edge = fan.far.empty() ? 0 : edges / double(fan.far.size());
+    const double mean_edge = mean_edge_length_at(mesh, n);
     // Trials in the tangent plane; only the best is taken back onto the
     // interface (a second-order change), and must still beat where the node is.
     const double now = fan_quality(p, fan, x);
