@@ -38,7 +38,7 @@ constexpr uint64_t kThreadsEvery = 6;
 /// shards 0, 1 down by 11, 2. Since the crossing guard puts back only the
 /// farthest mover of a crossing pair in each round, 4757 -> 4810: shards 0, 1,
 /// 3, 5, 6 up by 14, 7, 11, 7, 22, shards 2, 4, 7 down by 2, 4, 2; nearly all
-/// in thin slabs at grids of 9 to 12, where nodes that now keep their moves
+/// in thin slabs at grids of 5 to 12, where nodes that now keep their moves
 /// fold the slab's sheets. Since eq. 4's steps are cut to the node's mean
 /// edge length, 4810 -> 4831: shards 2, 3, 4 up by 2, 22, 2, shard 0 down by 5
 /// (nodes far off their interface take more iterations to reach it; after 20
