@@ -5,6 +5,7 @@
 // cannot show.
 //
 //   pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]
+//              [--voxels-per-cell F] [--voxel-faithful]
 //
 // Reads INPUT and creates its mesh as `voronoimesh mesh` does, then prints a
 // Markdown table: one row per iteration (triangles after it, its seconds, each
@@ -29,7 +30,8 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]\n";
+    "usage: pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]\n"
+    "                  [--voxels-per-cell F] [--voxel-faithful]\n";
 
 /// Prints each iteration's row as it ends, and keeps the sums.
 class PassTimes : public vm::RunObserver {
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
   }
   const std::string input = argv[1];
   vm::MeshOptions options;
+  vm::InputOptions input_options; // a label volume's, as voronoimesh's options of the same names
   int threads = 0;
   std::string pipeline;
   for (int a = 2; a < argc; ++a) {
@@ -98,6 +101,17 @@ int main(int argc, char** argv) {
       pipeline = value, ++a;
     } else if (arg == "--no-guard") {
       options.guard_crossings = false;
+    } else if (arg == "--voxel-faithful") {
+      input_options.voxel_faithful = true;
+    } else if (arg == "--voxels-per-cell") {
+      char* end = nullptr;
+      const double f = value ? std::strtod(value, &end) : 0;
+      if (!value || *end != '\0' || !(f >= 1 && f <= 64)) {
+        std::fprintf(stderr, "pass_times: --voxels-per-cell needs a number in [1, 64], got '%s'\n%s",
+                     value ? value : "", kUsage);
+        return 2;
+      }
+      input_options.voxels_per_cell = f, ++a;
     } else {
       std::fprintf(stderr, "pass_times: unknown option '%s'\n%s", arg.c_str(), kUsage);
       return 2;
@@ -108,7 +122,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   try {
-    const vm::Scene scene = vm::read_input(input, {});
+    const vm::Scene scene = vm::read_input(input, input_options);
     options.pipeline = pipeline.empty() ? vm::pipeline_for(options, &scene) : pipeline;
     vm::NodeMesh mesh = vm::create_mesh(scene, options);
     std::printf("%s: %zu triangles created; %d iterations of %s%s\n\n", input.c_str(), mesh.num_triangles(),

@@ -2,7 +2,7 @@
 # Smoke test of pass_times, so the tool the closing notes cite does not rot: on
 # a tiny grid it takes the pipeline voronoimesh mesh takes for a scene (remesh
 # first), prints one row per iteration and a row of sums, each with as many
-# columns as the header, and answers a bad option with its usage and exit 2.
+# columns as the header, and answers a bad option or value with its usage and exit 2.
 # Usage: pass_times_smoke.sh PASS_TIMES SCENE.json
 set -euo pipefail
 tool=$1 scene=$2
@@ -21,3 +21,8 @@ set +e
 status=$?
 set -e
 [ "$status" = 2 ] || { echo "a bad option exited $status, not 2"; exit 1; }
+set +e
+"$tool" "$scene" --voxels-per-cell abc 2>/dev/null
+status=$?
+set -e
+[ "$status" = 2 ] || { echo "--voxels-per-cell abc exited $status, not 2"; exit 1; }
