@@ -355,6 +355,29 @@ TEST_F(RunJob, a_phase_improvement_loses_is_named_never_dropped_silently) {
 // What the note suggests works: a one-voxel sheet smoothed with sigma 0.7 leads
 // at its voxel centres by less than snapping's 0.2 cells, so create snaps it
 // away; with --snap 0.1 it is a phase of the mesh.
+TEST_F(RunJob, folds_are_reported_in_a_note_as_their_quality_cannot_show_them) {
+  // A tetrahedron flattened to its apex 0.05 over its base, of good triangles
+  // (q 0.3-0.5): its base edges fold. Nothing else about it is wrong.
+  test::Builder flat;
+  test::add_tetrahedron(flat, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.05)}, 1, 0);
+  io::write_ply(flat.mesh, path("flat.ply"));
+  MeshJob job;
+  job.mesh = path("flat.ply");
+  job.options.iterations = 0;
+  job.outputs.mesh = path("out.ply");
+  NoteRecorder recorder;
+  run_job(job, &recorder);
+  ASSERT_EQ(recorder.notes.size(), 1u);
+  EXPECT_EQ(recorder.notes[0].rfind("3 surface edges fold: the surface turns back across each by more than 150 degrees",
+                                    0),
+            0u)
+      << recorder.notes[0];
+  // A resolved mesh says nothing of folds.
+  NoteRecorder resolved;
+  run_job(four_spheres_job(path("spheres.ply")), &resolved);
+  for (const std::string& note : resolved.notes) EXPECT_EQ(note.find("fold"), std::string::npos) << note;
+}
+
 TEST_F(RunJob, a_thin_sheet_snapping_removes_is_kept_with_the_snap_the_note_suggests) {
   constexpr int n = 24;
   std::vector<uint8_t> labels;

@@ -101,6 +101,36 @@ TEST(Stats, slivers_are_counted) {
   EXPECT_EQ(s.smallest_angles, (std::array<size_t, 6>{1, 0, 0, 1, 0, 0}));
 }
 
+TEST(Stats, a_surface_turning_back_across_an_edge_is_a_fold_and_a_crease_is_not) {
+  // Triangle (0,0,0) (1,0,0) (0.5,1,0), normal +z, and one across its edge on
+  // the x axis, rotated about it: 90 degrees (a crease), then 161.6 (a fold).
+  for (const auto& [far, folds] : {std::pair{Vec3(0.5, -1, 0), 0u}, std::pair{Vec3(0.5, 0, 1), 0u},
+                                   std::pair{Vec3(0.5, 0.9, 0.3), 1u}}) {
+    test::Builder b;
+    b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), 0, 1);
+    b.tri(Vec3(1, 0, 0), Vec3(0, 0, 0), far, 0, 1);
+    const MeshStats s = compute_stats(b.mesh);
+    EXPECT_EQ(s.folds, folds) << far.transpose();
+    EXPECT_NE(to_text(s).find("folds                  " + std::to_string(folds) +
+                              " surface edges turning more than 150 deg\n"),
+              std::string::npos)
+        << to_text(s);
+  }
+  // Three triangles on an edge are a junction, not a surface: no fold however they turn.
+  test::Builder b;
+  b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 1, 0), 0, 1);
+  b.tri(Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(0.5, 0.9, 0.3), 1, 2);
+  b.tri(Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(0.5, -1, 0), 0, 2);
+  EXPECT_EQ(compute_stats(b.mesh).folds, 0u);
+  // A corner tetrahedron's normals lie 90 and 125 degrees apart; flattened
+  // (its apex 0.05 over its base) it is two sheets laid onto each other,
+  // folding at the base's three edges.
+  EXPECT_EQ(compute_stats(test::tetrahedron()).folds, 0u);
+  test::Builder flat;
+  test::add_tetrahedron(flat, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.05)}, 1, 0);
+  EXPECT_EQ(compute_stats(flat.mesh).folds, 3u);
+}
+
 TEST(Stats, an_equilateral_triangle_is_in_the_last_angle_bin) {
   test::Builder b;
   b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(0.75), 0), 0, 1);
@@ -127,7 +157,8 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_NE(text.find("surfaces               10\n"), std::string::npos) << text;
   EXPECT_NE(text.find("quadruple points       5\n"), std::string::npos) << text;
   const auto j = nlohmann::json::parse(to_json(s));
-  EXPECT_EQ(j.size(), 19u);
+  EXPECT_EQ(j.size(), 20u);
+  EXPECT_EQ(j.at("folds").get<size_t>(), 0u);
   EXPECT_EQ(j.at("vertices").get<size_t>(), s.vertices);
   EXPECT_EQ(j.at("surfaces").get<size_t>(), 10u);
   EXPECT_EQ(j.at("triple_curves").get<size_t>(), 10u);

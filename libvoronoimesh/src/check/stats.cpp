@@ -42,10 +42,9 @@ size_t count_classes(detail::UnionFind& uf, size_t n, Keep keep) {
   return count;
 }
 
-/// Patches: triangles of one pair joined through edges that carry exactly
-/// two triangles of that pair.
-size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<char>& usable) {
-  detail::UnionFind uf(m.triangles.size());
+/// Calls f(t, s) for each pair of triangles that join one surface across an
+/// edge: the edge carries exactly two triangles of their phase pair.
+template <class F> void for_each_surface_edge(const NodeMesh& m, const EdgeTable& et, F&& f) {
   std::vector<std::pair<PhasePair, int32_t>> on_edge;
   for (size_t e = 0; e < et.size(); ++e) {
     on_edge.clear();
@@ -57,11 +56,33 @@ size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<
     for (size_t i = 0; i < on_edge.size();) {
       size_t j = i + 1;
       while (j < on_edge.size() && on_edge[j].first == on_edge[i].first) ++j;
-      if (j - i == 2) uf.unite(on_edge[i].second, on_edge[i + 1].second);
+      if (j - i == 2) f(on_edge[i].second, on_edge[i + 1].second);
       i = j;
     }
   }
+}
+
+/// Patches: triangles of one pair joined through edges that carry exactly
+/// two triangles of that pair.
+size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<char>& usable) {
+  detail::UnionFind uf(m.triangles.size());
+  for_each_surface_edge(m, et, [&](int32_t t, int32_t s) { uf.unite(t, s); });
   return count_classes(uf, m.triangles.size(), [&](size_t t) { return usable[t] != 0; });
+}
+
+/// Surface edges whose two triangles' normals lie more than
+/// MeshStats::kFoldDeg apart (MeshStats::folds). Both normals point into
+/// the pair's second phase, so on a smooth surface they nearly agree.
+size_t folds_of(const NodeMesh& m, const EdgeTable& et) {
+  const double cos_fold = std::cos(MeshStats::kFoldDeg * std::numbers::pi / 180);
+  auto normal = [&](int32_t t) {
+    const auto& tri = m.triangles[size_t(t)];
+    const Vec3& a = m.points[size_t(tri[0])];
+    return Vec3((m.points[size_t(tri[1])] - a).cross(m.points[size_t(tri[2])] - a).normalized());
+  };
+  size_t folds = 0;
+  for_each_surface_edge(m, et, [&](int32_t t, int32_t s) { folds += normal(t).dot(normal(s)) < cos_fold; });
+  return folds;
 }
 
 double angle_deg(const Vec3& u, const Vec3& v) {
@@ -141,6 +162,7 @@ MeshStats compute_stats(const NodeMesh& m) {
   const EdgeTable et = detail::edge_table(m.triangles, nt);
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   s.surfaces = count_surfaces(m, et, usable);
+  s.folds = folds_of(m, et);
   const Junctions junctions = detail::junctions_from(m.pairs, et, np);
   s.triple_curves = junctions.curves.size();
   s.quadruple_points = junctions.quadruple_points.size();
@@ -148,6 +170,12 @@ MeshStats compute_stats(const NodeMesh& m) {
   quality_stats(m, usable, s);
   edge_stats(m, et, s);
   return s;
+}
+
+size_t count_folds(const NodeMesh& m) {
+  std::vector<char> usable(m.triangles.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t) usable[t] = measured(m, t);
+  return folds_of(m, detail::edge_table(m.triangles, detail::node_triangles(m.points.size(), m.triangles, &usable)));
 }
 
 std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
@@ -246,6 +274,8 @@ std::string to_text(const MeshStats& s) {
   line("quality min/1%/mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
   line("quality < 0.5", std::to_string(s.below_half));
   line("slivers (q < 0.1)", std::to_string(s.slivers));
+  line("folds", std::to_string(s.folds) + " surface edges turning more than " +
+                    std::to_string(int(MeshStats::kFoldDeg)) + " deg");
   line("angle min / max", num("%.2f / %.2f deg", s.min_angle_deg, s.max_angle_deg));
   std::string bounds, counts; // "<10/<20/.../<=60", "a / b / ..."
   const size_t bins = s.smallest_angles.size();
@@ -275,6 +305,7 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
       {"quality_p01", s.quality_p01},
       {"below_half", s.below_half},
       {"slivers", s.slivers},
+      {"folds", s.folds},
       {"min_angle_deg", s.min_angle_deg},
       {"max_angle_deg", s.max_angle_deg},
       {"smallest_angle_bin_deg", MeshStats::kAngleBinDeg},

@@ -9,6 +9,7 @@
 #include "core/text.hpp"
 #include "run/run_job.hpp"
 #include "voronoimesh/check/history.hpp"
+#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
@@ -356,6 +357,12 @@ void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const M
   const bool recording = !job.outputs.history.empty();
   if (job.options.iterations > 0 || recording)
     improve(mesh, std::move(field), job.options, observer, recording ? &history : nullptr);
+  // A fold keeps its triangles' quality, so nothing else would show it.
+  if (const size_t folds = observer ? count_folds(mesh) : 0)
+    observer->note(cat(folds, folds == 1 ? " surface edge folds" : " surface edges fold",
+                       ": the surface turns back across each by more than ", int(MeshStats::kFoldDeg),
+                       " degrees, two of its sheets laid onto each other (where a layer or rim is thinner than the "
+                       "edges, or a surface meets the box at a glancing angle); `voronoimesh stats` counts them"));
   // No output may replace an input of the run.
   StagedOutputs staged({job.input, job.mesh});
   write_staged(staged, mesh, job.outputs, recording ? &history : nullptr, observer);

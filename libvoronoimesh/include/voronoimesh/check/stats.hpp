@@ -27,6 +27,14 @@ struct MeshStats {
   double quality_p01 = 0;       ///< 1st percentile of q: 99% of triangles are at least this good
   size_t below_half = 0;        ///< triangles with q < 0.5
   size_t slivers = 0;           ///< triangles with q < 0.1
+  /// Two triangles of one surface sharing an edge whose normals lie more than
+  /// this apart turn back on each other there (a fold).
+  static constexpr double kFoldDeg = 150;
+  /// Surface edges that fold: the surface turns back across them by more than
+  /// kFoldDeg. Where the mesh resolves its surfaces they turn a few tens of
+  /// degrees at most across an edge; a fold is a layer or a rim thinner than
+  /// the edges (or a cell), whose two sheets the mesh has laid onto each other.
+  size_t folds = 0;
   /// Smallest angle of any triangle, in degrees.
   double min_angle_deg = 0, max_angle_deg = 0; ///< largest angle of any triangle, in degrees
   /// Width of the bins of smallest_angles, in degrees.
@@ -52,6 +60,11 @@ struct MeshStats {
 /// @param m the mesh
 /// @return its counts and measures; self_intersections is left unset
 MeshStats compute_stats(const NodeMesh& m);
+
+/// MeshStats::folds alone, for a run to report them without the rest.
+/// @param m the mesh
+/// @return the surface edges across which the surface turns back by more than MeshStats::kFoldDeg
+size_t count_folds(const NodeMesh& m);
 
 /// A corner of a triangle as worst_triangles() reports it: what meets there.
 struct TriangleCorner {
