@@ -1,6 +1,7 @@
 #include "case_checks.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
@@ -80,6 +81,7 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
     const NodeMesh m = mesh.to_node_mesh();
     if (!valid_unintersected_and_inside(m, stage + " after flipping", r)) return;
     if (it == o.iterations && c.closed_form) r.against_field = inverted_triangles(m, *field);
+    if (it == o.iterations) r.folds = count_folds(m);
   }
 }
 

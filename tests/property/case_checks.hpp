@@ -30,6 +30,9 @@ struct CaseResult {
   size_t triangles = 0; ///< of the created mesh
   /// Closed-form scenes: triangles against their pair's direction at the end.
   size_t against_field = 0;
+  /// Surface edges that fold at the end (MeshStats::folds): good triangles laid
+  /// onto each other, which the checks above do not see.
+  size_t folds = 0;
   bool ok() const { return failures.empty(); }
 };
 

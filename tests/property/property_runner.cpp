@@ -66,7 +66,7 @@ Args parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const Args a = parse(argc, argv);
-  uint64_t failed = 0, against_field = 0, against_triangles = 0;
+  uint64_t failed = 0, against_field = 0, against_triangles = 0, folds = 0;
   for (uint64_t index = a.first; index < a.first + a.count; ++index) {
     RandomCase c;
     try {
@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
     const CaseResult r = check_case(c, o);
     against_field += r.against_field > 0;
     against_triangles += r.against_field;
+    folds += r.folds;
     if (a.verbose) std::printf("%zu triangles created\n", r.triangles);
     if (!r.ok()) {
       ++failed;
@@ -101,8 +102,9 @@ int main(int argc, char** argv) {
     }
     std::fflush(stdout);
   }
-  std::printf("checked %llu cases, %llu failed, %llu with %llu triangles against their pair's direction\n",
+  std::printf("checked %llu cases, %llu failed, %llu with %llu triangles against their pair's direction, "
+              "%llu surface edges folding\n",
               (unsigned long long)a.count, (unsigned long long)failed, (unsigned long long)against_field,
-              (unsigned long long)against_triangles);
+              (unsigned long long)against_triangles, (unsigned long long)folds);
   return failed ? 1 : 0;
 }
