@@ -156,8 +156,8 @@ validity() {
 
 table=$OUT/race.md
 {
-  echo "| tool | case | options | threads | wall s (median of $REPS) | peak MiB | triangles | min q | mean q | min angle | smallest angle < 30 | junctions / validity (voronoimesh stats) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| tool | case | options | threads | wall s (median of $REPS) | peak MiB | triangles | min q | mean q | min angle | smallest angle < 30 | folds | junctions / validity (voronoimesh stats) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for c in "${cases[@]}"; do
     IFS='|' read -r name tool case_ options threads _ <<<"$c"
     wall=$(for ((r = 1; r <= REPS; ++r)); do awk '{print $1}' "$OUT/$name.time.$r"; done | median)
@@ -168,9 +168,9 @@ table=$OUT/race.md
     if [ "$threads" = TBTHREADS ]; then
       threads="$(json_field "$OUT/$name.log.$REPS" threads) (TBB default, Parallel_tag)"
     fi
-    printf '| %s | %s | %s | %s | %.2f | %d | %s | %.3f | %.3f | %.1f | %s | %s |\n' "$tool" "$case_" "$options" "$threads" \
-      "$wall" "$((peak / 1024))" "$(json_field "$s" triangles)" "$(json_field "$s" min_quality)" \
-      "$(json_field "$s" mean_quality)" "$(json_field "$s" min_angle_deg)" "$(below_30 "$s")" \
+    printf '| %s | %s | %s | %s | %.2f | %d | %s | %.3f | %.3f | %.1f | %s | %s | %s |\n' "$tool" "$case_" "$options" \
+      "$threads" "$wall" "$((peak / 1024))" "$(json_field "$s" triangles)" "$(json_field "$s" min_quality)" \
+      "$(json_field "$s" mean_quality)" "$(json_field "$s" min_angle_deg)" "$(below_30 "$s")" "$(json_field "$s" folds)" \
       "$(validity "$mesh" "$OUT/$name.stats.txt")"
   done
 
