@@ -27,10 +27,13 @@ namespace {
 using detail::EdgeTable;
 using detail::Triangles;
 
-/// Whether triangle t is well formed and has a pair, so measured: malformed ones are left
-/// out of every measure (validate() reports them).
-bool measured(const NodeMesh& m, size_t t) {
-  return t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
+/// Per triangle, whether it is well formed and has a pair, so measured: malformed ones are
+/// left out of every measure (validate() reports them).
+std::vector<char> measured_triangles(const NodeMesh& m) {
+  std::vector<char> measured(m.triangles.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    measured[t] = t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
+  return measured;
 }
 
 /// Number of distinct representatives among the items with `keep` set.
@@ -149,12 +152,10 @@ MeshStats compute_stats(const NodeMesh& m) {
   s.vertices = m.points.size();
   s.triangles = m.triangles.size();
   // Malformed triangles (bad ids, no pair) are left out of every count; validate() reports them.
-  std::vector<char> usable(m.triangles.size());
+  const std::vector<char> usable = measured_triangles(m);
   std::vector<int32_t> phases;
-  for (size_t t = 0; t < m.triangles.size(); ++t) {
-    usable[t] = measured(m, t);
+  for (size_t t = 0; t < m.triangles.size(); ++t)
     if (usable[t]) phases.insert(phases.end(), m.pairs[t].begin(), m.pairs[t].end());
-  }
   std::sort(phases.begin(), phases.end());
   s.phases = size_t(std::unique(phases.begin(), phases.end()) - phases.begin());
 
@@ -173,18 +174,16 @@ MeshStats compute_stats(const NodeMesh& m) {
 }
 
 size_t count_folds(const NodeMesh& m) {
-  std::vector<char> usable(m.triangles.size());
-  for (size_t t = 0; t < m.triangles.size(); ++t) usable[t] = measured(m, t);
+  const std::vector<char> usable = measured_triangles(m);
   return folds_of(m, detail::edge_table(m.triangles, detail::node_triangles(m.points.size(), m.triangles, &usable)));
 }
 
 std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
   if (count == 0) return {}; // `stats` without --worst: no pass over the triangles
-  std::vector<char> usable(m.triangles.size());
+  const std::vector<char> usable = measured_triangles(m);
   std::vector<double> quality(m.triangles.size(), 0);
   std::vector<size_t> order;
   for (size_t t = 0; t < m.triangles.size(); ++t) {
-    usable[t] = measured(m, t);
     if (!usable[t]) continue;
     const auto& tri = m.triangles[t];
     quality[t] = triangle_quality(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])]);
