@@ -238,12 +238,14 @@ PYBIND11_MODULE(_voronoimesh, m) {
            "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
       .def(
           "stats_json",
-          [](const Mesh& self, size_t worst) {
-            return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh);
+          [](const Mesh& self, size_t worst, size_t folds) {
+            return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
+                               vm::sharpest_folds(self.mesh, folds));
           },
-          py::arg("worst") = 0,
-          "Counts and quality, as 'voronoimesh stats --json [--worst N]' prints them: with worst=N, also the N "
-          "triangles of lowest quality and what meets at their corners ('worst_triangles')")
+          py::arg("worst") = 0, py::arg("folds") = 0,
+          "Counts and quality, as 'voronoimesh stats --json [--worst N] [--folds M]' prints them: with worst=N, "
+          "also the N triangles of lowest quality and what meets at their corners ('worst_triangles'); with "
+          "folds=M, the M sharpest folds ('sharpest_folds')")
       .def(
           "write", [](const Mesh& self, const std::string& path, bool ascii) {
             vm::RunOutputs outputs;

@@ -53,6 +53,7 @@ def test_label_arrays_give_numpy_meshes_in_labels_and_world_units():
     assert stats["triangles"] == mesh.num_triangles and stats["phases"] == 3 and stats["min_quality"] > 0.2
     worst = mesh.stats(worst=3)["worst_triangles"]
     assert len(worst) == 3 and worst[0]["quality"] == stats["min_quality"] and "worst_triangles" not in stats
+    assert len(mesh.stats(folds=5).get("sharpest_folds", [])) == min(5, stats["folds"]) and "sharpest_folds" not in stats
     assert all(len(c["phases"]) >= 2 and set(c["phases"]) <= {0, 3, 7} for w in worst for c in w["corners"])
     curves = mesh.junctions()
     assert curves and all(c["phases"] == (0, 3, 7) for c in curves) and all(c["closed"] for c in curves)

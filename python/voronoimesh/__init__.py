@@ -17,10 +17,11 @@ from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_valu
 __all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
 
 
-def _stats(self, worst=0):
+def _stats(self, worst=0, folds=0):
     """Counts and quality as a dict, the keys of 'voronoimesh stats --json'; with worst=N also
-    'worst_triangles': the N triangles of lowest quality and what meets at their corners."""
-    return _json.loads(self.stats_json(worst))
+    'worst_triangles': the N triangles of lowest quality and what meets at their corners; with
+    folds=M also 'sharpest_folds': the M surface edges that turn back the most, and their ends."""
+    return _json.loads(self.stats_json(worst, folds))
 
 
 def _to_meshio(self):

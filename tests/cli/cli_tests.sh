@@ -18,6 +18,12 @@ if "$vm" stats --json demo.ply | contains '"self_intersections": *0'; then pass;
 if [ "$("$vm" stats --worst 4 demo.ply | grep -cE '^triangle [0-9]+: q ')" = 4 ]; then pass; else fail "stats --worst 4"; fi
 if "$vm" stats --json --worst 2 demo.ply | python3 -c 'import json, sys; w = json.load(sys.stdin)["worst_triangles"]; sys.exit(not (len(w) == 2 and w[0]["quality"] <= w[1]["quality"] and len(w[0]["corners"]) == 3))'; then pass; else fail "stats --json --worst 2"; fi
 if "$vm" stats --worst -1 demo.ply >/dev/null 2>worst.err; then fail "stats --worst -1 accepted"; elif grep -q "worst" worst.err; then pass; else fail "stats --worst -1: $(cat worst.err)"; fi
+# --folds N lists the sharpest folds (a first line each, then one per end): a
+# tetrahedron flattened to its apex 0.05 over its base folds at the base's three edges.
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nelement face 4\nproperty list uchar int vertex_indices\nproperty int phase0\nproperty int phase1\nend_header\n0 0 0\n1 0 0\n0 1 0\n0.3 0.3 0.05\n3 0 2 1 0 1\n3 0 1 3 0 1\n3 1 2 3 0 1\n3 2 0 3 0 1\n' >flat.ply
+if [ "$("$vm" stats --folds 2 flat.ply | grep -cE '^edge [0-9]+-[0-9]+: turns 1[5-8][0-9]\.[0-9] deg')" = 2 ]; then pass; else fail "stats --folds 2"; fi
+if "$vm" stats --json --folds 5 flat.ply | python3 -c 'import json, sys; s = json.load(sys.stdin); f = s["sharpest_folds"]; sys.exit(not (s["folds"] == 3 and len(f) == 3 and f[0]["turn_deg"] >= f[2]["turn_deg"] > 150 and len(f[0]["ends"]) == 2))'; then pass; else fail "stats --json --folds 5"; fi
+if "$vm" stats --folds -1 flat.ply >/dev/null 2>folds.err; then fail "stats --folds -1 accepted"; elif grep -q "folds" folds.err; then pass; else fail "stats --folds -1: $(cat folds.err)"; fi
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do

@@ -131,6 +131,48 @@ TEST(Stats, a_surface_turning_back_across_an_edge_is_a_fold_and_a_crease_is_not)
   EXPECT_EQ(compute_stats(flat.mesh).folds, 3u);
 }
 
+TEST(Stats, the_sharpest_folds_are_listed_with_their_turn_and_ends) {
+  // The tetrahedron flattened to its apex 0.05 over its base folds at the
+  // base's edges: each side face leans atan(0.05 / d) off the base, d the
+  // apex's distance from the edge in the base plane (0.3 from both legs,
+  // 0.2828 from the hypotenuse), so the surface turns 170.54 degrees at the
+  // legs and 169.97 at the hypotenuse.
+  test::Builder flat;
+  test::add_tetrahedron(flat, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.05)}, 1, 0);
+  NodeMesh& m = flat.mesh;
+  m.phase_labels = {7, 9};
+  const std::vector<Fold> folds = sharpest_folds(m, 5);
+  ASSERT_EQ(folds.size(), 3u);
+  const double leg = 180 - std::atan(0.05 / 0.3) * 180 / M_PI, hypotenuse = 180 - std::atan(0.05 / std::sqrt(0.08)) * 180 / M_PI;
+  EXPECT_NEAR(folds[0].turn_deg, leg, 1e-9);
+  EXPECT_NEAR(folds[1].turn_deg, leg, 1e-9);
+  EXPECT_NEAR(folds[2].turn_deg, hypotenuse, 1e-9);
+  for (const Fold& f : folds) {
+    EXPECT_EQ(f.pair, m.pairs[f.triangles[0]]);
+    EXPECT_EQ(f.pair, m.pairs[f.triangles[1]]);
+    for (const TriangleCorner& end : f.ends) {
+      EXPECT_EQ(end.position.z(), 0.0) << "the folding edges are the base's";
+      EXPECT_EQ(end.phases, (std::vector<int32_t>{0, 1}));
+      // Both triangles have both ends of the edge as corners.
+      for (size_t t : f.triangles) EXPECT_NE(std::find(m.triangles[t].begin(), m.triangles[t].end(), end.node), m.triangles[t].end());
+    }
+  }
+  EXPECT_EQ(sharpest_folds(m, 1).size(), 1u);
+  EXPECT_TRUE(sharpest_folds(m, 0).empty());
+  EXPECT_TRUE(sharpest_folds(test::tetrahedron(), 5).empty());
+  // Text and JSON give the turn and the phases as the mesh's files show them.
+  const std::string text = to_text(std::span(folds).first(1), m);
+  EXPECT_NE(text.find(": turns 170.5 deg, between 7 and 9; length 1, triangles "), std::string::npos) << text;
+  EXPECT_NE(text.find(": surface of 7, 9\n"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(to_json(compute_stats(m), {}, &m, folds));
+  ASSERT_EQ(j.at("sharpest_folds").size(), 3u);
+  EXPECT_EQ(j.at("sharpest_folds")[2].at("turn_deg").get<double>(), folds[2].turn_deg);
+  EXPECT_EQ(j.at("sharpest_folds")[0].at("pair").get<std::vector<int32_t>>(), (std::vector<int32_t>{7, 9}));
+  EXPECT_EQ(j.at("sharpest_folds")[0].at("ends").size(), 2u);
+  EXPECT_FALSE(j.contains("worst_triangles"));
+  EXPECT_FALSE(nlohmann::json::parse(to_json(compute_stats(m))).contains("sharpest_folds"));
+}
+
 TEST(Stats, an_equilateral_triangle_is_in_the_last_angle_bin) {
   test::Builder b;
   b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, std::sqrt(0.75), 0), 0, 1);

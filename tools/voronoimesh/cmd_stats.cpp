@@ -15,6 +15,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
     std::string mesh;
     bool json = false;
     int worst = 0;
+    int folds = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -28,6 +29,12 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                   "phases; whether on the box), to see where and why a mesh loses quality")
       ->check(CLI::Range(0, 1000000))
       ->option_text("N");
+  cmd->add_option("--folds", o->folds,
+                  "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
+                  "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "
+                  "the turn, the phases, the two triangles, and what meets at each end of the edge")
+      ->check(CLI::Range(0, 1000000))
+      ->option_text("N");
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
@@ -37,14 +44,16 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       if (report.ok()) s.self_intersections = vm::find_self_intersections(mesh, 0).count;
       const bool crossing = s.self_intersections.value_or(0) > 0;
       const std::vector<vm::WorstTriangle> worst = vm::worst_triangles(mesh, size_t(o->worst));
+      const std::vector<vm::Fold> folds = vm::sharpest_folds(mesh, size_t(o->folds));
       if (o->json) {
-        std::cout << vm::to_json(s, worst, &mesh) << "\n";
+        std::cout << vm::to_json(s, worst, &mesh, folds) << "\n";
       } else {
         std::cout << vm::to_text(s);
         std::cout << "topology               "
                   << (!report.ok() ? "INVALID" : crossing ? "INVALID (triangles intersect)" : "valid") << "\n";
         for (const auto& p : report.problems) std::cout << "  " << p << "\n";
         if (!worst.empty()) std::cout << "worst triangles\n" << vm::to_text(worst, mesh);
+        if (!folds.empty()) std::cout << "sharpest folds\n" << vm::to_text(folds, mesh);
       }
       return report.ok() && !crossing ? kOk : kTopology;
     });

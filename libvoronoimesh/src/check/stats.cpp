@@ -45,8 +45,8 @@ size_t count_classes(detail::UnionFind& uf, size_t n, Keep keep) {
   return count;
 }
 
-/// Calls f(t, s) for each pair of triangles that join one surface across an
-/// edge: the edge carries exactly two triangles of their phase pair.
+/// Calls f(e, t, s) for each pair of triangles t, s that join one surface
+/// across edge e: the edge carries exactly two triangles of their phase pair.
 template <class F> void for_each_surface_edge(const NodeMesh& m, const EdgeTable& et, F&& f) {
   std::vector<std::pair<PhasePair, int32_t>> on_edge;
   for (size_t e = 0; e < et.size(); ++e) {
@@ -59,7 +59,7 @@ template <class F> void for_each_surface_edge(const NodeMesh& m, const EdgeTable
     for (size_t i = 0; i < on_edge.size();) {
       size_t j = i + 1;
       while (j < on_edge.size() && on_edge[j].first == on_edge[i].first) ++j;
-      if (j - i == 2) f(on_edge[i].second, on_edge[i + 1].second);
+      if (j - i == 2) f(e, on_edge[i].second, on_edge[i + 1].second);
       i = j;
     }
   }
@@ -69,23 +69,37 @@ template <class F> void for_each_surface_edge(const NodeMesh& m, const EdgeTable
 /// two triangles of that pair.
 size_t count_surfaces(const NodeMesh& m, const EdgeTable& et, const std::vector<char>& usable) {
   detail::UnionFind uf(m.triangles.size());
-  for_each_surface_edge(m, et, [&](int32_t t, int32_t s) { uf.unite(t, s); });
+  for_each_surface_edge(m, et, [&](size_t, int32_t t, int32_t s) { uf.unite(t, s); });
   return count_classes(uf, m.triangles.size(), [&](size_t t) { return usable[t] != 0; });
 }
 
-/// Surface edges whose two triangles' normals lie more than
-/// MeshStats::kFoldDeg apart (MeshStats::folds). Both normals point into
-/// the pair's second phase, so on a smooth surface they nearly agree.
-size_t folds_of(const NodeMesh& m, const EdgeTable& et) {
+/// Calls f(e, t, s, turn) for each surface edge e whose two triangles t, s
+/// have normals more than MeshStats::kFoldDeg apart (MeshStats::folds), turn
+/// being that angle's cosine. Both normals point into the pair's second phase,
+/// so on a smooth surface they nearly agree.
+template <class F> void for_each_fold(const NodeMesh& m, const EdgeTable& et, F&& f) {
   const double cos_fold = std::cos(MeshStats::kFoldDeg * std::numbers::pi / 180);
   auto normal = [&](int32_t t) {
     const auto& tri = m.triangles[size_t(t)];
     const Vec3& a = m.points[size_t(tri[0])];
     return Vec3((m.points[size_t(tri[1])] - a).cross(m.points[size_t(tri[2])] - a).normalized());
   };
+  for_each_surface_edge(m, et, [&](size_t e, int32_t t, int32_t s) {
+    const double turn = normal(t).dot(normal(s));
+    if (turn < cos_fold) f(e, t, s, turn);
+  });
+}
+
+size_t folds_of(const NodeMesh& m, const EdgeTable& et) {
   size_t folds = 0;
-  for_each_surface_edge(m, et, [&](int32_t t, int32_t s) { folds += normal(t).dot(normal(s)) < cos_fold; });
+  for_each_fold(m, et, [&](size_t, int32_t, int32_t, double) { ++folds; });
   return folds;
+}
+
+/// Node `n` of `m` as a corner: where it is and what meets there.
+TriangleCorner corner_of(const NodeMesh& m, const detail::NodePhases& np, const std::vector<uint8_t>& box, int32_t n) {
+  const auto phases = np.of(size_t(n));
+  return {n, m.points[size_t(n)], {phases.begin(), phases.end()}, std::popcount(unsigned(box[size_t(n)]))};
 }
 
 double angle_deg(const Vec3& u, const Vec3& v) {
@@ -207,46 +221,95 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
     const auto& tri = m.triangles[t];
     w.min_angle_deg = 180;
     for (size_t k = 0; k < 3; ++k) {
-      const auto n = size_t(tri[k]);
-      const Vec3 &a = m.points[n], &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
+      const Vec3 &a = m.points[size_t(tri[k])], &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
       w.min_angle_deg = std::min(w.min_angle_deg, angle_deg(b - a, c - a));
-      const auto phases = np.of(n);
-      w.corners[k] = {tri[k], a, {phases.begin(), phases.end()}, std::popcount(unsigned(box[n]))};
+      w.corners[k] = corner_of(m, np, box, tri[k]);
     }
     worst.push_back(std::move(w));
   }
   return worst;
 }
 
+std::vector<Fold> sharpest_folds(const NodeMesh& m, size_t count) {
+  if (count == 0) return {}; // `stats` without --folds: no second edge table
+  const std::vector<char> usable = measured_triangles(m);
+  const detail::NodeTriangles nt = detail::node_triangles(m.points.size(), m.triangles, &usable);
+  const EdgeTable et = detail::edge_table(m.triangles, nt);
+  struct Found {
+    double turn; // the normals' cosine: the sharper, the lower
+    size_t edge;
+    int32_t t, s;
+  };
+  std::vector<Found> found;
+  for_each_fold(m, et, [&](size_t e, int32_t t, int32_t s, double turn) { found.push_back({turn, e, t, s}); });
+  count = std::min(count, found.size());
+  const auto sharper = [](const Found& a, const Found& b) { return std::tie(a.turn, a.edge) < std::tie(b.turn, b.edge); };
+  std::partial_sort(found.begin(), found.begin() + std::ptrdiff_t(count), found.end(), sharper);
+  found.resize(count);
+
+  const detail::NodePhases np = detail::node_phases(nt, m.pairs);
+  const std::vector<uint8_t> box = detail::box_faces_of(m.points, m.domain);
+  std::vector<Fold> folds;
+  for (const Found& f : found) {
+    const auto [a, b] = et.nodes[f.edge];
+    folds.push_back({std::acos(std::clamp(f.turn, -1.0, 1.0)) * (180.0 / std::numbers::pi),
+                     m.pairs[size_t(f.t)],
+                     {size_t(f.t), size_t(f.s)},
+                     {corner_of(m, np, box, a), corner_of(m, np, box, b)}});
+  }
+  return folds;
+}
+
+namespace {
+
+/// Phase `p` as `m`'s files show it: its label, after its name where it has one.
+std::string phase_text(const NodeMesh& m, int32_t p) {
+  const std::string label = std::to_string(m.label_of(p));
+  const bool named = size_t(p) < m.phase_names.size() && !m.phase_names[size_t(p)].empty();
+  return named ? m.phase_names[size_t(p)] + " (" + label + ")" : label;
+}
+
+/// "  node N at (x, y, z): triple curve of a, b, c, on a box face\n"
+std::string corner_text(const TriangleCorner& c, const NodeMesh& m) {
+  const size_t n = c.phases.size();
+  std::string what = n <= 2 ? "surface" : n == 3 ? "triple curve" : std::to_string(n) + "-phase point";
+  std::string list;
+  for (int32_t p : c.phases) list += (list.empty() ? "" : ", ") + phase_text(m, p);
+  what += " of " + list;
+  if (c.box_faces) what += c.box_faces == 1 ? ", on a box face" : ", on " + std::to_string(c.box_faces) + " box faces";
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "  node %d at (%.6g, %.6g, %.6g): ", c.node, c.position.x(), c.position.y(),
+                c.position.z());
+  return buf + what + "\n";
+}
+
+} // namespace
+
 std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m) {
-  auto phase = [&](int32_t p) {
-    const std::string label = std::to_string(m.label_of(p));
-    const bool named = size_t(p) < m.phase_names.size() && !m.phase_names[size_t(p)].empty();
-    return named ? m.phase_names[size_t(p)] + " (" + label + ")" : label;
-  };
-  auto what = [&](const TriangleCorner& c) {
-    const size_t n = c.phases.size();
-    std::string out = n <= 2 ? "surface" : n == 3 ? "triple curve" : std::to_string(n) + "-phase point";
-    std::string list;
-    for (int32_t p : c.phases) list += (list.empty() ? "" : ", ") + phase(p);
-    out += " of " + list;
-    if (c.box_faces) out += c.box_faces == 1 ? ", on a box face" : ", on " + std::to_string(c.box_faces) + " box faces";
-    return out;
-  };
   std::string out;
   char buf[192];
   for (const WorstTriangle& w : worst) {
     const auto& c = w.corners;
     std::snprintf(buf, sizeof buf, "triangle %zu: q %.4f, smallest angle %.2f deg, between %s and %s; edges %.4g %.4g %.4g\n",
-                  w.triangle, w.quality, w.min_angle_deg, phase(w.pair[0]).c_str(), phase(w.pair[1]).c_str(),
-                  (c[1].position - c[0].position).norm(), (c[2].position - c[1].position).norm(),
-                  (c[0].position - c[2].position).norm());
+                  w.triangle, w.quality, w.min_angle_deg, phase_text(m, w.pair[0]).c_str(),
+                  phase_text(m, w.pair[1]).c_str(), (c[1].position - c[0].position).norm(),
+                  (c[2].position - c[1].position).norm(), (c[0].position - c[2].position).norm());
     out += buf;
-    for (const TriangleCorner& corner : c) {
-      std::snprintf(buf, sizeof buf, "  node %d at (%.6g, %.6g, %.6g): ", corner.node, corner.position.x(),
-                    corner.position.y(), corner.position.z());
-      out += buf + what(corner) + "\n";
-    }
+    for (const TriangleCorner& corner : c) out += corner_text(corner, m);
+  }
+  return out;
+}
+
+std::string to_text(std::span<const Fold> folds, const NodeMesh& m) {
+  std::string out;
+  char buf[192];
+  for (const Fold& f : folds) {
+    std::snprintf(buf, sizeof buf, "edge %d-%d: turns %.1f deg, between %s and %s; length %.4g, triangles %zu and %zu\n",
+                  f.ends[0].node, f.ends[1].node, f.turn_deg, phase_text(m, f.pair[0]).c_str(),
+                  phase_text(m, f.pair[1]).c_str(), (f.ends[1].position - f.ends[0].position).norm(),
+                  f.triangles[0], f.triangles[1]);
+    out += buf;
+    for (const TriangleCorner& end : f.ends) out += corner_text(end, m);
   }
   return out;
 }
@@ -290,7 +353,8 @@ std::string to_text(const MeshStats& s) {
   return out;
 }
 
-std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, const NodeMesh* m) {
+std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, const NodeMesh* m,
+                    std::span<const Fold> folds) {
   nlohmann::ordered_json j = {
       {"vertices", s.vertices},
       {"triangles", s.triangles},
@@ -314,26 +378,37 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
       {"rms_edge", s.rms_edge},
   };
   if (s.self_intersections) j["self_intersections"] = *s.self_intersections;
-  if (!worst.empty()) {
-    auto label = [&](int32_t p) { return m ? m->label_of(p) : p; };
+  auto label = [&](int32_t p) { return m ? m->label_of(p) : p; };
+  auto corners_json = [&](std::span<const TriangleCorner> corners) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
-    for (const WorstTriangle& w : worst) {
-      nlohmann::ordered_json corners = nlohmann::ordered_json::array();
-      for (const TriangleCorner& c : w.corners) {
-        std::vector<int32_t> phases;
-        for (int32_t p : c.phases) phases.push_back(label(p));
-        corners.push_back({{"node", c.node},
-                           {"position", {c.position.x(), c.position.y(), c.position.z()}},
-                           {"phases", phases},
-                           {"box_faces", c.box_faces}});
-      }
+    for (const TriangleCorner& c : corners) {
+      std::vector<int32_t> phases;
+      for (int32_t p : c.phases) phases.push_back(label(p));
+      list.push_back({{"node", c.node},
+                      {"position", {c.position.x(), c.position.y(), c.position.z()}},
+                      {"phases", phases},
+                      {"box_faces", c.box_faces}});
+    }
+    return list;
+  };
+  if (!worst.empty()) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const WorstTriangle& w : worst)
       list.push_back({{"triangle", w.triangle},
                       {"quality", w.quality},
                       {"min_angle_deg", w.min_angle_deg},
                       {"pair", {label(w.pair[0]), label(w.pair[1])}},
-                      {"corners", corners}});
-    }
+                      {"corners", corners_json(w.corners)}});
     j["worst_triangles"] = list;
+  }
+  if (!folds.empty()) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const Fold& f : folds)
+      list.push_back({{"turn_deg", f.turn_deg},
+                      {"pair", {label(f.pair[0]), label(f.pair[1])}},
+                      {"triangles", f.triangles},
+                      {"ends", corners_json(f.ends)}});
+    j["sharpest_folds"] = list;
   }
   return j.dump(2);
 }

@@ -362,7 +362,7 @@ void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const M
     observer->note(cat(folds, folds == 1 ? " surface edge folds" : " surface edges fold",
                        ": the surface turns back across each by more than ", int(MeshStats::kFoldDeg),
                        " degrees, two of its sheets laid onto each other (where a layer or rim is thinner than the "
-                       "edges, or a surface meets the box at a glancing angle); `voronoimesh stats` counts them"));
+                       "edges, or a surface meets the box at a glancing angle); `voronoimesh stats --folds N` lists where"));
   // No output may replace an input of the run.
   StagedOutputs staged({job.input, job.mesh});
   write_staged(staged, mesh, job.outputs, recording ? &history : nullptr, observer);

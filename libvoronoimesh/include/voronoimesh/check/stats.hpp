@@ -95,6 +95,23 @@ struct WorstTriangle {
 /// @return the worst triangles, worst first
 std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count);
 
+/// A fold of a mesh (sharpest_folds()): a surface edge across which the
+/// surface turns back (MeshStats::folds).
+struct Fold {
+  double turn_deg = 0;                ///< the angle between its two triangles' normals, above MeshStats::kFoldDeg
+  PhasePair pair{};                   ///< the surface's phases
+  std::array<size_t, 2> triangles{};  ///< the surface's two triangles on the edge
+  std::array<TriangleCorner, 2> ends; ///< the edge's ends, and what meets there
+};
+
+/// The `count` sharpest folds (largest turn first, ties by edge), with what
+/// meets at their ends: where two sheets of a surface lie on each other, which
+/// no quality measure shows. Linear in the mesh size.
+/// @param m the mesh
+/// @param count how many at most
+/// @return the sharpest folds, sharpest first
+std::vector<Fold> sharpest_folds(const NodeMesh& m, size_t count);
+
 /// Human-readable multi-line summary.
 /// @param s the measures to show
 std::string to_text(const MeshStats& s);
@@ -102,12 +119,19 @@ std::string to_text(const MeshStats& s);
 /// @param s the measures to write
 /// @param worst worst_triangles() to add as "worst_triangles" (none: the key is left out)
 /// @param m the mesh they are of: phases are written as its files show them (NodeMesh::phase_labels)
-std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst = {}, const NodeMesh* m = nullptr);
+/// @param folds sharpest_folds() to add as "sharpest_folds" (none: the key is left out)
+std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst = {}, const NodeMesh* m = nullptr,
+                    std::span<const Fold> folds = {});
 
 /// The worst triangles as text, a few lines each, with phases as `m`'s files
 /// show them and their names where `m` has them.
 /// @param worst worst_triangles() of `m`
 /// @param m the mesh
 std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m);
+
+/// The folds as text, a few lines each, like the worst triangles.
+/// @param folds sharpest_folds() of `m`
+/// @param m the mesh
+std::string to_text(std::span<const Fold> folds, const NodeMesh& m);
 
 } // namespace vm
