@@ -23,18 +23,18 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       "self-intersections) of a mesh; exit code 4 if a check fails.");
   cmd->add_option("mesh", o->mesh, "Mesh file (.ply written by voronoimesh)")->required();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
-  cmd->add_option("--worst", o->worst,
-                  "Also list the N triangles of lowest quality, worst first: their quality, smallest angle and "
-                  "phases, and what meets at each corner (a surface, a triple curve or a quadruple point, of which "
-                  "phases; whether on the box), to see where and why a mesh loses quality")
-      ->check(CLI::Range(0, 1000000))
-      ->option_text("N");
-  cmd->add_option("--folds", o->folds,
-                  "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
-                  "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "
-                  "the turn, the phases, the two triangles, and what meets at each end of the edge")
-      ->check(CLI::Range(0, 1000000))
-      ->option_text("N");
+  // How many of something to list, N >= 0.
+  auto add_listing = [cmd](const char* name, int& n, const char* help) {
+    cmd->add_option(name, n, help)->check(CLI::Range(0, 1000000))->option_text("N");
+  };
+  add_listing("--worst", o->worst,
+              "Also list the N triangles of lowest quality, worst first: their quality, smallest angle and "
+              "phases, and what meets at each corner (a surface, a triple curve or a quadruple point, of which "
+              "phases; whether on the box), to see where and why a mesh loses quality");
+  add_listing("--folds", o->folds,
+              "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
+              "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "
+              "the turn, the phases, the two triangles, and what meets at each end of the edge");
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
