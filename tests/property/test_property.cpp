@@ -43,13 +43,20 @@ constexpr uint64_t kThreadsEvery = 6;
 /// edge length, 4810 -> 4831: shards 2, 3, 4 up by 2, 22, 2, shard 0 down by 5
 /// (nodes far off their interface take more iterations to reach it; after 20
 /// iterations the same cases have 4807 against 4756 before both changes).
-constexpr std::array<size_t, kShards> kAgainstAtMost = {659, 871, 100, 1343, 787, 198, 579, 294};
+/// Since pairs of phases that part slower than 0.2 per unit length snap only
+/// within a cell (create/node_values.hpp), 4831 -> 4834: shard 3 up by 3.
+constexpr std::array<size_t, kShards> kAgainstAtMost = {659, 871, 100, 1346, 787, 198, 579, 294};
 
 /// Surface edges that fold after the last iteration, per shard, over all its
 /// cases (CaseResult::folds, MeshStats::folds): like the triangles against their
 /// pair, a statistic that may only shrink (thin slabs and faces thinner than a
-/// cell at coarse grids fold legitimately).
-constexpr std::array<size_t, kShards> kFoldsAtMost = {946, 1040, 284, 701, 770, 554, 347, 449};
+/// cell at coarse grids fold legitimately). Since slow pairs snap only within a
+/// cell, 5091 -> 5140: 43 of the 49 in one case of random grid values (seed 1,
+/// case 274: 2 -> 45; a grid of 4x14x10 over a box 1,000 wide, whose values, of
+/// order 1, part at about 0.01 per unit length: snapping by value, within 0.5 h or
+/// about 50, tied every pair at every node),
+/// shards 0, 5, 7 up by 7, 2, 44, shards 1, 4 down by 3, 1.
+constexpr std::array<size_t, kShards> kFoldsAtMost = {953, 1037, 284, 701, 769, 556, 347, 493};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

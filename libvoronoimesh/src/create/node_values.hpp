@@ -36,6 +36,8 @@ inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb
 struct NodeScope {
   NodeWindow window;
   double min_value = 0, max_value = 0;
+  /// The phase functions sampled, for snapping slow pairs less (NodeValues); null: by value alone.
+  const PhaseField* field = nullptr;
 };
 
 /// The smallest floor value and the largest value of `field` over the lattice
@@ -46,6 +48,19 @@ std::array<double, 2> lattice_value_range(const SampledField& field, const TetLa
                                           std::array<int32_t, 2> layers);
 
 /// The quantized, snapped values of the lattice nodes, with each node's winner.
+///
+/// Snapping (Algorithm 2, line 1) makes two phases' values equal where they
+/// differ by less than eps, which moves their interface onto the node from
+/// about eps / |grad phi_p - grad phi_q| away: a tenth of a cell for the
+/// paper's distance functions at eps = 0.2 h. Where the phase functions are
+/// known, a pair whose difference grows slower than kSlowRate per unit length
+/// snaps only within eps times its rate / kSlowRate, so that no snap moves an
+/// interface more than eps / kSlowRate (a cell at the default eps). By value
+/// alone, the bisector of two seeds 0.02 apart (seeds30_2, rate 0.085 there)
+/// lay up to 3 cells off along two box faces, and after improvement still 2
+/// cells off, folded at 10 edges. Faster pairs snap by value as the paper does:
+/// snapping every pair by distance left near-degenerate vertices as clusters
+/// of quadruple points a hundredth of a cell apart, which snapping merges.
 ///
 /// Held for every node, or near interfaces only: there, every node keeps its
 /// winning phase, but only the nodes a cut can read keep their values (the
@@ -157,6 +172,9 @@ private:
 
   NodeWindow window_;
   int k_;
+  // The phase functions, to snap slow pairs less (null: by value alone), and where the nodes lie.
+  const PhaseField* field_ = nullptr;
+  const TetLattice* lattice_ = nullptr;
   // The affine map to integers (v - lo_) * scale_ and the snap and untie distances in its units.
   double lo_ = 0, scale_ = 1;
   int64_t eps_ = 0, untie_ = 0;

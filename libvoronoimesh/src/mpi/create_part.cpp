@@ -218,10 +218,12 @@ CreateStats sum_stats(Comm& comm, const CreateStats& mine) {
 }
 
 /// Everything after sampling, for a block of samples that `release` may free
-/// once the layers have moved.
+/// once the layers have moved; `field` is what they are samples of (null: not
+/// known), with which slow pairs snap less as in one process (NodeValues).
 template <class Release>
 MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const SampledField& block,
-                           const CreateParams& params, bool validate, DistributedStats* stats, Release&& release) {
+                           const PhaseField* field, const CreateParams& params, bool validate,
+                           DistributedStats* stats, Release&& release) {
   const Plan p = plan(comm, block, params.lattice);
   const GridSpec grid = block.grid();
   const std::vector<Layers> wanted = windows(p, grid, params.lattice);
@@ -236,7 +238,7 @@ MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const S
   // the neighbours' winners, which the window's edges lack.
   const vm::detail::TetLattice lattice(grid, params.lattice);
   const Layers layers = wanted[size_t(comm.rank())];
-  const vm::detail::NodeScope scope{lattice.window(layers[0], layers[1]), p.range[0], p.range[1]};
+  const vm::detail::NodeScope scope{lattice.window(layers[0], layers[1]), p.range[0], p.range[1], field};
   vm::detail::NodeValues values(window, lattice, params.snap * grid.h(), kUntieFraction * grid.h(), nullptr, &scope);
   CreateStats mine = vm::detail::create_slabs(window, values, params, owned, peers, part);
   mine.held_nodes = uint64_t(values.held_nodes());
@@ -270,7 +272,7 @@ MeshPart create_part(MPI_Comm c, const SampledField& block, const CreateParams& 
   Comm comm(c);
   MeshPart part = comm.collectively([&] {
     const detail::MemoryShare share = detail::memory_share(comm);
-    return create_from_block(comm, share, block, params, true, stats, [] {});
+    return create_from_block(comm, share, block, nullptr, params, true, stats, [] {});
   });
   finish_stats(stats, comm, start);
   return part;
@@ -294,7 +296,8 @@ MeshPart create_part(MPI_Comm c, const Scene& scene, const MeshOptions& o, Distr
     detail::refuse_beyond_share(share, double(estimate_sample_memory(grid, o.top_k, block)),
                                 vm::detail::cat("grid: layers ", block[0], "..", block[1], " of ", grid_text(grid)));
     std::optional<SampledField> samples = SampledField::sample(*scene.field, grid, o.top_k, block);
-    MeshPart out = create_from_block(comm, share, *samples, params, o.validate, stats, [&] { samples.reset(); });
+    MeshPart out = create_from_block(comm, share, *samples, scene.field.get(), params, o.validate, stats,
+                                     [&] { samples.reset(); });
     NodeMesh names;
     names.domain = grid.domain;
     names.outside_phase = out.outside_phase;

@@ -53,7 +53,7 @@ struct InputOptions {
   /// distances lead there already), and the scene asks for every grid node
   /// (Scene::needs_every_grid_node) where the bcc lattice would lose more than
   /// 1% of a label. Keeps labels a voxel or two thin that the default loses,
-  /// at a cost: on CGAL's liver 1.6x the time and min q 0.243 instead of 0.543
+  /// at a cost: on CGAL's liver 1.6x the time and min q 0.316 instead of 0.592
   /// (docs/inputs.md), hence off by default.
   bool voxel_faithful = false;
   double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]
