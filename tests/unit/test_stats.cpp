@@ -143,7 +143,8 @@ TEST(Stats, the_sharpest_folds_are_listed_with_their_turn_and_ends) {
   m.phase_labels = {7, 9};
   const std::vector<Fold> folds = sharpest_folds(m, 5);
   ASSERT_EQ(folds.size(), 3u);
-  const double leg = 180 - std::atan(0.05 / 0.3) * 180 / M_PI, hypotenuse = 180 - std::atan(0.05 / std::sqrt(0.08)) * 180 / M_PI;
+  const double leg = 180 - std::atan(0.05 / 0.3) * 180 / M_PI;
+  const double hypotenuse = 180 - std::atan(0.05 / std::sqrt(0.08)) * 180 / M_PI;
   EXPECT_NEAR(folds[0].turn_deg, leg, 1e-9);
   EXPECT_NEAR(folds[1].turn_deg, leg, 1e-9);
   EXPECT_NEAR(folds[2].turn_deg, hypotenuse, 1e-9);
@@ -154,7 +155,8 @@ TEST(Stats, the_sharpest_folds_are_listed_with_their_turn_and_ends) {
       EXPECT_EQ(end.position.z(), 0.0) << "the folding edges are the base's";
       EXPECT_EQ(end.phases, (std::vector<int32_t>{0, 1}));
       // Both triangles have both ends of the edge as corners.
-      for (size_t t : f.triangles) EXPECT_NE(std::find(m.triangles[t].begin(), m.triangles[t].end(), end.node), m.triangles[t].end());
+      for (size_t t : f.triangles)
+        EXPECT_NE(std::find(m.triangles[t].begin(), m.triangles[t].end(), end.node), m.triangles[t].end());
     }
   }
   EXPECT_EQ(sharpest_folds(m, 1).size(), 1u);

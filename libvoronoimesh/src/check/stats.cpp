@@ -221,7 +221,8 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
     const auto& tri = m.triangles[t];
     w.min_angle_deg = 180;
     for (size_t k = 0; k < 3; ++k) {
-      const Vec3 &a = m.points[size_t(tri[k])], &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
+      const Vec3& a = m.points[size_t(tri[k])];
+      const Vec3 &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
       w.min_angle_deg = std::min(w.min_angle_deg, angle_deg(b - a, c - a));
       w.corners[k] = corner_of(m, np, box, tri[k]);
     }
@@ -243,7 +244,9 @@ std::vector<Fold> sharpest_folds(const NodeMesh& m, size_t count) {
   std::vector<Found> found;
   for_each_fold(m, et, [&](size_t e, int32_t t, int32_t s, double turn) { found.push_back({turn, e, t, s}); });
   count = std::min(count, found.size());
-  const auto sharper = [](const Found& a, const Found& b) { return std::tie(a.turn, a.edge) < std::tie(b.turn, b.edge); };
+  const auto sharper = [](const Found& a, const Found& b) {
+    return std::tie(a.turn, a.edge) < std::tie(b.turn, b.edge);
+  };
   std::partial_sort(found.begin(), found.begin() + std::ptrdiff_t(count), found.end(), sharper);
   found.resize(count);
 
@@ -304,7 +307,8 @@ std::string to_text(std::span<const Fold> folds, const NodeMesh& m) {
   std::string out;
   char buf[192];
   for (const Fold& f : folds) {
-    std::snprintf(buf, sizeof buf, "edge %d-%d: turns %.1f deg, between %s and %s; length %.4g, triangles %zu and %zu\n",
+    std::snprintf(buf, sizeof buf,
+                  "edge %d-%d: turns %.1f deg, between %s and %s; length %.4g, triangles %zu and %zu\n",
                   f.ends[0].node, f.ends[1].node, f.turn_deg, phase_text(m, f.pair[0]).c_str(),
                   phase_text(m, f.pair[1]).c_str(), (f.ends[1].position - f.ends[0].position).norm(),
                   f.triangles[0], f.triangles[1]);
