@@ -35,9 +35,10 @@ void add_output_options(CLI::App* cmd, OutputOptions& o, bool per_phase) {
 void add_create_options(CLI::App* cmd, CreateOptions& o) {
   cmd->add_option("--grid", o.grid, "Grid cells per axis, N or NX,NY,NZ (overrides the scene's \"grid\")")
       ->delimiter(',');
-  cmd->add_option("--snap", o.snap, "Snapping threshold in units of the grid spacing h: two phases' values closer than this at a lattice "
-                  "node are made equal (paper: 0.2; a pair whose difference grows slower than 0.2 per unit length "
-                  "snaps proportionally less, so no snap moves an interface more than a cell); 0 turns it off")
+  cmd->add_option("--snap", o.snap,
+                  "Snapping threshold in units of the grid spacing h: two phases' values closer than this at a "
+                  "lattice node are made equal (paper: 0.2; a pair whose difference grows slower than 0.2 per unit "
+                  "length snaps proportionally less, so no snap moves an interface more than a cell); 0 turns it off")
       ->capture_default_str();
   cmd->add_option("--lattice", o.lattice,
                   "Background tetrahedra: bcc (every second grid point), cube6 (every grid point) or auto (bcc, but "

@@ -36,6 +36,17 @@ std::vector<char> measured_triangles(const NodeMesh& m) {
   return measured;
 }
 
+/// The measured triangles (measured_triangles()), each node's measured triangles and their edges: what
+/// compute_stats(), count_folds() and sharpest_folds() walk.
+struct MeasuredTables {
+  std::vector<char> usable;
+  detail::NodeTriangles nt;
+  EdgeTable et;
+  explicit MeasuredTables(const NodeMesh& m)
+      : usable(measured_triangles(m)), nt(detail::node_triangles(m.points.size(), m.triangles, &usable)),
+        et(detail::edge_table(m.triangles, nt)) {}
+};
+
 /// Number of distinct representatives among the items with `keep` set.
 template <class Keep>
 size_t count_classes(detail::UnionFind& uf, size_t n, Keep keep) {
@@ -166,15 +177,14 @@ MeshStats compute_stats(const NodeMesh& m) {
   s.vertices = m.points.size();
   s.triangles = m.triangles.size();
   // Malformed triangles (bad ids, no pair) are left out of every count; validate() reports them.
-  const std::vector<char> usable = measured_triangles(m);
+  const MeasuredTables tables(m);
+  const auto& [usable, nt, et] = tables;
   std::vector<int32_t> phases;
   for (size_t t = 0; t < m.triangles.size(); ++t)
     if (usable[t]) phases.insert(phases.end(), m.pairs[t].begin(), m.pairs[t].end());
   std::sort(phases.begin(), phases.end());
   s.phases = size_t(std::unique(phases.begin(), phases.end()) - phases.begin());
 
-  const detail::NodeTriangles nt = detail::node_triangles(m.points.size(), m.triangles, &usable);
-  const EdgeTable et = detail::edge_table(m.triangles, nt);
   const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   s.surfaces = count_surfaces(m, et, usable);
   s.folds = folds_of(m, et);
@@ -187,10 +197,7 @@ MeshStats compute_stats(const NodeMesh& m) {
   return s;
 }
 
-size_t count_folds(const NodeMesh& m) {
-  const std::vector<char> usable = measured_triangles(m);
-  return folds_of(m, detail::edge_table(m.triangles, detail::node_triangles(m.points.size(), m.triangles, &usable)));
-}
+size_t count_folds(const NodeMesh& m) { return folds_of(m, MeasuredTables(m).et); }
 
 std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
   if (count == 0) return {}; // `stats` without --worst: no pass over the triangles
@@ -233,16 +240,14 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
 
 std::vector<Fold> sharpest_folds(const NodeMesh& m, size_t count) {
   if (count == 0) return {}; // `stats` without --folds: no second edge table
-  const std::vector<char> usable = measured_triangles(m);
-  const detail::NodeTriangles nt = detail::node_triangles(m.points.size(), m.triangles, &usable);
-  const EdgeTable et = detail::edge_table(m.triangles, nt);
+  const MeasuredTables tables(m);
   struct Found {
     double turn; // the normals' cosine: the sharper, the lower
     size_t edge;
     int32_t t, s;
   };
   std::vector<Found> found;
-  for_each_fold(m, et, [&](size_t e, int32_t t, int32_t s, double turn) { found.push_back({turn, e, t, s}); });
+  for_each_fold(m, tables.et, [&](size_t e, int32_t t, int32_t s, double turn) { found.push_back({turn, e, t, s}); });
   count = std::min(count, found.size());
   const auto sharper = [](const Found& a, const Found& b) {
     return std::tie(a.turn, a.edge) < std::tie(b.turn, b.edge);
@@ -250,11 +255,11 @@ std::vector<Fold> sharpest_folds(const NodeMesh& m, size_t count) {
   std::partial_sort(found.begin(), found.begin() + std::ptrdiff_t(count), found.end(), sharper);
   found.resize(count);
 
-  const detail::NodePhases np = detail::node_phases(nt, m.pairs);
+  const detail::NodePhases np = detail::node_phases(tables.nt, m.pairs);
   const std::vector<uint8_t> box = detail::box_faces_of(m.points, m.domain);
   std::vector<Fold> folds;
   for (const Found& f : found) {
-    const auto [a, b] = et.nodes[f.edge];
+    const auto [a, b] = tables.et.nodes[f.edge];
     folds.push_back({std::acos(std::clamp(f.turn, -1.0, 1.0)) * (180.0 / std::numbers::pi),
                      m.pairs[size_t(f.t)],
                      {size_t(f.t), size_t(f.s)},
