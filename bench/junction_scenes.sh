@@ -32,17 +32,20 @@ PY
 
 # "exact bound": the most min q can be with exact junctions (the smallest
 # corner of a surface at a quadruple point; scripts/corner_bound.py).
-echo "| scene | triangles | min q | mean q | min angle | exact bound |"
-echo "|---|---|---|---|---|---|"
+# "farthest node": the largest offset of a surface / triple-curve / quadruple-point
+# node from its closed-form interface, in grid spacings h (`stats --field`).
+echo "| scene | triangles | min q | mean q | min angle | exact bound | farthest node (h): surface / curve / point |"
+echo "|---|---|---|---|---|---|---|"
 for scene in "$out"/seeds*.json "$out"/balls_*.json; do
   name=$(basename "$scene" .json)
   "$vm" mesh -q "$scene" -o "$out/$name.ply"
   bound=$(python3 scripts/corner_bound.py "$scene" | sed -n 's/.*min q <= //p')
-  "$vm" stats --json "$out/$name.ply" | python3 -c '
+  "$vm" stats --json --field "$scene" "$out/$name.ply" | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
-print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {} |".format(
-    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2]))' "$name" "${bound:-none}"
+far = " / ".join("{:.3f}".format(s["offsets"][c]["max_h"]) for c in ("surface", "triple_curve", "quadruple_point"))
+print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {} | {} |".format(
+    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2], far))' "$name" "${bound:-none}"
 done | tee "$out/table.md"
 python3 - "$out/table.md" <<'PY'
 import sys

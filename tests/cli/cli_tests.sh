@@ -24,6 +24,12 @@ printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty dou
 if [ "$("$vm" stats --folds 2 flat.ply | grep -cE '^edge [0-9]+-[0-9]+: turns 1[5-8][0-9]\.[0-9] deg')" = 2 ]; then pass; else fail "stats --folds 2"; fi
 if "$vm" stats --json --folds 5 flat.ply | python3 -c 'import json, sys; s = json.load(sys.stdin); f = s["sharpest_folds"]; sys.exit(not (s["folds"] == 3 and len(f) == 3 and f[0]["turn_deg"] >= f[2]["turn_deg"] > 150 and len(f[0]["ends"]) == 2))'; then pass; else fail "stats --json --folds 5"; fi
 if "$vm" stats --folds -1 flat.ply >/dev/null 2>folds.err; then fail "stats --folds -1 accepted"; elif grep -q "folds" folds.err; then pass; else fail "stats --folds -1: $(cat folds.err)"; fi
+# --field: how far the nodes lie from the interface of the input; a field the mesh was not made from is refused.
+if "$vm" stats --field "$examples/four_spheres.json" demo.ply >offsets.txt && grep -qE "^  quadruple points +5: rms" offsets.txt &&
+  "$vm" stats --json --field "$examples/four_spheres.json" demo.ply | python3 -c 'import json, sys; o = json.load(sys.stdin)["offsets"]; sys.exit(not (o["surface"]["nodes"] > 1000 and 0 < o["triple_curve"]["max_h"] < 0.5))'; then pass
+else fail "stats --field: $(cat offsets.txt)"; fi
+cp "$examples/voronoi7.json" seven.json
+expect_error "stats --field of another input" 2 "seven\.json: its phase 0 is .cell0., but demo\.ply" -- "$vm" stats --field seven.json demo.ply
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do

@@ -1,6 +1,8 @@
 #include "fixtures.hpp"
 
 #include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/improve/offsets.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -8,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 using namespace vm;
 
@@ -317,4 +320,43 @@ TEST(Stats, worst_triangles_count_the_box_faces_a_corner_lies_on) {
   EXPECT_EQ(at.at({0.5, 0.0, 0.0})->box_faces, 2);
   EXPECT_EQ(at.at({0.5, 0.5, 0.5})->box_faces, 0);
   EXPECT_NE(to_text(worst, m).find("triple curve of 0, 1, 2, on a box face"), std::string::npos);
+}
+
+// interface_offsets() measures how far nodes lie from where their phases are
+// equal: on the meshed four spheres every class is within a small share of h
+// (the paper's projection puts them there), and a surface node pushed 0.3 h
+// across its sphere becomes the farthest surface node, 0.3 h off.
+TEST(Offsets, measure_how_far_nodes_lie_from_their_interface) {
+  const Scene scene = test::example_scene("four_spheres.json", 24);
+  const double h = scene.grid.h();
+  NodeMesh m = mesh_scene(scene);
+  const InterfaceOffsets before = interface_offsets(m, *scene.field);
+  EXPECT_GT(before[0].nodes, 1000u);
+  EXPECT_GT(before[1].nodes, 50u);
+  EXPECT_EQ(before[2].nodes, 5u); // the scene's five quadruple points (Stats.closed_surface counts them)
+  for (const NodeOffsets& o : before) {
+    EXPECT_LT(o.max, 0.05 * h);
+    EXPECT_LE(o.rms, o.max);
+  }
+  // A surface node inside the domain, moved along its pair's gradient difference.
+  std::vector<std::set<int32_t>> phases(m.points.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (int32_t v : m.triangles[t]) phases[size_t(v)].insert(m.pairs[t].begin(), m.pairs[t].end());
+  size_t n = 0;
+  while (phases[n].size() != 2) ++n;
+  const std::vector<int32_t> pair(phases[n].begin(), phases[n].end());
+  const Vec3 normal =
+      (scene.field->gradient(pair[1], m.points[n]) - scene.field->gradient(pair[0], m.points[n])).normalized();
+  m.points[n] += 0.3 * h * normal;
+  const InterfaceOffsets after = interface_offsets(m, *scene.field);
+  EXPECT_EQ(after[0].farthest, int32_t(n));
+  EXPECT_NEAR(after[0].max, 0.3 * h, 0.01 * h);
+  EXPECT_EQ(after[1].max, before[1].max); // the other classes are as they were
+  // The text names the farthest node; the JSON gives the offsets in h too.
+  EXPECT_NE(to_text(after, m, h).find("node " + std::to_string(n)), std::string::npos);
+  const std::pair<std::string, std::string> more[] = {{"offsets", to_json(after, m, h)}};
+  const auto j = nlohmann::json::parse(to_json(compute_stats(m), {}, &m, {}, more));
+  EXPECT_NEAR(j["offsets"]["surface"]["max_h"].get<double>(), 0.3, 0.01);
+  EXPECT_EQ(j["offsets"]["surface"]["farthest"]["node"].get<int>(), int(n));
+  EXPECT_EQ(j["offsets"]["quadruple_point"]["nodes"].get<int>(), 5);
 }

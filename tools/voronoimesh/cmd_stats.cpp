@@ -3,10 +3,14 @@
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/improve/offsets.hpp"
 #include "voronoimesh/io/ply.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace vmcli {
 
@@ -16,6 +20,8 @@ void add_stats_command(CLI::App& app, int& exit_code) {
     bool json = false;
     int worst = 0;
     int folds = 0;
+    std::string field;
+    InputCliOptions input;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -35,6 +41,14 @@ void add_stats_command(CLI::App& app, int& exit_code) {
               "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
               "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "
               "the turn, the phases, the two triangles, and what meets at each end of the edge");
+  cmd->add_option("--field", o->field,
+                  std::string("Also measure how far the nodes lie from the interface of the input the mesh was made "
+                              "from: per surface, triple-curve and quadruple-point nodes the RMS and largest "
+                              "first-order distance from where their phases are equal, in multiples of the "
+                              "input's default grid spacing h, and the farthest node. ") +
+                      kInputHelp)
+      ->option_text("INPUT");
+  add_input_options(cmd, o->input);
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
@@ -45,8 +59,18 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       const bool crossing = s.self_intersections.value_or(0) > 0;
       const std::vector<vm::WorstTriangle> worst = vm::worst_triangles(mesh, size_t(o->worst));
       const std::vector<vm::Fold> folds = vm::sharpest_folds(mesh, size_t(o->folds));
+      std::optional<vm::InterfaceOffsets> offsets;
+      double h = 1;
+      if (!o->field.empty()) {
+        const vm::Scene scene = vm::read_input(o->field, input_options(o->input));
+        vm::check_field_matches(mesh, o->mesh, scene, o->field);
+        offsets = vm::interface_offsets(mesh, *vm::phases_of_mesh(mesh, scene.field));
+        h = scene.grid.h();
+      }
       if (o->json) {
-        std::cout << vm::to_json(s, worst, &mesh, folds) << "\n";
+        std::vector<std::pair<std::string, std::string>> more;
+        if (offsets) more.emplace_back("offsets", vm::to_json(*offsets, mesh, h));
+        std::cout << vm::to_json(s, worst, &mesh, folds, more) << "\n";
       } else {
         std::cout << vm::to_text(s);
         std::cout << "topology               "
@@ -54,6 +78,9 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         for (const auto& p : report.problems) std::cout << "  " << p << "\n";
         if (!worst.empty()) std::cout << "worst triangles\n" << vm::to_text(worst, mesh);
         if (!folds.empty()) std::cout << "sharpest folds\n" << vm::to_text(folds, mesh);
+        if (offsets)
+          std::cout << "offsets from the interface (h = " << h << ", the input's grid spacing)\n"
+                    << vm::to_text(*offsets, mesh, h);
       }
       return report.ok() && !crossing ? kOk : kTopology;
     });

@@ -27,13 +27,9 @@ namespace {
 using detail::EdgeTable;
 using detail::Triangles;
 
-/// Per triangle, whether it is well formed and has a pair, so measured: malformed ones are
-/// left out of every measure (validate() reports them).
+/// detail::measured_triangles() of a mesh.
 std::vector<char> measured_triangles(const NodeMesh& m) {
-  std::vector<char> measured(m.triangles.size());
-  for (size_t t = 0; t < m.triangles.size(); ++t)
-    measured[t] = t < m.pairs.size() && detail::well_formed(m.triangles[t], m.points.size());
-  return measured;
+  return detail::measured_triangles(m.triangles, m.pairs.size(), m.points.size());
 }
 
 /// The measured triangles (measured_triangles()), each node's measured triangles and their edges: what
@@ -363,7 +359,8 @@ std::string to_text(const MeshStats& s) {
 }
 
 std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, const NodeMesh* m,
-                    std::span<const Fold> folds) {
+                    std::span<const Fold> folds,
+                    std::span<const std::pair<std::string, std::string>> more) {
   nlohmann::ordered_json j = {
       {"vertices", s.vertices},
       {"triangles", s.triangles},
@@ -419,6 +416,7 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
                       {"ends", corners_json(f.ends)}});
     j["sharpest_folds"] = list;
   }
+  for (const auto& [key, text] : more) j[key] = nlohmann::ordered_json::parse(text);
   return j.dump(2);
 }
 

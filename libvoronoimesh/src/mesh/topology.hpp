@@ -35,6 +35,15 @@ inline bool well_formed(const std::array<int32_t, 3>& t, size_t num_nodes) {
   return t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
 }
 
+/// Per triangle, whether it is well formed and has a phase pair (`num_pairs`
+/// of the triangles have one), so measured: malformed ones are left out of
+/// every measure (validate() reports them).
+inline std::vector<char> measured_triangles(const Triangles& tris, size_t num_pairs, size_t num_nodes) {
+  std::vector<char> measured(tris.size());
+  for (size_t t = 0; t < tris.size(); ++t) measured[t] = t < num_pairs && well_formed(tris[t], num_nodes);
+  return measured;
+}
+
 /// Triangles around each node (CSR), ascending triangle ids per node.
 struct NodeTriangles {
   std::vector<int32_t> off; ///< num_nodes + 1 offsets

@@ -143,36 +143,6 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   return report.iterations;
 }
 
-/// Refuses an input that cannot be the one `mesh` was made from: phase ids its
-/// phase functions do not have, phases named or labelled otherwise, or nodes
-/// outside its domain.
-void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
-                         const std::string& input) {
-  const auto field = phases_of_mesh(mesh, scene.field);
-  const int phases = field->num_phases();
-  int top = -1;
-  for (const auto& p : mesh.pairs) top = std::max(top, p[1]);
-  if (top >= phases)
-    throw InvalidInput(located(input, cat("has ", scene.field->num_phases(), " phases, but ", mesh_path,
-                                          " uses phase ", top)));
-  for (int p = 0; p < std::min(phases, int(mesh.phase_names.size())); ++p)
-    if (!mesh.phase_names[size_t(p)].empty() && mesh.phase_names[size_t(p)] != field->phase_name(p))
-      throw InvalidInput(located(input, cat("its phase ", p, " is ", detail::quote(field->phase_name(p)), ", but ",
-                                            mesh_path, " calls phase ", p, " ",
-                                            detail::quote(mesh.phase_names[size_t(p)]),
-                                            ": give the input the mesh was made from")));
-  for (int p = 0; p <= top; ++p) {
-    const int32_t label = mesh.label_of(p);
-    if (label != field->phase_label(p))
-      throw InvalidInput(located(input, cat("its phase ", p, " has the label ", field->phase_label(p), ", but ",
-                                            mesh_path, " gives it ", label, ": give the input the mesh was made from")));
-  }
-  const Box& box = scene.grid.domain;
-  const double tol = 1e-6 * (box.max - box.min).norm();
-  for (const Vec3& p : mesh.points)
-    if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
-      throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
-}
 
 /// Writes the outputs among `staged`, the history too if given, and renames them
 /// all into place unless the observer asks to stop meanwhile (then none is).
@@ -208,6 +178,34 @@ NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
 }
 
 } // namespace
+
+void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
+                         const std::string& input) {
+  const auto field = phases_of_mesh(mesh, scene.field);
+  const int phases = field->num_phases();
+  int top = -1;
+  for (const auto& p : mesh.pairs) top = std::max(top, p[1]);
+  if (top >= phases)
+    throw InvalidInput(located(input, cat("has ", scene.field->num_phases(), " phases, but ", mesh_path,
+                                          " uses phase ", top)));
+  for (int p = 0; p < std::min(phases, int(mesh.phase_names.size())); ++p)
+    if (!mesh.phase_names[size_t(p)].empty() && mesh.phase_names[size_t(p)] != field->phase_name(p))
+      throw InvalidInput(located(input, cat("its phase ", p, " is ", detail::quote(field->phase_name(p)), ", but ",
+                                            mesh_path, " calls phase ", p, " ",
+                                            detail::quote(mesh.phase_names[size_t(p)]),
+                                            ": give the input the mesh was made from")));
+  for (int p = 0; p <= top; ++p) {
+    const int32_t label = mesh.label_of(p);
+    if (label != field->phase_label(p))
+      throw InvalidInput(located(input, cat("its phase ", p, " has the label ", field->phase_label(p), ", but ",
+                                            mesh_path, " gives it ", label, ": give the input the mesh was made from")));
+  }
+  const Box& box = scene.grid.domain;
+  const double tol = 1e-6 * (box.max - box.min).norm();
+  for (const Vec3& p : mesh.points)
+    if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
+      throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
+}
 
 Scene read_input(const std::string& path, const InputOptions& options, RunObserver* observer) {
   if (path.empty()) {

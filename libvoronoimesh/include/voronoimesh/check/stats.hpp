@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vm {
@@ -120,8 +121,11 @@ std::string to_text(const MeshStats& s);
 /// @param worst worst_triangles() to add as "worst_triangles" (none: the key is left out)
 /// @param m the mesh they are of: phases are written as its files show them (NodeMesh::phase_labels)
 /// @param folds sharpest_folds() to add as "sharpest_folds" (none: the key is left out)
+/// @param more  further keys, each with a JSON text as its value (measures of other stages, such as
+///              `stats --field`'s "offsets")
 std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst = {}, const NodeMesh* m = nullptr,
-                    std::span<const Fold> folds = {});
+                    std::span<const Fold> folds = {},
+                    std::span<const std::pair<std::string, std::string>> more = {});
 
 /// The worst triangles as text, a few lines each, with phases as `m`'s files
 /// show them and their names where `m` has them.

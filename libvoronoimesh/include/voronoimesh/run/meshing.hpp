@@ -292,6 +292,17 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene);
 int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& options = {},
                  RunObserver* observer = nullptr);
 
+/// Refuses an input that cannot be the one `mesh` was made from: phase ids its
+/// phase functions do not have, phases named or labelled otherwise, or nodes
+/// outside its domain.
+/// @param mesh      the mesh
+/// @param mesh_path its file, for the messages
+/// @param scene     the input read
+/// @param input     the input's file, for the messages
+/// @throws InvalidInput naming `input` and what does not match
+void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
+                         const std::string& input);
+
 /// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
 /// `voronoimesh mesh` without the files. It never exits.
 /// @param scene    the scene to mesh; its field must not be null
