@@ -52,13 +52,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
-      vm::MeshStats s = vm::compute_stats(mesh);
-      vm::ValidationReport report = vm::validate(mesh);
-      // Only a mesh whose topology is sound can be checked for crossings.
-      if (report.ok()) s.self_intersections = vm::find_self_intersections(mesh, 0).count;
-      const bool crossing = s.self_intersections.value_or(0) > 0;
-      const std::vector<vm::WorstTriangle> worst = vm::worst_triangles(mesh, size_t(o->worst));
-      const std::vector<vm::Fold> folds = vm::sharpest_folds(mesh, size_t(o->folds));
+      // The input first: one the mesh was not made from is refused before any measuring.
       std::optional<vm::InterfaceOffsets> offsets;
       double h = 1;
       if (!o->field.empty()) {
@@ -67,6 +61,13 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         offsets = vm::interface_offsets(mesh, *vm::phases_of_mesh(mesh, scene.field));
         h = scene.grid.h();
       }
+      vm::MeshStats s = vm::compute_stats(mesh);
+      vm::ValidationReport report = vm::validate(mesh);
+      // Only a mesh whose topology is sound can be checked for crossings.
+      if (report.ok()) s.self_intersections = vm::find_self_intersections(mesh, 0).count;
+      const bool crossing = s.self_intersections.value_or(0) > 0;
+      const std::vector<vm::WorstTriangle> worst = vm::worst_triangles(mesh, size_t(o->worst));
+      const std::vector<vm::Fold> folds = vm::sharpest_folds(mesh, size_t(o->folds));
       if (o->json) {
         std::vector<std::pair<std::string, std::string>> more;
         if (offsets) more.emplace_back("offsets", vm::to_json(*offsets, mesh, h));

@@ -143,7 +143,6 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   return report.iterations;
 }
 
-
 /// Writes the outputs among `staged`, the history too if given, and renames them
 /// all into place unless the observer asks to stop meanwhile (then none is).
 void write_staged(detail::StagedOutputs& staged, const NodeMesh& mesh, const RunOutputs& outputs,
