@@ -30,6 +30,9 @@ if "$vm" stats --field "$examples/four_spheres.json" demo.ply >offsets.txt && gr
 else fail "stats --field: $(cat offsets.txt)"; fi
 cp "$examples/voronoi7.json" seven.json
 expect_error "stats --field of another input" 2 "seven\.json: its phase 0 is .cell0., but demo\.ply" -- "$vm" stats --field seven.json demo.ply
+# Label options say how to read --field: without it they are refused, not ignored.
+expect_error "stats label option without --field" 2 "--keep-labels requires --field" -- "$vm" stats --keep-labels 1 demo.ply
+expect_error "smooth label option without --field" 2 "--world requires --field" -- "$vm" smooth demo.ply --world ras -o out.ply
 
 # Every shipped scene, both lattices, ascii and binary.
 for scene in "$examples"/*.json; do

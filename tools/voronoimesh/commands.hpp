@@ -77,8 +77,10 @@ struct InputCliOptions {
   std::string world = "file";          ///< --world
   bool signed_distance = false;
 };
-/// Adds the options of label volumes to `cmd`.
-void add_input_options(CLI::App* cmd, InputCliOptions& o);
+/// Adds the options of label volumes to `cmd`. Where the input is an option
+/// (`--field` of stats and smooth), pass it as `input`: the label options then
+/// need it, so one given without an input is refused rather than ignored.
+void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input = nullptr);
 
 /// Options of the improvement stage (mesh, smooth).
 struct ImproveOptions {

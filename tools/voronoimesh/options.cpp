@@ -54,7 +54,7 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
                 "so every phase is a closed, watertight volume (for volume meshing)");
 }
 
-void add_input_options(CLI::App* cmd, InputCliOptions& o) {
+void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
   const char* labels = "Label volumes";
   cmd->add_option("--keep-labels", o.keep,
                   "Only these labels (and the background) become phases, L,L,...: every other label's voxels become "
@@ -101,6 +101,9 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o) {
       ->check(CLI::IsMember({"file", "lps", "ras"}))
       ->capture_default_str()
       ->group(labels);
+  if (input)
+    for (CLI::Option* option : cmd->get_options([labels](const CLI::Option* o) { return o->get_group() == labels; }))
+      option->needs(input);
 }
 
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {
