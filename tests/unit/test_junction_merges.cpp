@@ -110,6 +110,28 @@ TEST(Improve, a_small_face_between_two_curves_of_one_vertex_merges_into_it) {
   EXPECT_GE(twin_quadruple_points(improved_seeds(pipeline.c_str(), "seeds17_2")), 2u);
 }
 
+// Twenty cells whose lattice resolved the vertex of cells 0, 1, 3 and 16 (two
+// of its curves 11 degrees apart, a fifth cell 1.2 h from tying there) as a
+// chain of three quadruple points of those cells: a digon face of cells 0 and
+// 16, 0.4 h long, beside one of cells 1 and 3, 4 h long, the vertex at the
+// chain's far end. Merged face by face, the small digon's corner had to travel
+// 3.3 h and failed on every call, holding the longer one back: the chain
+// stayed, its points up to 3 h from the vertex. The remesh pass now merges a
+// chain whole, into the vertex.
+TEST(Improve, a_chain_of_small_faces_between_curves_of_one_vertex_merges_into_it) {
+  const InterfaceMesh merged = improved_seeds(kScenePipeline, "seeds20_4");
+  EXPECT_EQ(twin_quadruple_points(merged), 0u);
+  const Vec3 vertex(0.0646270, 0.4260648, 0.7412686); // equidistant from the four cells' seeds
+  const PhaseSet cells{0, 1, 3, 16, -1, -1, -1, -1};
+  size_t points = 0;
+  for (size_t n = 0; n < merged.num_nodes(); ++n)
+    if (merged.phases()[n] == cells) {
+      ++points;
+      EXPECT_LT((merged.positions()[n] - vertex).norm(), 0.05 / 48) << "node " << n;
+    }
+  EXPECT_EQ(points, 1u);
+}
+
 // Twenty-five random cells: the lattice put the quadruple point of cells 7, 16,
 // 20 and 22 0.69 h from where they meet, two of its curves running on past that
 // place (their first nodes inside the point's fourth cell), and the crossing

@@ -3,6 +3,8 @@
 
 #include "improve/digon_faces.hpp"
 
+#include "core/union_find.hpp"
+
 #include <algorithm>
 #include <optional>
 
@@ -144,6 +146,38 @@ std::vector<PointMerge> small_digon_faces(const NodeRings& mesh, std::span<const
   std::vector<PointMerge> faces;
   for (Found& f : found) faces.push_back(std::move(f.face));
   return faces;
+}
+
+std::vector<PointMerge> digon_chains(std::span<const PointMerge> faces, size_t num_nodes) {
+  // Faces of a chain share a corner; faces of two chains share no node.
+  UnionFind chains(faces.size());
+  std::vector<int32_t> face_at(num_nodes, -1);
+  for (size_t i = 0; i < faces.size(); ++i) {
+    auto join = [&](int32_t n) {
+      if (face_at[size_t(n)] >= 0) chains.unite(face_at[size_t(n)], int32_t(i));
+      face_at[size_t(n)] = int32_t(i);
+    };
+    join(faces[i].keep);
+    for (int32_t n : faces[i].merged) join(n);
+  }
+  std::vector<std::vector<size_t>> members(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) members[size_t(chains.find(int32_t(i)))].push_back(i);
+  std::vector<PointMerge> joined;
+  for (const std::vector<size_t>& chain : members) {
+    if (chain.size() < 2) continue;
+    // Every face's corners are led to the one vertex: the chain goes where its first face goes.
+    PointMerge merge{faces[chain[0]].keep, {}, faces[chain[0]].to};
+    for (size_t i : chain) {
+      merge.keep = std::min(merge.keep, faces[i].keep); // each face keeps its lowest corner
+      merge.merged.push_back(faces[i].keep);
+      merge.merged.insert(merge.merged.end(), faces[i].merged.begin(), faces[i].merged.end());
+    }
+    std::sort(merge.merged.begin(), merge.merged.end());
+    merge.merged.erase(std::unique(merge.merged.begin(), merge.merged.end()), merge.merged.end());
+    std::erase(merge.merged, merge.keep);
+    joined.push_back(std::move(merge));
+  }
+  return joined;
 }
 
 } // namespace vm::detail

@@ -37,4 +37,18 @@ namespace vm::detail {
 std::vector<PointMerge> small_digon_faces(const NodeRings& mesh, std::span<const double> target,
                                           const PhaseField& field, double longest);
 
+/// The chains among `faces` (of small_digon_faces()): faces that share a
+/// corner, each chain of two or more as one merge into its lowest corner.
+/// The lattice can resolve a vertex two of whose curves leave it at a small
+/// angle (its four phases nearly tie along them) as a chain: a small digon of
+/// one pair of the phases next to a longer one of the other pair, three
+/// corners of the same phases in a row, the phase functions leading every
+/// corner to the one vertex near the chain's far end. Merged face by face,
+/// the small digon's node would have to travel the chain's length (seeds17_4:
+/// 3.3 h), which fails on every call, while the longer digon, touching it,
+/// waits: the chain stays, with its scene's worst triangles.
+/// @param faces     digon faces, as small_digon_faces() gives them
+/// @param num_nodes the mesh's number of nodes
+std::vector<PointMerge> digon_chains(std::span<const PointMerge> faces, size_t num_nodes);
+
 } // namespace vm::detail

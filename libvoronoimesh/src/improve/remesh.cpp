@@ -204,12 +204,15 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
 /// their quadruple point (improve/curve_overshoots.hpp), as collapses of each
 /// merged node into the kept one, which moves where the phase functions say;
 /// a failure at any node of a merge or next to one drops all of the merge's.
+/// With `chains`, only the chains of digon faces (detail::digon_chains()).
 std::vector<std::pair<int64_t, int64_t>> choose_point_merges(const NodeRings& mesh, std::span<const double> target,
                                                              const PhaseField& field, const RemeshParams& params,
-                                                             detail::Blame& blame, std::vector<Vec3>& moved_to) {
+                                                             bool chains, detail::Blame& blame,
+                                                             std::vector<Vec3>& moved_to) {
   std::vector<detail::PointMerge> merges;
   if (params.merge_digons > 0) merges = detail::small_digon_faces(mesh, target, field, params.merge_digons);
-  if (params.merge_overshoots)
+  if (chains) merges = detail::digon_chains(merges, mesh.num_nodes());
+  else if (params.merge_overshoots)
     for (detail::PointMerge& m : detail::overshooting_curve_ends(mesh, target, field)) merges.push_back(std::move(m));
   std::vector<std::pair<int64_t, int64_t>> chosen;
   for (const detail::PointMerge& merge : detail::keep_apart(mesh, std::move(merges))) {
@@ -432,12 +435,18 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // all, which the collapses' blame cannot say.
   auto merge_points = [&] {
     if ((params.merge_digons <= 0 && !params.merge_overshoots) || !field) return;
-    const NodeRings& tables = current_rings(); // before `target` is read: it sets it
-    detail::Blame blame;
-    std::vector<Vec3> moved_to;
-    std::vector<std::pair<int64_t, int64_t>> chosen =
-        choose_point_merges(tables, target, *field, params, blame, moved_to);
-    if (!chosen.empty()) apply(chosen, blame, moved_to, true);
+    // Chains of digons first, each whole; then, on what they left, every
+    // digon alone: where a chain's whole merge fails, its faces may still
+    // merge one by one over the calls (seeds17_2: three corners of cells 3,
+    // 11, 12 and 16 in a row, which only merge that way).
+    for (const bool chains : {true, false}) {
+      const NodeRings& tables = current_rings(); // before `target` is read: it sets it
+      detail::Blame blame;
+      std::vector<Vec3> moved_to;
+      std::vector<std::pair<int64_t, int64_t>> chosen =
+          choose_point_merges(tables, target, *field, params, chains, blame, moved_to);
+      if (!chosen.empty()) apply(chosen, blame, moved_to, true);
+    }
   };
   // Collapses in rounds: each claims the rings around it, so one round reaches
   // a fraction of the short edges.
