@@ -24,9 +24,11 @@ void add_smooth_command(CLI::App& app, int& exit_code) {
                 "project, clamp and flip passes, Algorithm 1) and write it. Also called 'improve'.");
   smooth->alias("improve");
   smooth->add_option("mesh", s->mesh, "Mesh file (.ply written by voronoimesh)")->required();
-  CLI::Option* field = smooth->add_option("--field", s->field,
-                     std::string("The input the mesh was made from (its phase functions, which smoothing and "
-                                 "projection need). ") + kInputHelp);
+  CLI::Option* field =
+      smooth->add_option("--field", s->field,
+                         std::string("The input the mesh was made from (its phase functions, which smoothing and "
+                                     "projection need). ") +
+                             kInputHelp);
   smooth->add_option("--top-k", s->top_k, "Phases kept per voxel of a --field volume (as given to create)")
       ->capture_default_str();
   add_input_options(smooth, s->input, field);

@@ -41,13 +41,14 @@ void add_stats_command(CLI::App& app, int& exit_code) {
               "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
               "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "
               "the turn, the phases, the two triangles, and what meets at each end of the edge");
-  CLI::Option* field = cmd->add_option("--field", o->field,
-                  std::string("Also measure how far the nodes lie from the interface of the input the mesh was made "
-                              "from: per surface, triple-curve and quadruple-point nodes the RMS and largest "
-                              "first-order distance from where their phases are equal, in multiples of the "
-                              "input's default grid spacing h, and the farthest node. ") +
-                      kInputHelp)
-                                       ->option_text("INPUT");
+  CLI::Option* field =
+      cmd->add_option("--field", o->field,
+                      std::string("Also measure how far the nodes lie from the interface of the input the mesh was "
+                                  "made from: per surface, triple-curve and quadruple-point nodes the RMS and largest "
+                                  "first-order distance from where their phases are equal, in multiples of the "
+                                  "input's default grid spacing h, and the farthest node. ") +
+                          kInputHelp)
+          ->option_text("INPUT");
   add_input_options(cmd, o->input, field);
   cmd->callback([o, &exit_code] {
     exit_code = run_guarded([&] {

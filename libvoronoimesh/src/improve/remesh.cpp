@@ -199,21 +199,13 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
   return chosen;
 }
 
-/// The merges into one point (improve/point_merges.hpp) of the small digon
-/// faces (improve/digon_faces.hpp) and, after them, of the curve ends past
-/// their quadruple point (improve/curve_overshoots.hpp), as collapses of each
-/// merged node into the kept one, which moves where the phase functions say;
-/// a failure at any node of a merge or next to one drops all of the merge's.
-/// With `chains`, only the chains of digon faces (detail::digon_chains()).
-std::vector<std::pair<int64_t, int64_t>> choose_point_merges(const NodeRings& mesh, std::span<const double> target,
-                                                             const PhaseField& field, const RemeshParams& params,
-                                                             bool chains, detail::Blame& blame,
-                                                             std::vector<Vec3>& moved_to) {
-  std::vector<detail::PointMerge> merges;
-  if (params.merge_digons > 0) merges = detail::small_digon_faces(mesh, target, field, params.merge_digons);
-  if (chains) merges = detail::digon_chains(merges, mesh.num_nodes());
-  else if (params.merge_overshoots)
-    for (detail::PointMerge& m : detail::overshooting_curve_ends(mesh, target, field)) merges.push_back(std::move(m));
+/// The `merges` into one point (improve/point_merges.hpp) that keep apart, as
+/// collapses of each merged node into the kept one, which moves where the
+/// phase functions say; a failure at any node of a merge or next to one drops
+/// all of the merge's.
+std::vector<std::pair<int64_t, int64_t>> choose_point_merges(const NodeRings& mesh,
+                                                             std::vector<detail::PointMerge> merges,
+                                                             detail::Blame& blame, std::vector<Vec3>& moved_to) {
   std::vector<std::pair<int64_t, int64_t>> chosen;
   for (const detail::PointMerge& merge : detail::keep_apart(mesh, std::move(merges))) {
     const auto first = int32_t(chosen.size());
@@ -435,18 +427,31 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // all, which the collapses' blame cannot say.
   auto merge_points = [&] {
     if ((params.merge_digons <= 0 && !params.merge_overshoots) || !field) return;
+    auto merge = [&](const NodeRings& tables, std::vector<detail::PointMerge> merges) {
+      detail::Blame blame;
+      std::vector<Vec3> moved_to;
+      std::vector<std::pair<int64_t, int64_t>> chosen = choose_point_merges(tables, std::move(merges), blame, moved_to);
+      return !chosen.empty() && apply(chosen, blame, moved_to, true);
+    };
+    auto digons = [&](const NodeRings& tables) {
+      return params.merge_digons > 0 ? detail::small_digon_faces(tables, target, *field, params.merge_digons)
+                                     : std::vector<detail::PointMerge>{};
+    };
     // Chains of digons first, each whole; then, on what they left, every
     // digon alone: where a chain's whole merge fails, its faces may still
     // merge one by one over the calls (seeds17_2: three corners of cells 3,
-    // 11, 12 and 16 in a row, which only merge that way).
-    for (const bool chains : {true, false}) {
-      const NodeRings& tables = current_rings(); // before `target` is read: it sets it
-      detail::Blame blame;
-      std::vector<Vec3> moved_to;
-      std::vector<std::pair<int64_t, int64_t>> chosen =
-          choose_point_merges(tables, target, *field, params, chains, blame, moved_to);
-      if (!chosen.empty()) apply(chosen, blame, moved_to, true);
+    // 11, 12 and 16 in a row, which only merge that way). After the digons,
+    // the curve ends past their quadruple point (improve/curve_overshoots.hpp).
+    const NodeRings* tables = &current_rings(); // before `target` is read: it sets it
+    std::vector<detail::PointMerge> merges = digons(*tables);
+    if (merge(*tables, detail::digon_chains(merges, tables->num_nodes()))) {
+      tables = &current_rings();
+      merges = digons(*tables);
     }
+    if (params.merge_overshoots)
+      for (detail::PointMerge& m : detail::overshooting_curve_ends(*tables, target, *field))
+        merges.push_back(std::move(m));
+    merge(*tables, std::move(merges));
   };
   // Collapses in rounds: each claims the rings around it, so one round reaches
   // a fraction of the short edges.
