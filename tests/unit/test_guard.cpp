@@ -147,6 +147,49 @@ TEST(Guard, quality_floor_undoes_moves_that_spoil_the_worst_triangle_unless_they
   EXPECT_EQ(CrossingGuard().commit(blind, blind_delta, nullptr, {}, 1.0).undone_nodes, 2u);
 }
 
+// The floor pass takes back the moves the floor let through where they left a
+// triangle below the floor (improve/guard.hpp, floor_exception_reverts()): the
+// guard remembers the node that closed in on its surface, where it was and where
+// it went, and offers the move back only while one of its triangles is below the
+// floor it is given (here 1: every triangle; 0: none), forgetting it either way.
+TEST(Guard, a_move_the_floor_let_through_can_be_taken_back) {
+  const Scene scene = test::example_scene("four_spheres.json", 16);
+  const PhaseField& field = *scene.field;
+  const InterfaceMesh start = initial_mesh(scene);
+  int32_t v = -1; // a surface node visibly off its surface
+  for (size_t n = 0; n < start.num_nodes() && v < 0; ++n)
+    if (phase_count(start.phases()[n]) == 2 &&
+        node_projection_step(start, field, int32_t(n), start.positions()[n]).norm() > 0.1 * scene.grid.h())
+      v = int32_t(n);
+  ASSERT_GE(v, 0);
+  for (const double floor_now : {0.0, 1.0}) {
+    SCOPED_TRACE(floor_now);
+    InterfaceMesh mesh = start;
+    CrossingGuard guard;
+    std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+    delta[size_t(v)] = node_projection_step(mesh, field, v, start.positions()[size_t(v)]);
+    ASSERT_EQ(guard.commit(mesh, delta, &field, {}, 1.0).undone_nodes, 0u); // let through
+    ASSERT_NE(mesh.positions()[size_t(v)], start.positions()[size_t(v)]);
+    std::vector<Vec3> back(mesh.num_nodes(), Vec3::Zero());
+    guard.floor_exception_reverts(mesh, floor_now, back);
+    for (size_t n = 0; n < back.size(); ++n)
+      if (n != size_t(v)) EXPECT_EQ(back[n], Vec3::Zero()) << "node " << n;
+    if (floor_now == 0) {
+      EXPECT_EQ(back[size_t(v)], Vec3::Zero()); // no triangle below the floor: the move stays
+      continue;
+    }
+    EXPECT_LT((mesh.positions()[size_t(v)] + back[size_t(v)] - start.positions()[size_t(v)]).norm(), 1e-12);
+    // Offered once: the guard forgot it.
+    std::vector<Vec3> again(mesh.num_nodes(), Vec3::Zero());
+    guard.floor_exception_reverts(mesh, floor_now, again);
+    EXPECT_EQ(again[size_t(v)], Vec3::Zero());
+    // Committed with the floor holding for every move (here no floor: the
+    // taking back only restores triangles the node had before).
+    EXPECT_EQ(guard.commit(mesh, back, &field, {}, 0.0, true).undone_nodes, 0u);
+    EXPECT_LT((mesh.positions()[size_t(v)] - start.positions()[size_t(v)]).norm(), 1e-12);
+  }
+}
+
 // Eight large overlapping spheres at a coarse grid: phases thinner than an edge
 // between clusters of quadruple points (found by scripts/stress_improve.py).
 constexpr const char* kCrowdedSpheres = R"({"grid": 32, "phases": [{"kind": "constant", "value": 0},

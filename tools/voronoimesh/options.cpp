@@ -114,12 +114,13 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                               "passes'). Default: ") +
                       vm::kScenePipeline +
                       " (the remesh pass evens out the created mesh at its own edge length before the paper's "
-                      "passes); for label volumes " +
+                      "passes, which then collapse junction slivers below q 0.5; polish and floor, not in the "
+                      "paper, raise the worst triangles and keep any iteration from making the worst one worse); "
+                      "for label volumes " +
                       vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "
-                      "edges 1.4x the lattice's, about half the triangles, before the paper's passes, which then "
-                      "collapse junction slivers below q 0.3); for a mesh read from a file and under --mpi the "
-                      "paper's " + vm::kDefaultPipeline);
+                      "edges 1.4x the lattice's, about half the triangles); for a mesh read from a file and under "
+                      "--mpi the paper's " + vm::kDefaultPipeline);
   cmd->add_option("--size,--max-size", o.size,
                   std::string("Target edge length in world units (the input's units): remesh to edges of about L "
                               "first, for any input (remesh:length=L,") +

@@ -7,6 +7,7 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/improve/clamp.hpp"
 #include "voronoimesh/improve/flip.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/polish.hpp"
 #include "voronoimesh/improve/project.hpp"
 #include "voronoimesh/improve/registry.hpp"
@@ -137,6 +138,13 @@ void register_builtin_passes(PassRegistry& registry) {
         "triangle of 5 of 38 scenes)"}},
       true, true, false, [](PassContext& c, const ParamValues& p) {
         if (c.iteration >= p.at("first")) add_polish_moves(c.mesh, *c.field, PolishParams{p.at("below")}, c.displacement());
+      }));
+  registry.add(make_info(
+      "floor",
+      "if the iteration's worst triangle is now worse than when it began, take back the moves that brought nodes "
+      "onto their interface at that cost (not in the paper)",
+      {}, false, false, false, [](PassContext& c, const ParamValues&) {
+        if (quality_summary(c.mesh).first < c.quality_floor) c.take_back_floor_exceptions();
       }));
   registry.add(make_info(
       "project", "Newton steps onto surfaces, triple curves and quadruple points with the original phases (eq. 4)",

@@ -40,10 +40,29 @@ const detail::CrossingIndex* CrossingGuard::index_for(const InterfaceMesh& mesh)
 void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face,
                                std::span<const int32_t> old_node) {
   if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());
+  if (excepted_.empty()) return;
+  std::unordered_map<int32_t, FloorException> kept;
+  for (size_t n = 0; n < old_node.size(); ++n)
+    if (const auto was = excepted_.find(old_node[n]); old_node[n] >= 0 && was != excepted_.end())
+      kept.emplace(int32_t(n), was->second);
+  excepted_ = std::move(kept);
+}
+
+void CrossingGuard::floor_exception_reverts(const InterfaceMesh& mesh, double quality_floor,
+                                            std::vector<Vec3>& delta) {
+  std::vector<uint8_t> below(mesh.num_nodes(), 0); // a corner of a triangle below the floor
+  const std::vector<double>& quality = mesh.qualities();
+  for (size_t f = 0; f < quality.size(); ++f)
+    if (quality[f] < quality_floor)
+      for (int32_t n : mesh.triangles()[f]) below[size_t(n)] = 1;
+  for (const auto& [n, moved] : excepted_)
+    if (size_t(n) < delta.size() && below[size_t(n)] && mesh.positions()[size_t(n)] == moved.to) // not moved since
+      delta[size_t(n)] += moved.from - moved.to;
+  excepted_.clear();
 }
 
 GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
-                                  const AgreeOnUndone& agree, double quality_floor) {
+                                  const AgreeOnUndone& agree, double quality_floor, bool floor_holds_all) {
   GuardReport report;
   const auto& triangles = mesh.triangles();
   const auto& points = mesh.positions(); // as the mesh's nodes move and are put back
@@ -78,6 +97,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     mesh.move_nodes(delta);
   }
   std::vector<uint8_t> involved(triangles.size()), turned(watched.size()), spoilt(triangles.size());
+  std::vector<uint8_t> excepted(moved.size(), 0); // let through the floor
   // The floor does not hold a node far from its surface or curve: a move that at
   // least halves the node's eq. 4 step (to first order, its distance from where
   // it belongs) goes ahead when that step was over kFarFromInterface of the
@@ -85,7 +105,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   // but not for offsets too small to see (on the liver, letting those through
   // too took min q from 0.169 down to 0.086).
   auto closes_in = [&](int32_t n, const std::array<int32_t, 3>& tri) {
-    if (!field) return false;
+    if (!field || floor_holds_all) return false;
     const double was = node_projection_step(mesh, *field, n, before[size_t(n)]).norm();
     double longest = 0;
     for (int k = 0; k < 3; ++k)
@@ -157,7 +177,10 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       const auto below = [&](size_t t) { return involved[t] && quality[t] < quality_floor; };
       for (int32_t t : detail::indices_where(involved.size(), below))
         for (int32_t n : triangles[size_t(t)])
-          if (moved[size_t(n)] && !closes_in(n, triangles[size_t(t)])) put_back(n);
+          if (moved[size_t(n)]) {
+            if (closes_in(n, triangles[size_t(t)])) excepted[size_t(n)] = 1;
+            else put_back(n);
+          }
     }
     // Clean, or only what the mesh had before the move: done. Ranks go on while
     // any of them undoes something, with every rank's culprits put back here too.
@@ -175,6 +198,12 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     mesh.place_nodes(undo, back);
     report.undone_nodes += undo.size();
   }
+  // The first place of a node let through more than once this iteration is where it goes back to.
+  for (size_t n = 0; n < moved.size(); ++n)
+    if (excepted[n] && moved[n]) {
+      const auto [at, fresh] = excepted_.try_emplace(int32_t(n), FloorException{before[n], points[n]});
+      if (!fresh) at->second.to = points[n];
+    }
   return report;
 }
 

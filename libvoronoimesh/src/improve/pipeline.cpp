@@ -162,6 +162,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     context.undone_moves = 0;
     context.stats.reset();
     context.quality_floor = worst_now;
+    context.guard.forget_floor_exceptions();
     const std::vector<double> pass_seconds = iterate(context, passes);
     done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);

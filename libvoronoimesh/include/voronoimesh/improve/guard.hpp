@@ -18,6 +18,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 namespace vm {
@@ -78,7 +79,9 @@ public:
   /// but not (with `field`) a move that at least halves the eq. 4 step of a node
   /// whose step was over 2% of that triangle's longest edge: given the worst
   /// quality of the mesh before the moves, moving never makes the worst triangle
-  /// worse except to bring a node visibly off its interface onto it.
+  /// worse except to bring a node visibly off its interface onto it. Such moves
+  /// are remembered until forget_floor_exceptions(), so that they can be taken
+  /// back (floor_exception_reverts()); with `floor_holds_all` none is made.
   ///
   /// With a `field` that keeps points (PhaseField::kept_points(): a
   /// voxel-faithful label volume's centres of voxels in thin structures), so
@@ -93,9 +96,10 @@ public:
   ///                      phase pair; null: not checked
   /// @param agree         in a distributed run, how the ranks agree on the nodes put back; empty in one process
   /// @param quality_floor no moved triangle may end below this quality; 0: not checked
+  /// @param floor_holds_all the floor holds for every move, even one closing in on its interface
   /// @return the nodes left where they were and the intersection checks made
   GuardReport commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field = nullptr,
-                     const AgreeOnUndone& agree = {}, double quality_floor = 0);
+                     const AgreeOnUndone& agree = {}, double quality_floor = 0, bool floor_holds_all = false);
 
   /// The pairs of faces {f, g}, f < g, that intersect improperly and of which at
   /// least one is flagged in `involved` (one flag per face), sorted: what the
@@ -121,8 +125,26 @@ public:
   /// @param old_node the old id of each node of `mesh`, increasing, or -1 for a new node
   void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
 
+  /// Forgets the moves the quality floor let through (commit()).
+  void forget_floor_exceptions() { excepted_.clear(); }
+  /// Adds to `delta` the moves that take the nodes the quality floor let
+  /// through since forget_floor_exceptions() back where they were before, for
+  /// those still where it left them and at a triangle now below `quality_floor`
+  /// (the others' triangles came back above it), and forgets them all: to be
+  /// committed with the floor holding for every move
+  /// (PassContext::take_back_floor_exceptions()).
+  /// @param mesh          the mesh commit() moved them in
+  /// @param quality_floor the worst quality the iteration began with
+  /// @param delta         one entry per node
+  void floor_exception_reverts(const InterfaceMesh& mesh, double quality_floor, std::vector<Vec3>& delta);
+
 private:
+  /// A node the quality floor let through: where it was, where that left it.
+  struct FloorException {
+    Vec3 from, to;
+  };
   std::unique_ptr<detail::CrossingIndex> index_;
+  std::unordered_map<int32_t, FloorException> excepted_; ///< by node
 };
 
 /// CrossingGuard::commit() with a guard of its own, for a single commit.

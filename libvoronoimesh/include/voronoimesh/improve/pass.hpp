@@ -76,6 +76,16 @@ struct PassContext {
   /// Applies the pending displacement to the mesh (through the guard if on;
   /// in a distributed run each node takes its owner's move first).
   void commit();
+  /// Takes back the moves the quality floor let through this iteration (their
+  /// nodes closing in on their interface, CrossingGuard::commit()) where they
+  /// left a triangle below it, each committed again with the floor holding for
+  /// it: what the floor pass does when the iteration would end below the worst
+  /// quality it began with, so that more iterations never make the worst
+  /// triangle worse for the sake of accuracy.
+  void take_back_floor_exceptions();
+
+private:
+  void commit_pending(bool floor_holds_all);
 };
 
 /// One configured pass, made by PassInfo::make from its parameters.

@@ -42,7 +42,7 @@ inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:col
 /// iterations 2 to 6). 0.3 came before curve ends past their quadruple point
 /// merged into it, which is when the scenes went to 0.5. The polish pass ends
 /// each iteration from the sixth on, as in kScenePipeline (measured there).
-inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.5,polish";
+inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.5,polish,floor";
 
 /// The default for every other input created from phase functions (scenes,
 /// distance grids, point clouds; run/meshing.hpp, pipeline_for()): the remesh
@@ -76,7 +76,7 @@ inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,proj
 /// first iteration it raised more (the liver to 0.654, the mean over the
 /// volumes to 0.471) but lowered 5 scenes and the 60 grains: polished nodes
 /// change what the remesh pass and the collapses of iterations 1 to 5 make.
-inline constexpr const char* kScenePipeline = "remesh:size=1,smooth,project,clamp,flip:collapse_below=0.5,polish";
+inline constexpr const char* kScenePipeline = "remesh:size=1,smooth,project,clamp,flip:collapse_below=0.5,polish,floor";
 
 /// What happened in one iteration, for progress lines and stopping rules.
 struct IterationReport {
