@@ -28,6 +28,11 @@ if "$vm" stats --folds -1 flat.ply >/dev/null 2>folds.err; then fail "stats --fo
 if "$vm" stats --field "$examples/four_spheres.json" demo.ply >offsets.txt && grep -qE "^  quadruple points +5: rms" offsets.txt &&
   "$vm" stats --json --field "$examples/four_spheres.json" demo.ply | python3 -c 'import json, sys; o = json.load(sys.stdin)["offsets"]; sys.exit(not (o["surface"]["nodes"] > 1000 and 0 < o["triple_curve"]["max_h"] < 0.5))'; then pass
 else fail "stats --field: $(cat offsets.txt)"; fi
+# Offsets are told in the h of the grid the mesh was created on (its PLY says), not the input's default grid.
+if "$vm" create -q "$examples/four_spheres.json" --grid 24 --ascii -o g24.ply &&
+  "$vm" stats --json --field "$examples/four_spheres.json" g24.ply | python3 -c 'import json, sys; o = json.load(sys.stdin)["offsets"]; sys.exit(not abs(o["spacing"] - 1 / 24) < 1e-15)' &&
+  grep -v '^comment grid_spacing' g24.ply >g24_unsaid.ply && "$vm" stats --field "$examples/four_spheres.json" g24_unsaid.ply | grep -q "the mesh does not say its own"; then pass
+else fail "stats --field on a mesh created at --grid 24"; fi
 cp "$examples/voronoi7.json" seven.json
 expect_error "stats --field of another input" 2 "seven\.json: its phase 0 is .cell0., but demo\.ply" -- "$vm" stats --field seven.json demo.ply
 # Label options say how to read --field: without it they are refused, not ignored.

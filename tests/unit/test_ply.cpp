@@ -46,6 +46,7 @@ NodeMesh awkward_mesh() {
   m.points[0].x() = -0.0;
   m.phase_names = {"matrix", "grain one", "b", "", "d"};
   m.domain = Box{Vec3(-0.1, 1.0 / 7, -2), Vec3(3.3, 12346, 1e10)};
+  m.grid_spacing = 1.0 / 3;
   return m;
 }
 
@@ -62,6 +63,7 @@ void expect_exact(const NodeMesh& got, const NodeMesh& want) {
   EXPECT_EQ(got.phase_names, want.phase_names);
   EXPECT_TRUE(bitwise_equal(got.domain.min, want.domain.min));
   EXPECT_TRUE(bitwise_equal(got.domain.max, want.domain.max));
+  EXPECT_EQ(got.grid_spacing, want.grid_spacing); // all 17 digits
 }
 
 const char* const kAsciiHeader = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
@@ -127,6 +129,7 @@ TEST_F(Ply, domain_defaults_to_the_bounding_box) {
   const NodeMesh m = io::read_ply(p);
   EXPECT_EQ(m.domain.min, Vec3(0, 0, -1));
   EXPECT_EQ(m.domain.max, Vec3(2, 3, 0));
+  EXPECT_EQ(m.grid_spacing, 0); // not known
   EXPECT_EQ(m.pairs[0], (PhasePair{0, 1}));
 }
 
@@ -293,7 +296,7 @@ TEST_F(Ply, colours_round_trip_on_lines_of_their_own) {
   }
 }
 
-TEST_F(Ply, malformed_colour_comments_are_errors) {
+TEST_F(Ply, malformed_colour_and_grid_spacing_comments_are_errors) {
   const std::string rest = "element vertex 0\nproperty double x\nproperty double y\nproperty double z\n"
                            "element face 0\nproperty list uchar int vertex_indices\nproperty int phase0\n"
                            "property int phase1\nend_header\n";
@@ -303,6 +306,9 @@ TEST_F(Ply, malformed_colour_comments_are_errors) {
       {"comment phase 3 a\ncomment phase_color x 0.5 0.5 0.5\n", "bad phase_color comment"},
       {"comment phase 3 a\ncomment phase_color 3 0 0 0\ncomment phase_color 3 1 1 1\n", "phase 3 has two colours"},
       {"comment phase 3 a\ncomment phase_color 4 0 0 0\n", "phase_color comment for label 4, which no phase has"},
+      {"comment grid_spacing 0\n", "bad grid_spacing comment"},
+      {"comment grid_spacing 0.1 0.2\n", "expected one positive number"},
+      {"comment grid_spacing nan\n", "bad grid_spacing comment"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const std::string p = write_text("c" + std::to_string(i) + ".ply", "ply\nformat ascii 1.0\n" + cases[i].first + rest);

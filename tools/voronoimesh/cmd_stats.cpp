@@ -46,7 +46,9 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                       std::string("Also measure how far the nodes lie from the interface of the input the mesh was "
                                   "made from: per surface, triple-curve and quadruple-point nodes the RMS and largest "
                                   "first-order distance from where their phases are equal, in multiples of the "
-                                  "input's default grid spacing h, and the farthest node. ") +
+                                  "spacing h of the grid the mesh was created on (from the PLY's grid_spacing "
+                                  "comment; for a mesh without one, the input's default grid), and the farthest "
+                                  "node. ") +
                           kInputHelp)
           ->option_text("INPUT");
   add_input_options(cmd, o->input, field);
@@ -60,7 +62,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         const vm::Scene scene = vm::read_input(o->field, input_options(o->input));
         vm::check_field_matches(mesh, o->mesh, scene, o->field);
         offsets = vm::interface_offsets(mesh, *vm::phases_of_mesh(mesh, scene.field));
-        h = scene.grid.h();
+        h = mesh.grid_spacing > 0 ? mesh.grid_spacing : scene.grid.h();
       }
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);
@@ -81,7 +83,10 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         if (!worst.empty()) std::cout << "worst triangles\n" << vm::to_text(worst, mesh);
         if (!folds.empty()) std::cout << "sharpest folds\n" << vm::to_text(folds, mesh);
         if (offsets)
-          std::cout << "offsets from the interface (h = " << h << ", the input's grid spacing)\n"
+          std::cout << "offsets from the interface (h = " << h
+                    << (mesh.grid_spacing > 0 ? ", the spacing of the grid the mesh was created on"
+                                              : ", the input's default grid spacing: the mesh does not say its own")
+                    << ")\n"
                     << vm::to_text(*offsets, mesh, h);
       }
       return report.ok() && !crossing ? kOk : kTopology;

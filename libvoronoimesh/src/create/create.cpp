@@ -499,6 +499,7 @@ CreateStats create_whole(const detail::NodeSource& source, const detail::TetLatt
   stats.held_nodes = uint64_t(values.held_nodes());
   out = NodeMesh{};
   out.domain = source.grid().domain;
+  out.grid_spacing = source.grid().h();
   out.outside_phase = params.close ? int32_t(source.num_phases()) : -1;
   out.points = std::move(part.points);
   out.triangles = std::move(part.triangles);

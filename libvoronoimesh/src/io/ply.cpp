@@ -37,6 +37,11 @@ std::string header(const NodeMesh& m, bool ascii) {
       put_number(h, (*p)[a]);
     }
   h += '\n';
+  if (m.grid_spacing > 0) {
+    h += "comment grid_spacing ";
+    put_number(h, m.grid_spacing);
+    h += '\n';
+  }
   // Every phase, present or not, so a reader recovers the whole label set.
   // (phase_count scans every triangle: once, not once per phase.)
   const size_t phases = detail::phase_count(m);

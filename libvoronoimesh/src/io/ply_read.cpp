@@ -30,6 +30,7 @@ using ply::Property;
 /// What write_ply stores in comments.
 struct Comments {
   std::optional<Box> domain;
+  double grid_spacing = 0;
   std::map<int32_t, std::string> phase_names; ///< by label, from "comment phase <label> <name>"
   std::map<int32_t, Rgb> phase_colors;        ///< by label, from "comment phase_color <label> <r> <g> <b>"
 };
@@ -57,6 +58,7 @@ public:
           fail(cat("face ", t, ": vertex index ", v, " out of range (", m.points.size(), " vertices)"));
     compact_phases(m);
     m.domain = comments_.domain ? *comments_.domain : bounding_box(m.points);
+    m.grid_spacing = comments_.grid_spacing;
     m.outside_phase = outside_phase(m);
     return m;
   }
@@ -64,9 +66,9 @@ public:
 private:
   [[noreturn]] void fail(const std::string& what) const { file_.fail(what); }
 
-  /// "comment domain x0 y0 z0 x1 y1 z1", "comment phase <label> <name>" and
-  /// "comment phase_color <label> <r> <g> <b>", as write_ply stores them; any
-  /// other comment is ignored.
+  /// "comment domain x0 y0 z0 x1 y1 z1", "comment grid_spacing <h>",
+  /// "comment phase <label> <name>" and "comment phase_color <label> <r> <g> <b>",
+  /// as write_ply stores them; any other comment is ignored.
   void parse_comment(std::string_view line) {
     const auto w = ply::split_words(line);
     if (w.size() == 8 && w[1] == "domain") {
@@ -74,6 +76,11 @@ private:
       for (size_t i = 0; i < 6; ++i)
         if (!parse_number(w[i + 2], v[i]) || !std::isfinite(v[i])) fail(cat("bad domain comment '", line, "'"));
       comments_.domain = Box{Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5])};
+    } else if (w.size() >= 2 && w[1] == "grid_spacing") {
+      double h = 0;
+      if (w.size() != 3 || !parse_number(w[2], h) || !std::isfinite(h) || h <= 0)
+        fail(cat("bad grid_spacing comment '", line, "' (expected one positive number)"));
+      comments_.grid_spacing = h;
     } else if (w.size() >= 3 && w[1] == "phase") {
       int32_t label = 0;
       if (!parse_number(w[2], label)) fail(cat("bad phase comment '", line, "'"));

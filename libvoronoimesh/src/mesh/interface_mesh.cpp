@@ -59,6 +59,7 @@ void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_o
                          const std::vector<int32_t>& partner, bool face_by_face) {
   pos_ = m.points;
   domain_ = m.domain;
+  grid_spacing_ = m.grid_spacing;
   names_ = m.phase_names;
   labels_ = m.phase_labels;
   colors_ = m.phase_colors;
@@ -254,6 +255,7 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
   NodeMesh m;
   m.points = pos_;
   m.domain = domain_;
+  m.grid_spacing = grid_spacing_;
   m.phase_names = names_;
   m.phase_labels = labels_;
   m.phase_colors = colors_;

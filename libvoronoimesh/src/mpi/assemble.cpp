@@ -26,6 +26,7 @@ NodeMesh mesh_of(const MeshPart& part) {
   m.phase_labels = part.phase_labels;
   m.phase_colors = part.phase_colors;
   m.domain = part.domain;
+  m.grid_spacing = part.grid_spacing;
   m.outside_phase = part.outside_phase;
   return m;
 }
@@ -94,6 +95,7 @@ NodeMesh assemble(MPI_Comm c, const MeshPart& part) {
       mesh.pairs.push_back(t.pair);
     }
     mesh.domain = part.domain;
+    mesh.grid_spacing = part.grid_spacing;
     mesh.phase_names = part.phase_names;
     mesh.phase_labels = part.phase_labels;
     mesh.phase_colors = part.phase_colors;

@@ -244,6 +244,7 @@ MeshPart create_from_block(Comm& comm, const detail::MemoryShare& share, const S
   mine.held_nodes = uint64_t(values.held_nodes());
   MeshPart out = number(comm, part, owned);
   out.domain = grid.domain;
+  out.grid_spacing = grid.h();
   out.outside_phase = params.close ? int32_t(window.num_phases()) : -1;
   const CreateStats all = sum_stats(comm, mine);
   if (validate && !all.validated)

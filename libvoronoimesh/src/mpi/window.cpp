@@ -68,6 +68,7 @@ Window build_window(std::vector<TriangleRecord> records, const MeshPart& part) {
     w.triangle_ids.push_back(t.id);
   }
   w.mesh.domain = part.domain;
+  w.mesh.grid_spacing = part.grid_spacing;
   w.mesh.phase_names = part.phase_names;
   w.mesh.phase_labels = part.phase_labels;
   w.mesh.phase_colors = part.phase_colors;

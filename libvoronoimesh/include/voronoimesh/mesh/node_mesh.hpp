@@ -38,12 +38,16 @@ struct NodeMesh {
   std::vector<std::optional<Rgb>> phase_colors;
   /// The domain box; edges lying on it may bound a single triangle.
   Box domain;
+  /// The spacing h of the grid the mesh was created on, the unit in which its
+  /// nodes' offsets from the interface are told (`voronoimesh stats --field`);
+  /// 0: not known (a mesh from a file that does not say).
+  double grid_spacing = 0;
   /// The phase outside the box of a closed mesh (CreateParams::close: the box
   /// faces are surfaces between the phases inside and this one, the last), or -1
   /// when the mesh is not closed.
   int32_t outside_phase = -1;
 
-  /// A mesh with the same domain and phases (names, labels, colours, outside phase) and
+  /// A mesh with the same domain, grid spacing and phases (names, labels, colours, outside phase) and
   /// no points or triangles: where a new mesh is made from this one.
   NodeMesh empty_like() const {
     NodeMesh m;
@@ -51,6 +55,7 @@ struct NodeMesh {
     m.phase_labels = phase_labels;
     m.phase_colors = phase_colors;
     m.domain = domain;
+    m.grid_spacing = grid_spacing;
     m.outside_phase = outside_phase;
     return m;
   }

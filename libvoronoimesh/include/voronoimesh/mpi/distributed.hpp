@@ -59,6 +59,7 @@ struct MeshPart {
   int64_t global_nodes = 0, global_triangles = 0; ///< triangles of the whole mesh
   std::array<int, 2> slabs{0, -1}; ///< the slabs (tetrahedra) this rank owns
   Box domain;                      ///< the domain box of the whole mesh (NodeMesh::domain)
+  double grid_spacing = 0;         ///< as NodeMesh::grid_spacing
   std::vector<std::string> phase_names; ///< as NodeMesh::phase_names
   std::vector<int32_t> phase_labels;    ///< as NodeMesh::phase_labels
   std::vector<std::optional<Rgb>> phase_colors; ///< as NodeMesh::phase_colors
