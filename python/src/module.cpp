@@ -238,14 +238,23 @@ PYBIND11_MODULE(_voronoimesh, m) {
            "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
       .def(
           "stats_json",
-          [](const Mesh& self, size_t worst, size_t folds) {
+          [](const Mesh& self, size_t worst, size_t folds, const std::string& field, const py::kwargs& kwargs) {
+            std::vector<std::pair<std::string, std::string>> more;
+            if (!field.empty()) {
+              const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
+              py::gil_scoped_release released;
+              const vm::MeshOffsets at = vm::offsets_from_input(self.mesh, "the mesh", vm::read_input(field, o.input), field);
+              more.emplace_back("offsets", vm::to_json(at.offsets, self.mesh, at.spacing));
+            }
             return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
-                               vm::sharpest_folds(self.mesh, folds));
+                               vm::sharpest_folds(self.mesh, folds), more);
           },
-          py::arg("worst") = 0, py::arg("folds") = 0,
-          "Counts and quality, as 'voronoimesh stats --json [--worst N] [--folds M]' prints them: with worst=N, "
-          "also the N triangles of lowest quality and what meets at their corners ('worst_triangles'); with "
-          "folds=M, the M sharpest folds ('sharpest_folds')")
+          py::arg("worst") = 0, py::arg("folds") = 0, py::arg("field") = "",
+          "Counts and quality, as 'voronoimesh stats --json [--worst N] [--folds M] [--field INPUT]' prints them: "
+          "with worst=N, also the N triangles of lowest quality and what meets at their corners "
+          "('worst_triangles'); with folds=M, the M sharpest folds ('sharpest_folds'); with field=INPUT (the "
+          "file the mesh was made from, with its input options as keywords), how far the nodes lie from its "
+          "interface ('offsets')")
       .def(
           "write", [](const Mesh& self, const std::string& path, bool ascii) {
             vm::RunOutputs outputs;

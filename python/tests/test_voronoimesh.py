@@ -114,6 +114,17 @@ def test_files_are_read_as_the_cli_reads_them(tmp_path):
         vm.mesh_file(str(tmp_path / "missing.nrrd"))
     with pytest.raises(ValueError, match="no segment is named 'kidney'"):
         vm.mesh_file(str(path), drop_labels=["kidney"])
+    # stats(field=...): offsets from the interface of the input the mesh was made from (read
+    # with input options as keywords), in the h of the grid the mesh was made on, about twice
+    # the voxel size with voxels_per_cell=2 (15 voxel spacings over 8 cells), whatever grid the
+    # input would default to (its voxel grid, h 1); an input it was not made from is refused.
+    coarse = vm.mesh_file(str(path), iterations=2, voxels_per_cell=2)
+    offsets = coarse.stats(field=str(path), voxels_per_cell=2)["offsets"]
+    assert offsets["spacing"] == pytest.approx(15 / 8) and offsets["surface"]["nodes"] > 50
+    assert offsets["surface"]["max_h"] < 0.5 and "offsets" not in coarse.stats()
+    assert coarse.stats(field=str(path))["offsets"]["spacing"] == offsets["spacing"]
+    with pytest.raises(ValueError, match="its phase 1 is 'liver', but the mesh calls phase 1 'tumour'"):
+        ras.stats(field=str(path))  # made with the tumour alone kept
 
 
 def test_meshes_round_trip_through_meshio(tmp_path):

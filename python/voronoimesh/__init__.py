@@ -17,11 +17,15 @@ from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_valu
 __all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
 
 
-def _stats(self, worst=0, folds=0):
+def _stats(self, worst=0, folds=0, field="", **input_options):
     """Counts and quality as a dict, the keys of 'voronoimesh stats --json'; with worst=N also
     'worst_triangles': the N triangles of lowest quality and what meets at their corners; with
-    folds=M also 'sharpest_folds': the M surface edges that turn back the most, and their ends."""
-    return _json.loads(self.stats_json(worst, folds))
+    folds=M also 'sharpest_folds': the M surface edges that turn back the most, and their ends;
+    with field=INPUT (the file the mesh was made from; its input options, such as
+    voxels_per_cell=, as keywords) also 'offsets': how far the surface, triple-curve and
+    quadruple-point nodes lie from its interface, in world units and in h (the grid spacing
+    the mesh was created on)."""
+    return _json.loads(self.stats_json(worst, folds, field, **input_options))
 
 
 def _to_meshio(self):

@@ -56,14 +56,9 @@ void add_stats_command(CLI::App& app, int& exit_code) {
     exit_code = run_guarded([&] {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
       // The input first: one the mesh was not made from is refused before any measuring.
-      std::optional<vm::InterfaceOffsets> offsets;
-      double h = 1;
-      if (!o->field.empty()) {
-        const vm::Scene scene = vm::read_input(o->field, input_options(o->input));
-        vm::check_field_matches(mesh, o->mesh, scene, o->field);
-        offsets = vm::interface_offsets(mesh, *vm::phases_of_mesh(mesh, scene.field));
-        h = mesh.grid_spacing > 0 ? mesh.grid_spacing : scene.grid.h();
-      }
+      std::optional<vm::MeshOffsets> offsets;
+      if (!o->field.empty())
+        offsets = vm::offsets_from_input(mesh, o->mesh, vm::read_input(o->field, input_options(o->input)), o->field);
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);
       // Only a mesh whose topology is sound can be checked for crossings.
@@ -73,7 +68,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       const std::vector<vm::Fold> folds = vm::sharpest_folds(mesh, size_t(o->folds));
       if (o->json) {
         std::vector<std::pair<std::string, std::string>> more;
-        if (offsets) more.emplace_back("offsets", vm::to_json(*offsets, mesh, h));
+        if (offsets) more.emplace_back("offsets", vm::to_json(offsets->offsets, mesh, offsets->spacing));
         std::cout << vm::to_json(s, worst, &mesh, folds, more) << "\n";
       } else {
         std::cout << vm::to_text(s);
@@ -83,11 +78,11 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         if (!worst.empty()) std::cout << "worst triangles\n" << vm::to_text(worst, mesh);
         if (!folds.empty()) std::cout << "sharpest folds\n" << vm::to_text(folds, mesh);
         if (offsets)
-          std::cout << "offsets from the interface (h = " << h
-                    << (mesh.grid_spacing > 0 ? ", the spacing of the grid the mesh was created on"
-                                              : ", the input's default grid spacing: the mesh does not say its own")
+          std::cout << "offsets from the interface (h = " << offsets->spacing
+                    << (offsets->spacing_from_mesh ? ", the spacing of the grid the mesh was created on"
+                                                   : ", the input's default grid spacing: the mesh does not say its own")
                     << ")\n"
-                    << vm::to_text(*offsets, mesh, h);
+                    << vm::to_text(offsets->offsets, mesh, offsets->spacing);
       }
       return report.ok() && !crossing ? kOk : kTopology;
     });

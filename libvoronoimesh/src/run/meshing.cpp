@@ -206,6 +206,13 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
       throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
 }
 
+MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
+                               const std::string& input) {
+  check_field_matches(mesh, mesh_path, scene, input);
+  const bool own = mesh.grid_spacing > 0;
+  return {interface_offsets(mesh, *phases_of_mesh(mesh, scene.field)), own ? mesh.grid_spacing : scene.grid.h(), own};
+}
+
 Scene read_input(const std::string& path, const InputOptions& options, RunObserver* observer) {
   if (path.empty()) {
     refuse_options_that_do_not_apply(options, false, false, "a scene", "the built-in demo");

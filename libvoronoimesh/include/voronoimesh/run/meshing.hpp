@@ -19,6 +19,7 @@
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/offsets.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/registry.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
@@ -302,6 +303,23 @@ int improve_mesh(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const 
 /// @throws InvalidInput naming `input` and what does not match
 void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
                          const std::string& input);
+
+/// How far a mesh's nodes lie from the interface of the input it was made
+/// from, and the grid spacing h to tell them in (`voronoimesh stats --field`).
+struct MeshOffsets {
+  InterfaceOffsets offsets;       ///< per class of nodes (interface_offsets())
+  double spacing = 1;             ///< h: the mesh's grid_spacing, or when it does not say, the input's default grid's
+  bool spacing_from_mesh = false; ///< whether h is the mesh's own
+};
+
+/// check_field_matches(), then interface_offsets() of `mesh` from `scene`'s phase functions.
+/// @param mesh      the mesh
+/// @param mesh_path its file, for the messages
+/// @param scene     the input it was made from
+/// @param input     the input's file, for the messages
+/// @throws InvalidInput as check_field_matches()
+MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
+                               const std::string& input);
 
 /// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
 /// `voronoimesh mesh` without the files. It never exits.
