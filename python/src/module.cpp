@@ -240,6 +240,10 @@ PYBIND11_MODULE(_voronoimesh, m) {
           "stats_json",
           [](const Mesh& self, size_t worst, size_t folds, const std::string& field, const py::kwargs& kwargs) {
             std::vector<std::pair<std::string, std::string>> more;
+            // Input options only say how to read the field: without one they would do nothing.
+            if (field.empty() && !kwargs.empty())
+              throw py::value_error("stats: " + py::str(kwargs.begin()->first).cast<std::string>() +
+                                    "= says how to read field=INPUT, which is not given");
             if (!field.empty()) {
               const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
               py::gil_scoped_release released;

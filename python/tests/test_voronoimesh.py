@@ -123,6 +123,8 @@ def test_files_are_read_as_the_cli_reads_them(tmp_path):
     assert offsets["spacing"] == pytest.approx(15 / 8) and offsets["surface"]["nodes"] > 50
     assert offsets["surface"]["max_h"] < 0.5 and "offsets" not in coarse.stats()
     assert coarse.stats(field=str(path))["offsets"]["spacing"] == offsets["spacing"]
+    with pytest.raises(ValueError, match="voxels_per_cell= says how to read field=INPUT, which is not given"):
+        coarse.stats(voxels_per_cell=2)
     with pytest.raises(ValueError, match="its phase 1 is 'liver', but the mesh calls phase 1 'tumour'"):
         ras.stats(field=str(path))  # made with the tumour alone kept
 

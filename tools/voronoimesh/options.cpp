@@ -115,7 +115,8 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                       vm::kScenePipeline +
                       " (the remesh pass evens out the created mesh at its own edge length before the paper's "
                       "passes, which then collapse junction slivers below q 0.5; polish and floor, not in the "
-                      "paper, raise the worst triangles and keep any iteration from making the worst one worse); "
+                      "paper, raise the worst triangles and take back moves onto the interface that left the worst "
+                      "one worse than the iteration found it); "
                       "for label volumes " +
                       vm::kLabelVolumePipeline +
                       " (their voxel grid is finer than their surfaces need: the remesh pass coarsens the mesh to "

@@ -56,7 +56,7 @@ void CrossingGuard::floor_exception_reverts(const InterfaceMesh& mesh, double qu
     if (quality[f] < quality_floor)
       for (int32_t n : mesh.triangles()[f]) below[size_t(n)] = 1;
   for (const auto& [n, moved] : excepted_)
-    if (size_t(n) < delta.size() && below[size_t(n)] && mesh.positions()[size_t(n)] == moved.to) // not moved since
+    if (below[size_t(n)] && mesh.positions()[size_t(n)] == moved.to) // not moved since
       delta[size_t(n)] += moved.from - moved.to;
   excepted_.clear();
 }

@@ -177,7 +177,6 @@ public:
   template <class F> void for_each_triangle_at(int32_t n, F&& f) const;
   const std::vector<PhaseSet>& phases() const { return phases_; }          ///< phases meeting at each node
   const Box& domain() const { return domain_; }                            ///< the domain box
-  double grid_spacing() const { return grid_spacing_; } ///< NodeMesh::grid_spacing
   const std::vector<std::string>& phase_names() const { return names_; } ///< as NodeMesh::phase_names
   /// The phase outside the box of a closed mesh, or -1 (NodeMesh::outside_phase).
   int32_t outside_phase() const { return outside_; }
@@ -220,7 +219,7 @@ private:
   double quality_of(size_t f) const;                      ///< triangle_quality() of face f now
   std::vector<uint8_t> box_;
   Box domain_;
-  double grid_spacing_ = 0;
+  double grid_spacing_ = 0; // NodeMesh::grid_spacing, kept for to_node_mesh()
   std::vector<std::string> names_;
   std::vector<int32_t> labels_; // NodeMesh::phase_labels, kept for to_node_mesh()
   std::vector<std::optional<Rgb>> colors_; // NodeMesh::phase_colors, likewise
