@@ -5,7 +5,7 @@
 // cannot show.
 //
 //   pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]
-//              [--voxels-per-cell F] [--voxel-faithful]
+//              [--voxels-per-cell F] [--voxel-faithful] [--stop-when-converged | --all-iterations]
 //
 // Reads INPUT and creates its mesh as `voronoimesh mesh` does, then prints a
 // Markdown table: one row per iteration (triangles after it, its seconds, each
@@ -31,7 +31,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]\n"
-    "                  [--voxels-per-cell F] [--voxel-faithful]\n";
+    "                  [--voxels-per-cell F] [--voxel-faithful] [--stop-when-converged | --all-iterations]\n";
 
 /// Prints each iteration's row as it ends, and keeps the sums.
 class PassTimes : public vm::RunObserver {
@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
         return 2;
       }
       pipeline = value, ++a;
+    } else if (arg == "--stop-when-converged" || arg == "--all-iterations") {
+      options.stop_when_converged = arg == "--stop-when-converged";
     } else if (arg == "--no-guard") {
       options.guard_crossings = false;
     } else if (arg == "--voxel-faithful") {
@@ -123,10 +125,12 @@ int main(int argc, char** argv) {
   if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   try {
     const vm::Scene scene = vm::read_input(input, input_options);
-    options.pipeline = pipeline.empty() ? vm::pipeline_for(options, &scene) : pipeline;
+    options.pipeline = pipeline;
+    options = vm::options_for_scene(options, scene);
     vm::NodeMesh mesh = vm::create_mesh(scene, options);
-    std::printf("%s: %zu triangles created; %d iterations of %s%s\n\n", input.c_str(), mesh.num_triangles(),
-                options.iterations, options.pipeline.c_str(), options.guard_crossings ? "" : " without the guard");
+    std::printf("%s: %zu triangles created; %s%d iterations of %s%s\n\n", input.c_str(), mesh.num_triangles(),
+                *options.stop_when_converged ? "until converged, at most " : "", options.iterations,
+                options.pipeline.c_str(), options.guard_crossings ? "" : " without the guard");
     const vm::Pipeline parsed = vm::Pipeline::parse(options.pipeline, vm::builtin_registry());
     std::string header = "| iteration | triangles | s |", rule = "|---|---|---|";
     for (const auto& step : parsed.steps()) header += " " + step.info.name + " s |", rule += "---|";

@@ -46,7 +46,10 @@ Options options_from(const py::kwargs& kwargs, Input input) {
       {"close", [&](const py::handle& v) { m.close = v.cast<bool>(); }},
       {"snap", [&](const py::handle& v) { m.snap = v.cast<double>(); }},
       {"validate", [&](const py::handle& v) { m.validate = v.cast<bool>(); }},
-      {"stop_when_converged", [&](const py::handle& v) { m.stop_when_converged = v.cast<bool>(); }},
+      {"stop_when_converged", [&](const py::handle& v) {
+         if (v.is_none()) return m.stop_when_converged.reset(); // the input's default
+         m.stop_when_converged = v.cast<bool>();
+       }},
       {"crossing_guard", [&](const py::handle& v) { m.guard_crossings = v.cast<bool>(); }},
       {"top_k", [&](const py::handle& v) { m.top_k = in.top_k = v.cast<int>(); }},
       {"lattice", [&](const py::handle& v) {

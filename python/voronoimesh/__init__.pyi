@@ -34,7 +34,7 @@ def mesh_labels(labels: npt.NDArray[np.integer], spacing: Sequence[float] = (1.0
                 origin: Sequence[float] = (0.0, 0.0, 0.0), *, iterations: int = 20, pipeline: str = "",
                 size: float = 0.0, tolerance: float = 0.0, min_size: float = 0.0, threads: int = 0, close: bool = False, grid: Union[int, Sequence[int], None] = None,
                 lattice: Optional[str] = None, snap: float = 0.2, top_k: int = 4, validate: bool = True,
-                stop_when_converged: bool = False, crossing_guard: bool = True,
+                stop_when_converged: Optional[bool] = None, crossing_guard: bool = True,
                 drop_labels: Iterable[Label] = (), keep_labels: Iterable[Label] = (),
                 merge_labels: Iterable[Iterable[Label]] = (), background: int = 0, no_background: bool = False,
                 signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = False, band: float = 3.0,
@@ -45,12 +45,12 @@ def mesh_values(values: Union[npt.NDArray[np.floating], Sequence[npt.NDArray[np.
                 names: Sequence[str] = (), labels: Sequence[int] = (), *, iterations: int = 20, pipeline: str = "",
                 size: float = 0.0, tolerance: float = 0.0, min_size: float = 0.0, threads: int = 0, close: bool = False, grid: Union[int, Sequence[int], None] = None,
                 lattice: Optional[str] = None, snap: float = 0.2, top_k: int = 4, validate: bool = True,
-                stop_when_converged: bool = False, crossing_guard: bool = True,
+                stop_when_converged: Optional[bool] = None, crossing_guard: bool = True,
                 progress: Optional[Progress] = None) -> Mesh: ...
 
 def mesh_file(path: str, *, iterations: int = 20, pipeline: str = "", size: float = 0.0, tolerance: float = 0.0, min_size: float = 0.0, threads: int = 0,
               close: bool = False, grid: Union[int, Sequence[int], None] = None, lattice: Optional[str] = None,
-              snap: float = 0.2, top_k: int = 4, validate: bool = True, stop_when_converged: bool = False,
+              snap: float = 0.2, top_k: int = 4, validate: bool = True, stop_when_converged: Optional[bool] = None,
               crossing_guard: bool = True, drop_labels: Iterable[Label] = (), keep_labels: Iterable[Label] = (),
               merge_labels: Iterable[Iterable[Label]] = (), background: int = 0, no_background: bool = False,
               signed_distance: bool = False, smoothing: float = 1.0, voxel_faithful: bool = False, band: float = 3.0,

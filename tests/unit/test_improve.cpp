@@ -5,7 +5,6 @@
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
-#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/clamp.hpp"
@@ -517,69 +516,6 @@ TEST(Flip, ties_are_broken_by_the_nodes_not_by_the_triangle_order) {
     return out;
   };
   EXPECT_EQ(flipped(strip), flipped(reversed));
-}
-
-TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {
-  const PassRegistry registry = builtin_registry();
-  Pipeline p = Pipeline::parse("smooth:rest_factor=1.3, project,clamp,flip:skip_quality=0.95:max_rounds=2", registry);
-  ASSERT_EQ(p.steps().size(), 4u);
-  EXPECT_EQ(p.steps()[0].params.at("rest_factor"), 1.3);
-  EXPECT_EQ(p.steps()[2].params.at("factor"), 0.5); // default filled in
-  EXPECT_EQ(p.steps()[3].params.at("max_rounds"), 2);
-  EXPECT_TRUE(p.needs_field());
-  EXPECT_FALSE(Pipeline::parse("flip", registry).needs_field());
-  for (const char* bad : {"smoth", "smooth:rest=1", "smooth:rest_factor=abc", "smooth:rest_factor=9",
-                          "flip:max_rounds=1.5", "smooth,,flip", "", "flip:skip_quality"}) {
-    try {
-      Pipeline::parse(bad, registry);
-      ADD_FAILURE() << "accepted '" << bad << "'";
-    } catch (const InvalidInput& e) {
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-      EXPECT_NE(std::string(e.what()).find("pipeline"), std::string::npos) << e.what();
-    }
-  }
-}
-
-TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {
-  Scene scene = example("four_spheres.json", 16);
-  InterfaceMesh mesh = initial_mesh(scene);
-  EXPECT_THROW(Pipeline::parse("smooth", builtin_registry()).run(mesh, nullptr, iterations(1)), InvalidInput);
-}
-
-TEST(Pipeline, stops_when_quality_stops_improving) {
-  Scene scene = example("four_spheres.json", 24);
-  InterfaceMesh mesh = initial_mesh(scene);
-  RunOptions run = iterations(200);
-  run.stop_when_converged = true;
-  const int done = Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), run);
-  EXPECT_LT(done, 200);
-  EXPECT_GT(done, 3);
-}
-
-TEST(Pipeline, stops_before_the_iteration_after_a_stop_request) {
-  // The CLI's Ctrl-C: asked before each iteration, the run ends cleanly there.
-  Scene scene = example("four_spheres.json", 16);
-  InterfaceMesh mesh = initial_mesh(scene);
-  RunOptions run = iterations(50);
-  int seen = 0;
-  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { seen = r.iteration; };
-  run.stop_requested = [&] { return seen >= 3; };
-  const int done = Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), run);
-  EXPECT_EQ(done, 3);
-  EXPECT_EQ(seen, 3);
-  EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
-}
-
-TEST(Registry, lists_the_builtin_passes_with_schemas) {
-  const PassRegistry registry = builtin_registry();
-  std::vector<std::string> names;
-  for (const PassInfo* p : registry.all()) names.push_back(p->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "floor", "polish", "project", "remesh", "smooth", "stats"}));
-  EXPECT_EQ(registry.get("smooth").params.at(0).default_value, 1.2);
-  PassRegistry r2 = builtin_registry();
-  PassInfo dup;
-  dup.name = "smooth";
-  EXPECT_THROW(r2.add(dup), InvalidInput);
 }
 
 } // namespace

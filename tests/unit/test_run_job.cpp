@@ -203,21 +203,32 @@ TEST_F(RunJob, a_phase_of_a_scene_named_like_the_outside_is_not_the_outside) {
   EXPECT_EQ(io::read_ply(path("open.ply")).outside_phase, -1);
 }
 
-/// Records the pipeline each improvement ran.
+/// Records the pipeline each improvement ran and what it did.
 struct PipelineRecorder : RunObserver {
   std::vector<std::string> pipelines;
+  std::vector<ImproveReport> reports;
   size_t created_triangles = 0;
   void created(const CreateReport& r) override { created_triangles = r.triangles; }
-  void improved(const ImproveReport& r) override { pipelines.push_back(r.pipeline); }
+  void improved(const ImproveReport& r) override { pipelines.push_back(r.pipeline), reports.push_back(r); }
 };
 
-TEST_F(RunJob, label_volumes_are_coarsened_by_default_scenes_evened_out_and_meshes_from_files_left_as_they_are) {
-  // A ball of label 5 in 24^3 voxels: its voxel grid is finer than the ball needs.
+/// A ball of label 5 in 24^3 voxels, x fastest: the voxel grid is finer than the ball needs.
+std::vector<int32_t> ball_labels() {
   std::vector<int32_t> labels;
   for (int k = 0; k < 24; ++k)
     for (int j = 0; j < 24; ++j)
       for (int i = 0; i < 24; ++i) labels.push_back((Vec3(i, j, k) - Vec3(11.5, 11.2, 11.7)).norm() < 8 ? 5 : 0);
-  const std::string file = test::write_nrrd("ball.nrrd", "type: int\ndimension: 3\nsizes: 24 24 24\n", labels);
+  return labels;
+}
+
+/// ball_labels() written to ball.nrrd.
+/// @return the file
+std::string ball_volume() {
+  return test::write_nrrd("ball.nrrd", "type: int\ndimension: 3\nsizes: 24 24 24\n", ball_labels());
+}
+
+TEST_F(RunJob, label_volumes_are_coarsened_by_default_scenes_evened_out_and_meshes_from_files_left_as_they_are) {
+  const std::string file = ball_volume();
   MeshJob job;
   job.input = file;
   job.options.iterations = 3;
@@ -230,7 +241,7 @@ TEST_F(RunJob, label_volumes_are_coarsened_by_default_scenes_evened_out_and_mesh
   GridSpec grid;
   grid.cells = {23, 23, 23};
   grid.domain.max = Vec3(23, 23, 23);
-  const Scene volume = scene_from_labels(grid, labels);
+  const Scene volume = scene_from_labels(grid, ball_labels());
   EXPECT_TRUE(volume.voxel_grid);
   EXPECT_EQ(pipeline_for(MeshOptions{}, &volume), kLabelVolumePipeline);
   MeshOptions flip_only;
@@ -311,6 +322,39 @@ TEST_F(RunJob, a_phase_the_mesh_loses_is_named_with_its_size_never_dropped_silen
   EXPECT_EQ(speck.lost, std::vector<int32_t>{2});
   ASSERT_EQ(speck.notes.size(), 1u);
   EXPECT_NE(speck.notes[0].find("phase 'speck': no surface in the mesh"), std::string::npos) << speck.notes[0];
+}
+
+TEST_F(RunJob, label_volumes_stop_when_quality_stops_improving_unless_told_to_run_every_iteration) {
+  const std::string file = ball_volume();
+  MeshJob job;
+  job.input = file;
+  job.options.iterations = 40;
+  PipelineRecorder converged;
+  run_job(job, &converged);
+  ASSERT_EQ(converged.reports.size(), 1u);
+  EXPECT_TRUE(converged.reports[0].converged);
+  EXPECT_LT(converged.reports[0].iterations, 40);
+  job.options.stop_when_converged = false; // --all-iterations
+  PipelineRecorder every;
+  run_job(job, &every);
+  ASSERT_EQ(every.reports.size(), 1u);
+  EXPECT_FALSE(every.reports[0].converged);
+  EXPECT_EQ(every.reports[0].iterations, 40);
+  // Stopping is the default of a label volume's default pipeline only.
+  const Scene volume = read_input(file);
+  EXPECT_EQ(options_for_scene(MeshOptions{}, volume).stop_when_converged, true);
+  MeshOptions given;
+  given.pipeline = kLabelVolumePipeline;
+  EXPECT_EQ(options_for_scene(given, volume).stop_when_converged, false);
+  MeshOptions sized;
+  sized.size = 2;
+  const MeshOptions resolved = options_for_scene(sized, volume);
+  EXPECT_EQ(resolved.stop_when_converged, false);
+  EXPECT_EQ(resolved.size, 0); // taken into the pipeline
+  EXPECT_EQ(options_for_scene(MeshOptions{}, read_input(kFourSpheres)).stop_when_converged, false);
+  MeshOptions asked;
+  asked.stop_when_converged = true;
+  EXPECT_EQ(options_for_scene(asked, read_input(kFourSpheres)).stop_when_converged, true);
 }
 
 // A phase whose last triangles go during improvement is named too. No built-in

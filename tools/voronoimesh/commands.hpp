@@ -90,12 +90,13 @@ struct ImproveOptions {
   double size = 0;      ///< --size (--max-size): target edge length in world units (0: none)
   double tolerance = 0; ///< --tolerance: largest distance off a curved surface, world units (0: none)
   double min_size = 0;  ///< --min-size: shortest target edge with --tolerance (0: half of --size)
-  bool stop_when_converged = false;
+  bool stop_when_converged = false; ///< --stop-when-converged
+  bool all_iterations = false;      ///< --all-iterations: never stop early, label volumes included
   bool unguarded = false; ///< skip the crossing guard (improve/guard.hpp)
   std::string history;    ///< where to write per-iteration histograms (.csv, .json, .svg)
 };
 /// Adds --iterations (default `default_iterations`), --pipeline, --plugin,
-/// --stop-when-converged, --no-crossing-guard and --history to `cmd`.
+/// --stop-when-converged, --all-iterations, --no-crossing-guard and --history to `cmd`.
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations);
 
 /// Adds --plugin FILE (repeatable) to `cmd`.

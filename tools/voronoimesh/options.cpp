@@ -108,7 +108,10 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
 
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {
   o.iterations = default_iterations;
-  cmd->add_option("--iterations", o.iterations, "Iterations of the pipeline")->capture_default_str();
+  cmd->add_option("--iterations", o.iterations,
+                  "Iterations of the pipeline (the most for label volumes, which stop when quality stops improving; "
+                  "see --all-iterations)")
+      ->capture_default_str();
   cmd->add_option("--pipeline", o.pipeline,
                   std::string("Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh "
                               "passes'). Default: ") +
@@ -134,8 +137,14 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                   "With --tolerance: the shortest target edge in world units, between a tenth of --size and --size "
                   "(default: half of --size)");
   add_plugin_option(cmd, o.plugins);
-  cmd->add_flag("--stop-when-converged", o.stop_when_converged,
-                "Stop once min and mean quality stop improving (by 1e-3 for 3 iterations)");
+  auto* converged = cmd->add_flag(
+      "--stop-when-converged", o.stop_when_converged,
+      "Stop once quality stops improving (min q by 1e-3 and mean q by 2e-3 for 2 iterations), after one more "
+      "iteration run as the last; --iterations is then the most. The default for label volumes meshed with their "
+      "default pipeline");
+  cmd->add_flag("--all-iterations", o.all_iterations,
+                "Run every one of --iterations, label volumes included (they stop when converged by default)")
+      ->excludes(converged);
   cmd->add_flag("--no-crossing-guard", o.unguarded,
                 "Do not undo moves and flips that make two surfaces cross (faster; only safe on well-resolved scenes)");
   cmd->add_option("--history", o.history,
@@ -198,7 +207,7 @@ void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
   job.options.size = improve.size;
   job.options.tolerance = improve.tolerance;
   job.options.min_size = improve.min_size;
-  job.options.stop_when_converged = improve.stop_when_converged;
+  if (improve.stop_when_converged || improve.all_iterations) job.options.stop_when_converged = improve.stop_when_converged;
   job.options.guard_crossings = !improve.unguarded;
   job.outputs.history = improve.history;
 }

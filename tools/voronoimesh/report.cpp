@@ -60,10 +60,11 @@ void Report::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {
 }
 
 void Report::improved(const vm::ImproveReport& r) {
-  char line[320];
-  std::snprintf(line, sizeof line, "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f",
-                r.iterations, r.pipeline.c_str(), r.seconds, r.initial_min_quality, r.min_quality,
-                r.initial_mean_quality, r.mean_quality);
+  char line[384];
+  std::snprintf(line, sizeof line,
+                "improve: %d iterations%s of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f", r.iterations,
+                r.converged ? " (quality converged; --all-iterations runs every one)" : "", r.pipeline.c_str(),
+                r.seconds, r.initial_min_quality, r.min_quality, r.initial_mean_quality, r.mean_quality);
   say(line);
 }
 

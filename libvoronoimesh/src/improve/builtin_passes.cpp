@@ -35,8 +35,8 @@ namespace {
 constexpr double kLastCollapseIteration = 5;
 constexpr double kWorstMargin = 0.01;
 /// After kLastCollapseIteration, the slivers within kWorstMargin of the worst
-/// collapse in the run's last iteration and every this many before it, not in
-/// each: a batch rebuilds the mesh whatever its size (0.25-0.3 s on 1,000
+/// collapse every this many iterations (counted from it) and in the run's
+/// last, not in each: a batch rebuilds the mesh whatever its size (0.25-0.3 s on 1,000
 /// grains at grid 128, and the guard's fans and filing after it), and the
 /// slivers that smoothing makes near the worst wait for the next batch. In the
 /// iterations between, only slivers worse than the worst when the iteration
@@ -181,16 +181,19 @@ void register_builtin_passes(PassRegistry& registry) {
                     " of the worst triangle (on 1,000 grains the others, 60 an iteration, took a third of it and "
                     "never raised the worst)")},
        {"collapse_every", kLateCollapsePeriod, 1, 1000000, true,
-        "after collapse_last, the slivers near the worst collapse in the run's last iteration and every this many "
-        "before it (each batch rebuilds the mesh; 1: every iteration), between them only those worse than the "
-        "worst when the iteration began"}},
+        "after collapse_last, the slivers near the worst collapse every this many iterations and in the run's "
+        "last (each batch rebuilds the mesh; 1: every iteration), between them only those worse than the worst "
+        "when the iteration began"}},
       false, false, true, [](PassContext& c, const ParamValues& p) {
         double collapse_below = p.at("collapse_below");
         if (c.iteration > p.at("collapse_last")) {
-          // Counted back from the last iteration, so that the run ends with a
-          // batch; where the last is not known, a batch in every iteration.
-          const int before_last = c.iterations > 0 ? c.iterations - c.iteration : 0;
-          const bool batch = before_last % int(p.at("collapse_every")) == 0;
+          // Counted on from collapse_last, and in the run's last iteration, so
+          // that a run ends with a batch and one stopped when converged
+          // (RunOptions::stop_when_converged) makes the mesh of as many
+          // iterations asked for; where the last is not known, every iteration.
+          const int after_last = c.iteration - int(p.at("collapse_last"));
+          const bool batch = c.iterations <= 0 || c.iteration == c.iterations ||
+                             after_last % int(p.at("collapse_every")) == 0;
           collapse_below = std::min(collapse_below, c.quality_floor + (batch ? kWorstMargin : 0));
         }
         const FlipParams params{p.at("skip_quality"), int(p.at("max_rounds")), collapse_below,

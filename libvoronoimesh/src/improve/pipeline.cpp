@@ -149,12 +149,12 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const std::vector<std::unique_ptr<Pass>> passes = make_passes();
   PassContext context(mesh, field);
   context.guard_crossings = options.guard_crossings;
-  context.iterations = options.iterations;
   auto [best_min, best_mean] = quality_summary(mesh);
   if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
   double worst_now = best_min;
-  int stalled = 0, done = 0;
-  for (int it = 1; it <= options.iterations; ++it) {
+  int stalled = 0, done = 0, last = options.iterations;
+  for (int it = 1; it <= last; ++it) {
+    context.iterations = last;
     if (options.stop_requested && options.stop_requested()) break;
     const auto start = std::chrono::steady_clock::now();
     context.iteration = it;
@@ -172,11 +172,12 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
                         pass_seconds},
                        mesh);
-    const bool improved = min_q > best_min + options.tolerance || mean_q > best_mean + options.tolerance;
+    const bool improved = min_q > best_min + options.tolerance || mean_q > best_mean + options.mean_tolerance;
     best_min = std::max(best_min, min_q);
     best_mean = std::max(best_mean, mean_q);
     stalled = improved ? 0 : stalled + 1;
-    if (options.stop_when_converged && stalled >= options.patience) break;
+    // Converged: the next iteration is the last, and is told so before it runs.
+    if (options.stop_when_converged && stalled >= options.patience) last = std::min(last, it + 1);
   }
   return done;
 }

@@ -111,7 +111,7 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   InterfaceMesh im = InterfaceMesh::from_node_mesh(mesh);
   RunOptions run;
   run.iterations = o.iterations;
-  run.stop_when_converged = o.stop_when_converged;
+  run.stop_when_converged = o.stop_when_converged.value_or(false);
   run.guard_crossings = o.guard_crossings;
   if (observer) run.stop_requested = [observer] { return observer->stop_requested(); };
   ImproveReport report;
@@ -130,6 +130,7 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   const std::vector<uint8_t> bounded_before = bounded_phases(mesh, phase_count);
   report.iterations = pipeline.run(im, phases.get(), run);
   stop_if_asked(observer);
+  report.converged = report.iterations < o.iterations;
   mesh = im.to_node_mesh();
   if (o.validate) require_valid(mesh, "the improved mesh");
   // Collapses can take a phase's last triangles: never silently.
@@ -301,21 +302,17 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   return scene->voxel_grid ? kLabelVolumePipeline : kScenePipeline;
 }
 
-namespace {
-
-/// `options` with pipeline_for() `scene` as their pipeline, and without the
-/// sizing options it has taken in (they and a pipeline exclude each other).
-MeshOptions with_pipeline_for(MeshOptions options, const Scene& scene) {
+MeshOptions options_for_scene(MeshOptions options, const Scene& scene) {
+  if (!options.stop_when_converged)
+    options.stop_when_converged = options.pipeline.empty() && options.size == 0 && scene.voxel_grid;
   options.pipeline = pipeline_for(options, &scene);
   options.size = options.tolerance = options.min_size = 0;
   return options;
 }
 
-} // namespace
-
 NodeMesh mesh_scene(const Scene& scene, const MeshOptions& options, RunObserver* observer) {
   NodeMesh mesh = create_mesh(scene, options, observer);
-  improve_mesh(mesh, scene.field, with_pipeline_for(options, scene), observer);
+  improve_mesh(mesh, scene.field, options_for_scene(options, scene), observer);
   return mesh;
 }
 
@@ -340,7 +337,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
                                  "meshes to nothing: no two phases meet between the grid's nodes (a finer grid, or "
                                  "less smoothing of labels, may resolve them)"));
     field = scene.field;
-    resolved.options = with_pipeline_for(job.options, scene);
+    resolved.options = options_for_scene(job.options, scene);
   } else {
     mesh = read_mesh(job.mesh, observer);
     if (!job.input.empty()) {

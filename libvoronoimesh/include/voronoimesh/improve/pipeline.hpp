@@ -95,11 +95,15 @@ struct IterationReport {
 /// How Pipeline::run() iterates.
 struct RunOptions {
   int iterations = 20; ///< iterations to run, at most
-  /// Stop early once neither the minimum nor the mean quality has improved by
-  /// more than `tolerance` for `patience` iterations in a row.
+  /// Stop early once neither the minimum quality has risen by more than
+  /// `tolerance` nor the mean by more than `mean_tolerance` for `patience`
+  /// iterations in a row: one more iteration then runs, told that it is the
+  /// run's last (PassContext::iterations), so that passes which end a run with
+  /// work of their own (the flip pass's last collapse batch) do it.
   bool stop_when_converged = false;
-  double tolerance = 1e-3; ///< quality gain that counts as an improvement (stop_when_converged)
-  int patience = 3;        ///< iterations in a row without improvement that stop the run (stop_when_converged)
+  double tolerance = 1e-3;      ///< rise of the minimum quality that counts as an improvement (stop_when_converged)
+  double mean_tolerance = 2e-3; ///< rise of the mean quality that counts as an improvement (stop_when_converged)
+  int patience = 2; ///< iterations in a row without improvement before the last one (stop_when_converged)
   /// Undo any move that would make two triangles intersect (improve/guard.hpp). Off
   /// saves the exact intersection check of every iteration.
   bool guard_crossings = true;

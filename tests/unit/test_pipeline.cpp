@@ -1,0 +1,134 @@
+// Tests of the pipeline (paper Algorithm 1) and the pass registry: specs parse
+// against the registry, runs stop when asked or when quality stops improving
+// (after one last iteration told that it is the last), and the built-in passes
+// are listed with their parameters.
+
+#include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/check/validate.hpp"
+
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using namespace vm;
+
+Scene example(const std::string& name, int grid) { return test::example_scene(name, grid); }
+
+using test::initial_mesh;
+using test::iterations;
+
+TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {
+  const PassRegistry registry = builtin_registry();
+  Pipeline p = Pipeline::parse("smooth:rest_factor=1.3, project,clamp,flip:skip_quality=0.95:max_rounds=2", registry);
+  ASSERT_EQ(p.steps().size(), 4u);
+  EXPECT_EQ(p.steps()[0].params.at("rest_factor"), 1.3);
+  EXPECT_EQ(p.steps()[2].params.at("factor"), 0.5); // default filled in
+  EXPECT_EQ(p.steps()[3].params.at("max_rounds"), 2);
+  EXPECT_TRUE(p.needs_field());
+  EXPECT_FALSE(Pipeline::parse("flip", registry).needs_field());
+  for (const char* bad : {"smoth", "smooth:rest=1", "smooth:rest_factor=abc", "smooth:rest_factor=9",
+                          "flip:max_rounds=1.5", "smooth,,flip", "", "flip:skip_quality"}) {
+    try {
+      Pipeline::parse(bad, registry);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("pipeline"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {
+  Scene scene = example("four_spheres.json", 16);
+  InterfaceMesh mesh = initial_mesh(scene);
+  EXPECT_THROW(Pipeline::parse("smooth", builtin_registry()).run(mesh, nullptr, iterations(1)), InvalidInput);
+}
+
+TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_that_it_is_the_last) {
+  // A pass that writes down what each iteration is told: passes such as flip
+  // end a run with work of their own (its last collapse batch) when they are
+  // told that the iteration is the run's last.
+  struct Told {
+    int iteration, iterations;
+  };
+  std::vector<Told> told;
+  struct Record : Pass {
+    std::vector<Told>* told;
+    explicit Record(std::vector<Told>* t) : told(t) {}
+    void run(PassContext& c) override { told->push_back({c.iteration, c.iterations}); }
+  };
+  PassRegistry passes = builtin_registry();
+  PassInfo record;
+  record.name = "record";
+  record.summary = "writes down the iteration and the run's last";
+  record.make = [&told](const ParamValues&) { return std::make_unique<Record>(&told); };
+  passes.add(record);
+  Scene scene = example("four_spheres.json", 24);
+  InterfaceMesh mesh = initial_mesh(scene);
+  RunOptions run = iterations(200);
+  run.stop_when_converged = true;
+  std::vector<std::pair<double, double>> quality; // after each iteration, the initial mesh first
+  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { quality.emplace_back(r.min_quality, r.mean_quality); };
+  const int done = Pipeline::parse(std::string(kDefaultPipeline) + ",record", passes).run(mesh, scene.field.get(), run);
+  EXPECT_LT(done, 200);
+  EXPECT_GT(done, 3);
+  ASSERT_EQ(told.size(), size_t(done));
+  // Every iteration but the last was told the most asked for, the last that it is the last.
+  for (int it = 1; it < done; ++it) EXPECT_EQ(told[size_t(it - 1)].iterations, 200) << "iteration " << it;
+  EXPECT_EQ(told.back().iteration, done);
+  EXPECT_EQ(told.back().iterations, done);
+  // The two iterations before the last raised neither the worst triangle by
+  // more than RunOptions::tolerance nor the mean by more than mean_tolerance
+  // over the best before them; the one before those did.
+  ASSERT_EQ(quality.size(), size_t(done + 1));
+  auto best_before = [&](int it) {
+    std::pair<double, double> best{0, 0};
+    for (int i = 0; i < it; ++i)
+      best = {std::max(best.first, quality[size_t(i)].first), std::max(best.second, quality[size_t(i)].second)};
+    return best;
+  };
+  auto improved = [&](int it) {
+    const auto best = best_before(it);
+    return quality[size_t(it)].first > best.first + run.tolerance || quality[size_t(it)].second > best.second + run.mean_tolerance;
+  };
+  EXPECT_FALSE(improved(done - 1));
+  EXPECT_FALSE(improved(done - 2));
+  EXPECT_TRUE(improved(done - 3));
+}
+
+TEST(Pipeline, stops_before_the_iteration_after_a_stop_request) {
+  // The CLI's Ctrl-C: asked before each iteration, the run ends cleanly there.
+  Scene scene = example("four_spheres.json", 16);
+  InterfaceMesh mesh = initial_mesh(scene);
+  RunOptions run = iterations(50);
+  int seen = 0;
+  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { seen = r.iteration; };
+  run.stop_requested = [&] { return seen >= 3; };
+  const int done = Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, scene.field.get(), run);
+  EXPECT_EQ(done, 3);
+  EXPECT_EQ(seen, 3);
+  EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+}
+
+TEST(Registry, lists_the_builtin_passes_with_schemas) {
+  const PassRegistry registry = builtin_registry();
+  std::vector<std::string> names;
+  for (const PassInfo* p : registry.all()) names.push_back(p->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"clamp", "flip", "floor", "polish", "project", "remesh", "smooth", "stats"}));
+  EXPECT_EQ(registry.get("smooth").params.at(0).default_value, 1.2);
+  PassRegistry r2 = builtin_registry();
+  PassInfo dup;
+  dup.name = "smooth";
+  EXPECT_THROW(r2.add(dup), InvalidInput);
+}
+
+} // namespace
