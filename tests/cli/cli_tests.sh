@@ -183,7 +183,7 @@ else fail "mesh on a label volume does not remesh by default"; fi
 # A label volume stops once quality converges, and the mesh is the one --iterations that many makes
 # with --all-iterations; the two flags exclude each other.
 if out=$("$vm" mesh labels.nrrd --iterations 60 -o lc.ply 2>&1) &&
-  done_its=$(sed -n 's/^improve: \([0-9]*\) iterations (quality converged.*/\1/p' <<<"$out") && [ -n "$done_its" ] &&
+  done_its=$(sed -n 's/^improve: \([0-9]*\) iterations .*; quality converged.*/\1/p' <<<"$out") && [ -n "$done_its" ] &&
   [ "$done_its" -lt 60 ] && "$vm" mesh -q labels.nrrd --iterations "$done_its" --all-iterations -o lc_n.ply &&
   cmp -s lc.ply lc_n.ply && ! "$vm" mesh -q labels.nrrd --stop-when-converged --all-iterations -o lx.ply 2>/dev/null; then pass
 else fail "a label volume's run did not stop when converged ('$done_its' of 60), or not as --iterations"; fi

@@ -62,9 +62,9 @@ void Report::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {
 void Report::improved(const vm::ImproveReport& r) {
   char line[384];
   std::snprintf(line, sizeof line,
-                "improve: %d iterations%s of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f", r.iterations,
-                r.converged ? " (quality converged; --all-iterations runs every one)" : "", r.pipeline.c_str(),
-                r.seconds, r.initial_min_quality, r.min_quality, r.initial_mean_quality, r.mean_quality);
+                "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f%s", r.iterations,
+                r.pipeline.c_str(), r.seconds, r.initial_min_quality, r.min_quality, r.initial_mean_quality,
+                r.mean_quality, r.converged ? "; quality converged (--all-iterations runs every one)" : "");
   say(line);
 }
 
