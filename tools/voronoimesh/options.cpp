@@ -109,8 +109,8 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
 void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iterations) {
   o.iterations = default_iterations;
   cmd->add_option("--iterations", o.iterations,
-                  "Iterations of the pipeline (the most for label volumes, which stop when quality stops improving; "
-                  "see --all-iterations)")
+                  "Iterations of the pipeline; the most where the run stops once quality converges (by default a "
+                  "label volume meshed with its default pipeline; see --stop-when-converged, --all-iterations)")
       ->capture_default_str();
   cmd->add_option("--pipeline", o.pipeline,
                   std::string("Passes per iteration, e.g. smooth,project,clamp,flip:skip_quality=0.95 (see 'voronoimesh "
