@@ -77,7 +77,9 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
   RunOptions run = iterations(200);
   run.stop_when_converged = true;
   std::vector<std::pair<double, double>> quality; // after each iteration, the initial mesh first
-  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { quality.emplace_back(r.min_quality, r.mean_quality); };
+  run.observer = [&](const IterationReport& r, const InterfaceMesh&) {
+    quality.emplace_back(r.min_quality, r.mean_quality);
+  };
   const int done = Pipeline::parse(std::string(kDefaultPipeline) + ",record", passes).run(mesh, scene.field.get(), run);
   EXPECT_LT(done, 200);
   EXPECT_GT(done, 3);
@@ -98,7 +100,8 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
   };
   auto improved = [&](int it) {
     const auto best = best_before(it);
-    return quality[size_t(it)].first > best.first + run.tolerance || quality[size_t(it)].second > best.second + run.mean_tolerance;
+    return quality[size_t(it)].first > best.first + run.tolerance ||
+           quality[size_t(it)].second > best.second + run.mean_tolerance;
   };
   EXPECT_FALSE(improved(done - 1));
   EXPECT_FALSE(improved(done - 2));

@@ -207,7 +207,9 @@ void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
   job.options.size = improve.size;
   job.options.tolerance = improve.tolerance;
   job.options.min_size = improve.min_size;
-  if (improve.stop_when_converged || improve.all_iterations) job.options.stop_when_converged = improve.stop_when_converged;
+  // Neither flag: the input's default (vm::options_for_scene()).
+  if (improve.stop_when_converged || improve.all_iterations)
+    job.options.stop_when_converged = improve.stop_when_converged;
   job.options.guard_crossings = !improve.unguarded;
   job.outputs.history = improve.history;
 }

@@ -41,7 +41,8 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
       throw InvalidInput("mpi: a distributed run creates its mesh; improve a mesh read from a file in one process");
     vm::detail::check_options(o);
     pipeline = vm::detail::parse_pipeline(o);
-    distributed = o.iterations > 0 && pipeline->distributes() && !o.stop_when_converged.value_or(false) && job.outputs.history.empty();
+    distributed = o.iterations > 0 && pipeline->distributes() && !o.stop_when_converged.value_or(false) &&
+                  job.outputs.history.empty();
     if (pieces) {
       if (o.iterations > 0 && !distributed)
         throw InvalidInput(located(job.outputs.mesh, "pieces per rank (.pvtu) need a distributed improvement (passes "
