@@ -135,10 +135,11 @@ def test_labels_as_the_cli_meshes_them(tmp):
         nodes = [ids.GetId(i) for i in range(ids.GetNumberOfIds())]
         assert all(tuple(sorted(e)) in edges for e in zip(nodes, nodes[1:])), "a curve edge is no triangle edge"
 
-    # The quality history: iteration 0 (the initial mesh) to 20.
+    # The quality history: iteration 0 (the initial mesh) to the last, at most 20
+    # (a label volume stops once quality converges, as the CLI's did).
     table = fetch(f, 2)
     iterations = vtk_to_numpy(table.GetColumnByName("iteration"))
-    assert list(iterations) == list(range(21))
+    assert 2 < len(iterations) <= 21 and list(iterations) == list(range(len(iterations)))
     min_q = vtk_to_numpy(table.GetColumnByName("min_quality"))
     assert 0.3 < min_q[-1] <= 1 and min_q[-1] > min_q[0]
 
@@ -179,7 +180,9 @@ def test_progress_abort_and_errors():
     seen = []
     algorithm.AddObserver("ProgressEvent", lambda o, e: seen.append(o.GetProgress()))
     f.UpdatePipeline()
-    assert len(seen) > 20 and seen == sorted(seen) and seen[-1] == 1.0, seen
+    # A step for each stage and iteration; the run stops once quality converges,
+    # where progress goes to the end.
+    assert len(seen) > 10 and seen == sorted(seen) and seen[-1] == 1.0, seen
 
     # Abort after the mesh is created: the outputs stay empty, nothing crashes.
     g = VoronoiMesh(Input=producer(image({"labels": labels})), Iterations=50)
