@@ -21,8 +21,7 @@ namespace {
 
 using namespace vm;
 
-Scene example(const std::string& name, int grid) { return test::example_scene(name, grid); }
-
+using test::example_scene;
 using test::initial_mesh;
 using test::iterations;
 
@@ -48,7 +47,7 @@ TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {
 }
 
 TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {
-  Scene scene = example("four_spheres.json", 16);
+  Scene scene = example_scene("four_spheres.json", 16);
   InterfaceMesh mesh = initial_mesh(scene);
   EXPECT_THROW(Pipeline::parse("smooth", builtin_registry()).run(mesh, nullptr, iterations(1)), InvalidInput);
 }
@@ -72,7 +71,7 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
   record.summary = "writes down the iteration and the run's last";
   record.make = [&told](const ParamValues&) { return std::make_unique<Record>(&told); };
   passes.add(record);
-  Scene scene = example("four_spheres.json", 24);
+  Scene scene = example_scene("four_spheres.json", 24);
   InterfaceMesh mesh = initial_mesh(scene);
   RunOptions run = iterations(200);
   run.stop_when_converged = true;
@@ -110,7 +109,7 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
 
 TEST(Pipeline, stops_before_the_iteration_after_a_stop_request) {
   // The CLI's Ctrl-C: asked before each iteration, the run ends cleanly there.
-  Scene scene = example("four_spheres.json", 16);
+  Scene scene = example_scene("four_spheres.json", 16);
   InterfaceMesh mesh = initial_mesh(scene);
   RunOptions run = iterations(50);
   int seen = 0;
