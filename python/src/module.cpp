@@ -115,7 +115,7 @@ vm::Scene values_scene(const py::object& values, const std::array<double, 3>& sp
 std::unique_ptr<Mesh> mesh_labels(const py::array& labels, const std::array<double, 3>& spacing,
                                   const std::array<double, 3>& origin, const py::kwargs& kwargs) {
   const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::labels); // before copying anything
-  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  vmpy::Observer observer(o.progress);
   const vm::Scene scene = labels_scene(labels, spacing, origin, o);
   return run(observer, [&] { return vm::mesh_scene(scene, o.mesh, &observer); });
 }
@@ -124,14 +124,14 @@ std::unique_ptr<Mesh> mesh_values(const py::object& values, const std::array<dou
                                   const std::array<double, 3>& origin, std::vector<std::string> names,
                                   std::vector<int32_t> labels, const py::kwargs& kwargs) {
   const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::values); // before copying anything
-  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  vmpy::Observer observer(o.progress);
   const vm::Scene scene = values_scene(values, spacing, origin, std::move(names), std::move(labels), o);
   return run(observer, [&] { return vm::mesh_scene(scene, o.mesh, &observer); });
 }
 
 std::unique_ptr<Mesh> mesh_file(const std::string& path, const py::kwargs& kwargs) {
   const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
-  vmpy::Observer observer(o.progress, o.mesh.iterations);
+  vmpy::Observer observer(o.progress);
   return run(observer, [&] { return vm::mesh_scene(vm::read_input(path, o.input, &observer), o.mesh, &observer); });
 }
 
@@ -141,7 +141,7 @@ class Mesher {
 public:
   explicit Mesher(const py::kwargs& kwargs)
       : kwargs_(kwargs), options_(vmpy::options_from(kwargs, vmpy::Input::file)),
-        observer_(options_.progress, options_.mesh.iterations), mesher_(options_.mesh, &observer_) {}
+        observer_(options_.progress), mesher_(options_.mesh, &observer_) {}
 
   std::unique_ptr<Mesh> labels(const py::array& labels, const std::array<double, 3>& spacing,
                                const std::array<double, 3>& origin) {

@@ -22,7 +22,7 @@ const char* stage_name(vm::Stage s) {
 
 } // namespace
 
-Observer::Observer(py::object progress, int iterations) : progress_(std::move(progress)), iterations_(iterations) {}
+Observer::Observer(py::object progress) : progress_(std::move(progress)) {}
 
 Observer::~Observer() {
   py::gil_scoped_acquire held; // the callback and a held error are Python objects
@@ -49,7 +49,7 @@ void Observer::created(const vm::CreateReport& r) {
 void Observer::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {
   if (r.iteration == 0) return;
   char line[128];
-  std::snprintf(line, sizeof line, "iteration %d of %d: min q %.3f, mean q %.3f", r.iteration, iterations_,
+  std::snprintf(line, sizeof line, "iteration %d of %d: min q %.3f, mean q %.3f", r.iteration, r.last_iteration,
                 r.min_quality, r.mean_quality);
   call("improve", line);
 }

@@ -14,8 +14,9 @@ namespace vmpy {
 
 class Observer : public vm::RunObserver {
 public:
-  /// `progress`: None, or a callable taking (stage, message); `iterations` to say "k of n".
-  Observer(pybind11::object progress, int iterations);
+  /// `progress`: None, or a callable taking (stage, message); iterations are
+  /// "k of n", n the run's last as it knows it (vm::IterationReport::last_iteration).
+  explicit Observer(pybind11::object progress);
   ~Observer() override;
 
   void stage(vm::Stage stage, const std::string& what) override;
@@ -33,7 +34,6 @@ private:
   void call(const char* stage, const std::string& message);
 
   pybind11::object progress_;
-  int iterations_;
   std::optional<pybind11::error_already_set> error_;
 };
 

@@ -91,10 +91,20 @@ else pass; fi
 run mesh "$scene" --grid 16 --mpi --iterations 5 --threads 1 -q -o improved.pvtu 2>stderr.txt
 if [ $? -ne 0 ] || [ ! -s improved_1.vtu ]; then fail "improved pieces: $(cat stderr.txt)"
 else pass; fi
-run mesh "$scene" --grid 16 --mpi --stop-when-converged -o converged.pvtu 2>stderr.txt
+run mesh "$scene" --grid 16 --mpi --history history.csv -o history.pvtu 2>stderr.txt
 code=$?
 if [ $code -ne 2 ] || ! grep -q "pieces per rank (.pvtu) need a distributed improvement" stderr.txt; then
   fail "pvtu with rank-0 improvement: exit $code: $(cat stderr.txt)"
+else pass; fi
+# Stopping once quality converges runs distributed, with the same mesh as one process.
+"$vm" mesh "$scene" --grid 16 --pipeline $paper --stop-when-converged --threads 1 -q -o alone_converged.ply
+run mesh "$scene" --grid 16 --mpi --stop-when-converged --threads 1 -o converged.pvtu 2>stderr.txt
+if [ $? -ne 0 ] || ! grep -q "improve (mpi): .*quality converged" stderr.txt; then
+  fail "pvtu, stopped when converged: $(cat stderr.txt)"
+else pass; fi
+run mesh "$scene" --grid 16 --mpi --stop-when-converged --threads 1 -q -o ranks_converged.ply 2>stderr.txt
+if [ $? -ne 0 ]; then fail "assembled, stopped when converged: $(cat stderr.txt)"
+elif ! cmp -s alone_converged.ply ranks_converged.ply; then fail "assembled, stopped when converged: differs"
 else pass; fi
 
 echo "mpi cli: $passed passed, $failed failed"

@@ -1,8 +1,9 @@
 // Distributed improvement (mpi/distributed.hpp, improve_part()), run under mpirun with 2
 // and 4 ranks: after 20 iterations of the default pipeline (and of the moving
-// passes alone, with and without the crossing guard) the ranks' mesh is the one
-// one process makes, positions bit for bit, and it is valid; passes that
-// are not distributed yet are refused on every rank.
+// passes alone, with and without the crossing guard), and when it stops once
+// quality converges, the ranks' mesh is the one one process makes, positions
+// bit for bit, after as many iterations, and it is valid; passes that are not
+// distributed yet are refused on every rank.
 
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -24,20 +25,23 @@ constexpr const char* kMovingPasses = "smooth,project,clamp";
 /// Improves `scene`'s mesh over the ranks and in one process on rank 0, and
 /// compares. Returns what the distributed improvement did.
 mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterations, bool guard_crossings,
-                                                 const char* passes = kMovingPasses) {
+                                                 const char* passes = kMovingPasses,
+                                                 bool stop_when_converged = false) {
   MeshOptions o;
   o.threads = 1; // ranks share two cores
   const Pipeline pipeline = Pipeline::parse(passes, builtin_registry());
   mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, o);
   mpi::DistributedStats stats;
-  mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations, guard_crossings, &stats);
+  mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations, guard_crossings, &stats,
+                    stop_when_converged);
   const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
   if (rank() != 0) return stats;
   InterfaceMesh alone = InterfaceMesh::from_node_mesh(create_mesh(scene, o));
   RunOptions run;
   run.iterations = iterations;
   run.guard_crossings = guard_crossings;
-  pipeline.run(alone, scene.field.get(), run);
+  run.stop_when_converged = stop_when_converged;
+  EXPECT_EQ(stats.iterations, pipeline.run(alone, scene.field.get(), run));
   expect_same_mesh(together, alone.to_node_mesh());
   return stats;
 }
@@ -58,6 +62,14 @@ TEST(MpiImprove, voronoi30_after_20_iterations_is_the_one_process_mesh) {
 // Grain maps have junction slivers that only collapses remove (test_collapse.cpp).
 TEST(MpiImprove, label_volume_after_20_iterations_is_the_one_process_mesh) {
   expect_same_as_one_process(grains(), 20, true, kDefaultPipeline);
+}
+
+// The ranks stop after the iteration one process stops after: the mean
+// quality they stop by is summed exactly, in any order.
+TEST(MpiImprove, stops_where_one_process_stops_once_quality_converges) {
+  const mpi::DistributedStats stats = expect_same_as_one_process(grains(), 60, true, kDefaultPipeline, true);
+  EXPECT_GT(stats.iterations, 2);
+  EXPECT_LT(stats.iterations, 60);
 }
 
 // On coarse grids the first iterations move vertices farther than the flips'

@@ -76,8 +76,10 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
   RunOptions run = iterations(200);
   run.stop_when_converged = true;
   std::vector<std::pair<double, double>> quality; // after each iteration, the initial mesh first
+  std::vector<int> last_known;                     // the run's last iteration as each report says
   run.observer = [&](const IterationReport& r, const InterfaceMesh&) {
     quality.emplace_back(r.min_quality, r.mean_quality);
+    last_known.push_back(r.last_iteration);
   };
   const int done = Pipeline::parse(std::string(kDefaultPipeline) + ",record", passes).run(mesh, scene.field.get(), run);
   EXPECT_LT(done, 200);
@@ -105,6 +107,11 @@ TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_
   EXPECT_FALSE(improved(done - 1));
   EXPECT_FALSE(improved(done - 2));
   EXPECT_TRUE(improved(done - 3));
+  // Progress counts to the most asked for until the run knows it converged
+  // (after the second iteration that stalled), then to the iteration it ends at.
+  for (int it = 0; it < done - 1; ++it) EXPECT_EQ(last_known[size_t(it)], 200) << "iteration " << it;
+  EXPECT_EQ(last_known[size_t(done - 1)], done);
+  EXPECT_EQ(last_known[size_t(done)], done);
 }
 
 TEST(Pipeline, stops_before_the_iteration_after_a_stop_request) {

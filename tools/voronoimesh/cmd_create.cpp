@@ -32,7 +32,7 @@ void add_create_command(CLI::App& app, int& exit_code) {
     }
     exit_code = run_guarded([&] {
       const vm::PassRegistry registry = vm::builtin_registry();
-      Report report(o->common.quiet, 0, o->output.path);
+      Report report(o->common.quiet, o->output.path);
       vm::run_job(creating_job(*o, registry), &report);
       return kOk;
     });

@@ -28,7 +28,7 @@ void add_flip_command(CLI::App& app, int& exit_code) {
       job.options.pipeline = "flip:max_rounds=1000";
       job.options.threads = f->common.threads;
       job.outputs = run_outputs(f->output, f->common);
-      Report report(f->common.quiet, 1, f->output.path);
+      Report report(f->common.quiet, f->output.path);
       vm::run_job(job, &report);
       return kOk;
     });

@@ -42,7 +42,7 @@ int mesh_sequence(const MeshCommandOptions& o) {
       MeshCommandOptions step = o;
       step.input = steps[i].input;
       step.output.path = numbered(o.output.path, steps[i].number);
-      Report report(o.common.quiet, o.improve.iterations, step.output.path);
+      Report report(o.common.quiet, step.output.path);
       report.note("step " + std::to_string(i + 1) + " of " + std::to_string(steps.size()) + ": " + step.input +
                   " -> " + step.output.path);
       const auto start = std::chrono::steady_clock::now();
@@ -86,8 +86,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
                 "grid's slabs (balanced by interface tetrahedra), then improve distributed, each rank moving and "
                 "flipping in its band of z (the same mesh as one process). -o FILE.pvtu writes one .vtu piece per "
                 "rank and a ParaView index; other formats are assembled and written by rank 0. Pipelines with "
-                "passes that do not run distributed (plugins, stats), --stop-when-converged and --history improve "
-                "on rank 0 alone");
+                "passes that do not run distributed (plugins, stats) and --history improve on rank 0 alone");
   cmd->callback([o, &exit_code] {
     if (o->inputs.size() > 1 || (o->inputs.size() == 1 && is_numbered(o->inputs[0]))) {
       exit_code = mesh_sequence(*o);
@@ -100,7 +99,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
     }
     exit_code = run_guarded([&] {
       const vm::PassRegistry registry = pass_registry(o->improve.plugins, o->common.quiet);
-      Report report(o->common.quiet, o->improve.iterations, o->output.path);
+      Report report(o->common.quiet, o->output.path);
       vm::run_job(creating_job(*o, registry), &report);
       return kOk;
     });

@@ -19,7 +19,7 @@ namespace {
 class DistributedReport : public vm::mpi::RunObserver {
 public:
   DistributedReport(bool quiet, int iterations, const std::string& output)
-      : report_(quiet, iterations, output), quiet_(quiet) {}
+      : report_(quiet, output), quiet_(quiet), iterations_(iterations) {}
 
   void stage(vm::Stage stage, const std::string& what) override { report_.stage(stage, what); }
   void input_read(const std::string& path, const vm::Scene& scene, double seconds) override {
@@ -50,14 +50,16 @@ public:
   }
   void improved_parts(int iterations, const std::string& pipeline, const vm::mpi::DistributedStats& s) override {
     char line[320];
-    std::snprintf(line, sizeof line, "improve (mpi): %d iterations of %s; rank 0: %.3f s, %.0f%% in MPI", iterations,
-                  pipeline.c_str(), s.seconds, s.seconds > 0 ? 100 * s.mpi_seconds / s.seconds : 0.0);
+    std::snprintf(line, sizeof line, "improve (mpi): %d iterations of %s; rank 0: %.3f s, %.0f%% in MPI%s", iterations,
+                  pipeline.c_str(), s.seconds, s.seconds > 0 ? 100 * s.mpi_seconds / s.seconds : 0.0,
+                  iterations < iterations_ ? kConvergedRemark : "");
     report_.say(line);
   }
 
 private:
   Report report_;
   bool quiet_;
+  int iterations_; ///< asked for: the most
 };
 
 } // namespace

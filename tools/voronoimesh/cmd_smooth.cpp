@@ -48,7 +48,7 @@ void add_smooth_command(CLI::App& app, int& exit_code) {
       job.outputs = run_outputs(s->output, s->common);
       set_improve_options(s->improve, job);
       // No line on the field read: a field that does not fit the mesh is reported on one line.
-      Report report(s->common.quiet, s->improve.iterations, s->output.path, false);
+      Report report(s->common.quiet, s->output.path, false);
       vm::run_job(job, &report);
       return kOk;
     });

@@ -12,9 +12,8 @@
 
 namespace vmcli {
 
-Report::Report(bool quiet, int iterations, std::string output, bool tell_input)
-    : quiet_(quiet), terminal_(!quiet && isatty(STDERR_FILENO)), tell_input_(tell_input), iterations_(iterations),
-      output_(std::move(output)) {}
+Report::Report(bool quiet, std::string output, bool tell_input)
+    : quiet_(quiet), terminal_(!quiet && isatty(STDERR_FILENO)), tell_input_(tell_input), output_(std::move(output)) {}
 
 void Report::status(const std::string& text) {
   if (!terminal_) return;
@@ -55,7 +54,7 @@ void Report::created(const vm::CreateReport& r) {
 void Report::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {
   char line[192];
   std::snprintf(line, sizeof line, "iteration %d/%d: min q %.3f, mean q %.3f, %zu flips, %zu moves undone, %.1f ms",
-                r.iteration, iterations_, r.min_quality, r.mean_quality, r.flips, r.undone_moves, r.seconds * 1e3);
+                r.iteration, r.last_iteration, r.min_quality, r.mean_quality, r.flips, r.undone_moves, r.seconds * 1e3);
   status(line);
 }
 
@@ -64,7 +63,7 @@ void Report::improved(const vm::ImproveReport& r) {
   std::snprintf(line, sizeof line,
                 "improve: %d iterations of %s in %.3f s; min q %.3f -> %.3f, mean q %.3f -> %.3f%s", r.iterations,
                 r.pipeline.c_str(), r.seconds, r.initial_min_quality, r.min_quality, r.initial_mean_quality,
-                r.mean_quality, r.converged ? "; quality converged (--all-iterations runs every one)" : "");
+                r.mean_quality, r.converged ? kConvergedRemark : "");
   say(line);
 }
 

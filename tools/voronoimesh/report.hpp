@@ -11,12 +11,16 @@
 
 namespace vmcli {
 
+/// What the improve line ends with when a run stopped once its quality converged.
+inline constexpr const char* kConvergedRemark = "; quality converged (--all-iterations runs every one)";
+
 class Report : public vm::RunObserver {
 public:
-  /// `quiet`: print no summaries (errors are the caller's); `iterations`: how
-  /// many the status line counts to; `output`: the -o path, to name the files
-  /// written beside it; `tell_input`: a line on the input read.
-  Report(bool quiet, int iterations, std::string output, bool tell_input = true);
+  /// `quiet`: print no summaries (errors are the caller's); `output`: the -o
+  /// path, to name the files written beside it; `tell_input`: a line on the
+  /// input read. The status line counts to the run's last iteration as the
+  /// run knows it (vm::IterationReport::last_iteration).
+  Report(bool quiet, std::string output, bool tell_input = true);
 
   void stage(vm::Stage stage, const std::string& what) override;
   void input_read(const std::string& path, const vm::Scene& scene, double seconds) override;
@@ -34,7 +38,6 @@ private:
   void status(const std::string& text);
 
   bool quiet_, terminal_, tell_input_;
-  int iterations_;
   std::string output_;
 };
 

@@ -5,6 +5,7 @@
 
 #include "core/fixed_point_sum.hpp"
 #include "core/parallel.hpp"
+#include "improve/convergence.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -149,12 +150,14 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const std::vector<std::unique_ptr<Pass>> passes = make_passes();
   PassContext context(mesh, field);
   context.guard_crossings = options.guard_crossings;
-  auto [best_min, best_mean] = quality_summary(mesh);
-  if (options.observer) options.observer({0, best_min, best_mean, 0, 0, 0, std::nullopt, {}}, mesh);
-  double worst_now = best_min;
-  int stalled = 0, done = 0, last = options.iterations;
-  for (int it = 1; it <= last; ++it) {
-    context.iterations = last;
+  const auto [first_min, first_mean] = quality_summary(mesh);
+  if (options.observer)
+    options.observer({0, first_min, first_mean, 0, 0, 0, std::nullopt, {}, options.iterations}, mesh);
+  double worst_now = first_min;
+  detail::Convergence convergence(options, first_min, first_mean);
+  int done = 0;
+  for (int it = 1; it <= convergence.last(); ++it) {
+    context.iterations = convergence.last();
     if (options.stop_requested && options.stop_requested()) break;
     const auto start = std::chrono::steady_clock::now();
     context.iteration = it;
@@ -167,17 +170,13 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);
     worst_now = min_q;
+    // Converged: the next iteration is the last, and is told so before it runs.
+    convergence.after(it, min_q, mean_q);
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
-                        pass_seconds},
+                        pass_seconds, convergence.last()},
                        mesh);
-    const bool improved = min_q > best_min + options.tolerance || mean_q > best_mean + options.mean_tolerance;
-    best_min = std::max(best_min, min_q);
-    best_mean = std::max(best_mean, mean_q);
-    stalled = improved ? 0 : stalled + 1;
-    // Converged: the next iteration is the last, and is told so before it runs.
-    if (options.stop_when_converged && stalled >= options.patience) last = std::min(last, it + 1);
   }
   return done;
 }

@@ -15,7 +15,9 @@
 /// to the windows they touch.
 
 #include "voronoimesh/mpi/distributed.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
 
+#include "improve/convergence.hpp"
 #include "improve/edge_lengths.hpp"
 #include "improve/part_agreement.hpp"
 #include "mpi/window.hpp"
@@ -28,6 +30,7 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <tuple>
 #include <limits>
 #include <unordered_map>
 
@@ -42,18 +45,39 @@ using detail::VertexRecord;
 using detail::Window;
 using detail::exchange;
 
+/// Every rank's `mine` added up (the same total, bit for bit, in any order).
+double global_sum(Comm& comm, const vm::detail::FixedPointSum& mine) {
+  const auto raw = mine.raw();
+  const std::array<uint64_t, 2> halves{uint64_t(raw), uint64_t(raw >> 64)};
+  const std::vector<uint64_t> all = comm.all_gather(std::span<const uint64_t>(halves));
+  vm::detail::FixedPointSum total(mine.unit());
+  for (size_t i = 0; i < all.size(); i += 2)
+    total.add_raw(vm::detail::FixedPointSum::Raw((unsigned __int128)all[i + 1] << 64 | all[i]));
+  return total.total();
+}
+
 /// The RMS edge length over every rank's window, each edge counted by the
 /// owner of its lower vertex.
 double global_rms_edge_length(Comm& comm, const InterfaceMesh& mesh, const std::vector<uint8_t>& own) {
   const vm::detail::SquaredEdgeLengths mine = vm::detail::squared_edge_lengths(mesh, own);
-  const auto raw = mine.sum.raw();
-  const std::array<uint64_t, 2> halves{uint64_t(raw), uint64_t(raw >> 64)};
-  const std::vector<uint64_t> all = comm.all_gather(std::span<const uint64_t>(halves));
-  vm::detail::FixedPointSum total(mine.sum.unit());
-  for (size_t i = 0; i < all.size(); i += 2)
-    total.add_raw(vm::detail::FixedPointSum::Raw((unsigned __int128)all[i + 1] << 64 | all[i]));
+  const double total = global_sum(comm, mine.sum);
   const uint64_t edges = comm.sum(mine.edges);
-  return edges ? std::sqrt(total.total() / double(edges)) : 0.0;
+  return edges ? std::sqrt(total / double(edges)) : 0.0;
+}
+
+/// The smallest and the mean triangle quality of the whole mesh, from each
+/// rank's own triangles (quality_summary() of the mesh they make up).
+std::pair<double, double> global_quality(Comm& comm, const std::vector<TriangleRecord>& own) {
+  auto at = [](const double* p) { return Vec3(p[0], p[1], p[2]); };
+  double worst = 1;
+  vm::detail::FixedPointSum sum(1.0);
+  for (const TriangleRecord& t : own) {
+    const double q = triangle_quality(at(t.xyz[0]), at(t.xyz[1]), at(t.xyz[2]));
+    worst = std::min(worst, q);
+    sum.add(q);
+  }
+  const uint64_t count = comm.sum(own.size());
+  return {comm.min(worst), count ? global_sum(comm, sum) / double(count) : 0.0};
 }
 
 /// Gives every vertex of the window its owner's move: each rank sends the moves
@@ -286,11 +310,11 @@ double iterate(Run& run, int iteration, double edge, double margin, double quali
 } // namespace
 
 void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
-                  bool guard_crossings, DistributedStats* stats) {
+                  bool guard_crossings, DistributedStats* stats, bool stop_when_converged) {
   const auto start = std::chrono::steady_clock::now();
   Comm comm(c);
   uint64_t window_triangles = 0, own_triangles = 0;
-  int wider_windows = 0;
+  int wider_windows = 0, done = 0;
   comm.collectively([&] {
     for (const Pipeline::Step& s : pipeline.steps())
       if (!s.info.distributed)
@@ -312,9 +336,14 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     const bool flips = std::any_of(pipeline.steps().begin(), pipeline.steps().end(),
                                    [](const Pipeline::Step& s) { return !s.info.moves_nodes; });
     double expected_move = -1; // none yet
-    for (int it = 1; it <= iterations; ++it) {
+    RunOptions rule; // Pipeline::run's stopping rule
+    rule.iterations = iterations;
+    rule.stop_when_converged = stop_when_converged;
+    auto [worst, mean] = global_quality(comm, sending); // worst: Pipeline::run's quality floor
+    vm::detail::Convergence convergence(rule, worst, mean);
+    for (int it = 1; it <= convergence.last(); ++it) {
+      run.iterations = convergence.last();
       const double edge = comm.max(detail::longest_edge(sending));
-      const double worst = comm.min(detail::worst_quality(sending)); // Pipeline::run's quality floor
       // Moving passes look two edges away (a neighbour's phases come from its
       // own ring); flips farther, for moves guessed from the last iteration's
       // (a quarter of an edge in the first, which moves most), and again wider
@@ -327,6 +356,9 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
         if (moved >= 0) break;
         ++run.wider_windows;
       }
+      std::tie(worst, mean) = global_quality(comm, sending);
+      convergence.after(it, worst, mean);
+      done = it;
     }
     rebuild_part(part, sending, moved_to, bands, comm.rank());
     // Collapses removed vertices and triangles.
@@ -346,6 +378,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     stats->window_triangles = window_triangles;
     stats->own_triangles = own_triangles;
     stats->wider_windows = wider_windows;
+    stats->iterations = done;
   }
 }
 

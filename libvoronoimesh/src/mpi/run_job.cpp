@@ -41,12 +41,11 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
       throw InvalidInput("mpi: a distributed run creates its mesh; improve a mesh read from a file in one process");
     vm::detail::check_options(o);
     pipeline = vm::detail::parse_pipeline(o);
-    distributed = o.iterations > 0 && pipeline->distributes() && !o.stop_when_converged.value_or(false) &&
-                  job.outputs.history.empty();
+    distributed = o.iterations > 0 && pipeline->distributes() && job.outputs.history.empty();
     if (pieces) {
       if (o.iterations > 0 && !distributed)
         throw InvalidInput(located(job.outputs.mesh, "pieces per rank (.pvtu) need a distributed improvement (passes "
-                                                     "that run distributed; no stop_when_converged or history) or "
+                                                     "that run distributed; no history) or "
                                                      "no iterations"));
       if (!job.outputs.per_phase.empty()) throw InvalidOption("per_phase", "not with pieces per rank (.pvtu)");
       vm::detail::check_writable(job.outputs.mesh);
@@ -73,8 +72,9 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
     DistributedStats improved;
     // A closed mesh has one more phase, outside the box; the passes need its function too.
     const auto phases = part.outside_phase >= 0 ? with_outside_phase(scene.field, part.domain) : scene.field;
-    improve_part(comm, part, *phases, *pipeline, o.iterations, o.guard_crossings, &improved);
-    if (observer) observer->improved_parts(o.iterations, pipeline_for(o, nullptr), improved);
+    improve_part(comm, part, *phases, *pipeline, o.iterations, o.guard_crossings, &improved,
+                 o.stop_when_converged.value_or(false));
+    if (observer) observer->improved_parts(improved.iterations, pipeline_for(o, nullptr), improved);
   }
   if (pieces) {
     write_pvtu(comm, part, job.outputs.mesh);

@@ -3,7 +3,6 @@
 
 #include "mpi/window.hpp"
 
-#include "voronoimesh/check/stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -85,14 +84,6 @@ double longest_edge(const std::vector<TriangleRecord>& records) {
       longest = std::max(longest, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
     }
   return longest;
-}
-
-double worst_quality(const std::vector<TriangleRecord>& records) {
-  double worst = 1;
-  auto at = [](const double* p) { return Vec3(p[0], p[1], p[2]); };
-  for (const TriangleRecord& t : records)
-    worst = std::min(worst, triangle_quality(at(t.xyz[0]), at(t.xyz[1]), at(t.xyz[2])));
-  return worst;
 }
 
 /// The triangles' first window: each triangle is in exactly one created part.

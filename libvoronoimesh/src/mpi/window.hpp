@@ -69,9 +69,6 @@ Window build_window(std::vector<TriangleRecord> records, const MeshPart& part);
 /// Longest edge of the triangles.
 double longest_edge(const std::vector<TriangleRecord>& records);
 
-/// Smallest triangle_quality() of the triangles (1 if there are none).
-double worst_quality(const std::vector<TriangleRecord>& records);
-
 /// The triangles of a created part, each with its corners' positions.
 std::vector<TriangleRecord> records_of(const MeshPart& part);
 

@@ -27,7 +27,7 @@ namespace {
 /// as the run's stop, and every iteration's report kept for the history table.
 class FilterObserver : public vm::RunObserver {
 public:
-  FilterObserver(vtkVoronoiMeshFilter& filter, int iterations) : filter_(filter), iterations_(iterations) {}
+  explicit FilterObserver(vtkVoronoiMeshFilter& filter) : filter_(filter) {}
 
   void stage(vm::Stage stage, const std::string& what) override {
     // Sampling and creating are a tenth of a default run; improving the rest.
@@ -37,7 +37,8 @@ public:
   }
   void iteration(const vm::IterationReport& report, const vm::InterfaceMesh&) override {
     history.push_back(report);
-    if (iterations_ > 0) filter_.UpdateProgress(0.1 + 0.9 * report.iteration / iterations_);
+    // To the run's last iteration as it knows it: one that converged ends at 1.
+    if (report.last_iteration > 0) filter_.UpdateProgress(0.1 + 0.9 * report.iteration / report.last_iteration);
   }
   void note(const std::string& line) override { vtkWarningWithObjectMacro(&filter_, << line); }
   bool stop_requested() override { return filter_.GetAbortExecute() != 0; }
@@ -46,7 +47,6 @@ public:
 
 private:
   vtkVoronoiMeshFilter& filter_;
-  int iterations_;
 };
 
 } // namespace
@@ -108,7 +108,7 @@ int vtkVoronoiMeshFilter::RequestData(vtkInformation*, vtkInformationVector** in
   if (SignedDistance) input.label_function = vm::LabelFunction::signed_distance;
   input.top_k = options.top_k;
 
-  FilterObserver observer(*this, Iterations);
+  FilterObserver observer(*this);
   try {
     vmpv::ImageFrame frame;
     vm::Scene scene;

@@ -90,6 +90,10 @@ struct IterationReport {
   /// Wall time of each step, in pipeline order; committing the moves is charged
   /// to the moving pass before it.
   std::vector<double> pass_seconds;
+  /// The run's last iteration as known now: RunOptions::iterations, or, once
+  /// quality converged (RunOptions::stop_when_converged), the next one; for
+  /// progress that reaches its end when the run does.
+  int last_iteration = 0;
 };
 
 /// How Pipeline::run() iterates.

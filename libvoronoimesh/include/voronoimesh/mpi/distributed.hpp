@@ -78,6 +78,8 @@ struct DistributedStats {
   /// improve_part(): iterations run again on wider windows, their moves having
   /// outgrown the guess the windows were built for (the same on every rank).
   int wider_windows = 0;
+  /// improve_part(): the iterations it ran (fewer than asked when it stopped once quality converged).
+  int iterations = 0;
   std::vector<uint64_t> interface_tets; ///< per rank: tetrahedra with more than one winning phase at their nodes
   std::vector<std::array<int, 2>> slabs; ///< per rank: the slabs it owns
 };
@@ -136,9 +138,12 @@ MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParam
 /// @param iterations      iterations of the pipeline; 0 or less changes nothing
 /// @param guard_crossings undo moves that make surfaces cross (RunOptions::guard_crossings)
 /// @param stats           receives what the call did; null for none
+/// @param stop_when_converged stop once quality stops improving, by Pipeline::run()'s rule
+///                        (RunOptions::stop_when_converged, with its default tolerances), after the
+///                        same iteration as one process; `iterations` is then the most
 /// @throws InvalidInput for a pass that does not run on parts of a distributed mesh
 void improve_part(MPI_Comm comm, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
-                  bool guard_crossings = true, DistributedStats* stats = nullptr);
+                  bool guard_crossings = true, DistributedStats* stats = nullptr, bool stop_when_converged = false);
 
 /// The whole mesh on rank 0 (empty on the others): the mesh create_mesh()
 /// makes.
@@ -194,8 +199,8 @@ public:
 /// vm::run_job() over the ranks of `comm`, every rank calling it with the same
 /// job: each reads the input, the ranks create the mesh together
 /// (create_part()) and improve it together (improve_part()) when the pipeline
-/// distributes (Pipeline::distributes()) and neither options.stop_when_converged
-/// nor outputs.history is asked, else rank 0 improves the assembled mesh alone.
+/// distributes (Pipeline::distributes()) and outputs.history is not asked, else
+/// rank 0 improves the assembled mesh alone.
 /// Rank 0 writes the outputs; or, when outputs.mesh ends in .pvtu, every rank
 /// writes its piece beside the index (write_pvtu(); the improvement must then be
 /// distributed or absent, and outputs.per_phase empty). job.mesh must be empty: a
