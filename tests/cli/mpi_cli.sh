@@ -44,6 +44,28 @@ elif ! cmp -s alone_30.ply ranks_30.ply; then fail "voronoi30 collapses: differs
 elif ! "$vm" stats alone_30.ply | grep -E "^higher-order points +[1-9]" >/dev/null; then fail "voronoi30: no corners merged"
 else pass; fi
 
+# A label volume stops once its quality converges, as in one process (where its
+# default pipeline remeshes first: here the paper's); --all-iterations runs every one.
+/usr/bin/python3 - <<'PY'
+n = 20  # label 2 in a ball, label 3 in a slab beside it, 1 around
+with open("labels.nrrd", "wb") as f:
+    f.write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 20 20\nencoding: raw\n\n")
+    for k in range(n):
+        for j in range(n):
+            f.write(bytes(2 if (i - 8) ** 2 + (j - 10) ** 2 + (k - 10) ** 2 < 30 else 3 if i > 14 else 1
+                          for i in range(n)))
+PY
+"$vm" mesh labels.nrrd --pipeline $paper --stop-when-converged --iterations 40 --threads 1 -q -o alone_labels.ply
+run mesh labels.nrrd --mpi --iterations 40 --threads 1 -o ranks_labels.ply 2>stderr.txt
+if [ $? -ne 0 ] || ! grep -q "improve (mpi): .*quality converged" stderr.txt; then
+  fail "label volume, stopped when converged: $(cat stderr.txt)"
+elif ! cmp -s alone_labels.ply ranks_labels.ply; then fail "label volume, stopped when converged: differs"
+else pass; fi
+run mesh labels.nrrd --mpi --iterations 40 --all-iterations --threads 1 -o all_labels.ply 2>stderr.txt
+if [ $? -ne 0 ] || ! grep -q "improve (mpi): 40 iterations" stderr.txt; then
+  fail "label volume, all iterations: $(cat stderr.txt)"
+else pass; fi
+
 # `create --mpi` is `mesh --mpi --iterations 0`.
 run create "$scene" --grid 16 --mpi --threads 1 -q -o created.ply 2>stderr.txt
 if [ $? -ne 0 ]; then fail "create --mpi: $(cat stderr.txt)"

@@ -73,7 +73,7 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
     // A closed mesh has one more phase, outside the box; the passes need its function too.
     const auto phases = part.outside_phase >= 0 ? with_outside_phase(scene.field, part.domain) : scene.field;
     improve_part(comm, part, *phases, *pipeline, o.iterations, o.guard_crossings, &improved,
-                 o.stop_when_converged.value_or(false));
+                 vm::detail::stops_when_converged(o, scene));
     if (observer) observer->improved_parts(improved.iterations, pipeline_for(o, nullptr), improved);
   }
   if (pieces) {
@@ -87,8 +87,10 @@ void run_job(MPI_Comm comm, const MeshJob& job, RunObserver* observer) {
     if (distributed) {
       if (o.validate) require_valid(mesh, "the improved mesh");
       rest.options.iterations = 0;
-    } else if (o.iterations > 0 && observer) {
-      observer->note("improve: on rank 0 alone (the pipeline or options are not distributed)");
+    } else {
+      rest.options.stop_when_converged = vm::detail::stops_when_converged(o, scene);
+      if (o.iterations > 0 && observer)
+        observer->note("improve: on rank 0 alone (the pipeline or options are not distributed)");
     }
     vm::detail::finish_job(mesh, scene.field, rest, observer);
   });

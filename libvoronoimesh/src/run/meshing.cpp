@@ -302,9 +302,16 @@ std::string pipeline_for(const MeshOptions& options, const Scene* scene) {
   return scene->voxel_grid ? kLabelVolumePipeline : kScenePipeline;
 }
 
+namespace detail {
+
+bool stops_when_converged(const MeshOptions& options, const Scene& scene) {
+  return options.stop_when_converged.value_or(options.pipeline.empty() && options.size == 0 && scene.voxel_grid);
+}
+
+} // namespace detail
+
 MeshOptions options_for_scene(MeshOptions options, const Scene& scene) {
-  if (!options.stop_when_converged)
-    options.stop_when_converged = options.pipeline.empty() && options.size == 0 && scene.voxel_grid;
+  options.stop_when_converged = detail::stops_when_converged(options, scene);
   options.pipeline = pipeline_for(options, &scene);
   options.size = options.tolerance = options.min_size = 0;
   return options;

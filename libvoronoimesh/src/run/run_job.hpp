@@ -18,6 +18,11 @@ namespace vm::detail {
 /// top_k, iterations, threads.
 void check_options(const MeshOptions& options);
 
+/// options.stop_when_converged, or where unset the default for `scene`: on for
+/// a label volume improved with the default pipeline (neither options.pipeline
+/// nor options.size given), off otherwise.
+bool stops_when_converged(const MeshOptions& options, const Scene& scene);
+
 /// Limits TBB to options.threads while alive (none when 0).
 std::optional<tbb::global_control> thread_limit(const MeshOptions& options);
 

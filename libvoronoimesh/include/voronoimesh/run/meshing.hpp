@@ -82,9 +82,10 @@ struct MeshOptions {
   const PassRegistry* passes = nullptr;
   /// Stop early once quality stops improving (RunOptions::stop_when_converged),
   /// `iterations` then being the most. Unset: the input's default, on for label
-  /// volumes meshed with their default pipeline (kLabelVolumePipeline: their
-  /// worst triangle settles within ten iterations, and the rest only raise the
-  /// mean by about 0.001 each), off otherwise.
+  /// volumes meshed with their default pipeline (kLabelVolumePipeline in one
+  /// process, the paper's under mpi::run_job(): their worst triangle settles
+  /// within ten iterations or so, and the rest only raise the mean by about
+  /// 0.001 each), off otherwise.
   std::optional<bool> stop_when_converged;
   /// Undo moves and flips that make surfaces cross (improve/guard.hpp).
   bool guard_crossings = true;
