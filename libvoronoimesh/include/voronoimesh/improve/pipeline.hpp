@@ -21,15 +21,25 @@ inline constexpr const char* kDefaultPipeline = "smooth,project,clamp,flip";
 /// remeshing, curve nodes bunch where a triple curve turns tightly and leave
 /// triangles with three corners on the curve: 0.15 lifts the worst triangle of
 /// the liver at 2 mm edges from 0.084 to 0.226, of a 60-grain polycrystal from
-/// 0.052 to 0.158. The remeshing defaults for label volumes
-/// (kLabelVolumePipeline) and scenes (kScenePipeline) collapse below 0.5.
+/// 0.052 to 0.158. The remeshing defaults collapse below 0.7 for label volumes
+/// (kLabelVolumePipeline) and below 0.5 for scenes (kScenePipeline).
 inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:collapse_below=0.15";
 
 /// The default for label volumes (run/meshing.hpp, pipeline_for()): their grid
 /// is the voxel grid, finer than their surfaces need, so the remesh pass first
 /// coarsens the mesh to edges 1.4 times the lattice's (about half the triangles),
-/// then the paper's passes, with junction slivers below q 0.5 collapsed, as in
-/// the scenes' default. Against 0.3 (the default from 2026-11-27, when it beat
+/// then the paper's passes, with junction slivers below q 0.7 collapsed. Against
+/// 0.5 (the default until 2026-12-03, and the scenes'), measured 2026-12-03 on 12
+/// volume and cell-size pairs (docs/benchmarks.md, stopping when converged): the
+/// worst triangle rose on 7 (the liver 0.592 -> 0.695, above CGAL's bound of
+/// 0.600; at 3 voxels per cell 0.569 -> 0.665; the CT-like volume at 2.4 voxels
+/// per cell 0.531 -> 0.589; 128^3 ellipsoids 0.611 -> 0.701; 20 grains 0.528 ->
+/// 0.600, at 1.4 voxels per cell 0.508 -> 0.592), fell on 1 (the liver at 2 voxels
+/// per cell 0.547 -> 0.542) and was the same on the 60 and 150 grains, whose worst
+/// triangles no collapse reaches; the liver's voxel centres stay 99.867% in
+/// their label. Where a curve turns tightly, a triangle with three corners on it
+/// is below 0.7 but above 0.5. 0.8 lowered 20 grains to 0.496. Against 0.3 (the
+/// default from 2026-11-27, when it beat
 /// 0.15 on the 60 grains), measured 2026-12-02 on 33 volume and cell-size pairs
 /// (the liver at its default cells and 1, 1.4, 2 and 3 voxels per cell, the
 /// CT-like volume at its default, 1.5, 2, 2.4 and 3, seven 60-grain and three
@@ -42,7 +52,7 @@ inline constexpr const char* kPassesAfterRemesh = "smooth,project,clamp,flip:col
 /// iterations 2 to 6). 0.3 came before curve ends past their quadruple point
 /// merged into it, which is when the scenes went to 0.5. The polish pass ends
 /// each iteration from the sixth on, as in kScenePipeline (measured there).
-inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.5,polish,floor";
+inline constexpr const char* kLabelVolumePipeline = "remesh:size=1.4,smooth,project,clamp,flip:collapse_below=0.7,polish,floor";
 
 /// The default for every other input created from phase functions (scenes,
 /// distance grids, point clouds; run/meshing.hpp, pipeline_for()): the remesh
