@@ -30,8 +30,6 @@ public:
 
   /// The run's last iteration, as known now (RunOptions::iterations until it converges).
   int last() const { return last_; }
-  /// Whether the run ends before RunOptions::iterations.
-  bool converged() const { return last_ < options_.iterations; }
 
 private:
   const RunOptions& options_;
