@@ -47,7 +47,7 @@ public:
     // The boxes' reach (a minimum and maximum: the same in any order) and sizes, in parallel.
     const Vec3 infinite = Vec3::Constant(std::numeric_limits<double>::infinity());
     UnsetVector<double> extent(boxes.size());
-    const Bounds reach = parallel_reduce(
+    const Bounds reach = detail::parallel_reduce(
         tbb::blocked_range<size_t>(0, boxes.size()), Bounds{infinite, -infinite},
         [&](const tbb::blocked_range<size_t>& r, Bounds b) {
           for (size_t t = r.begin(); t != r.end(); ++t) {

@@ -20,7 +20,8 @@ namespace vm::detail {
 /// gathers its own blocks' values (in one thread, 20 ms of the liver's 25M voxels).
 inline std::vector<int32_t> distinct(std::span<const int32_t> labels) {
   tbb::enumerable_thread_specific<std::unordered_set<int32_t>> seen_by_thread;
-  parallel_for(tbb::blocked_range<size_t>(0, labels.size(), size_t(1) << 16), [&](const tbb::blocked_range<size_t>& r) {
+  const tbb::blocked_range<size_t> all_labels(0, labels.size(), size_t(1) << 16);
+  detail::parallel_for(all_labels, [&](const tbb::blocked_range<size_t>& r) {
     std::unordered_set<int32_t>& seen = seen_by_thread.local();
     int32_t last = labels[r.begin()];
     seen.insert(last);

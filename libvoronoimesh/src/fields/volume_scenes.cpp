@@ -105,7 +105,7 @@ std::vector<int32_t> phases_around_small_ones(const PhaseVoxels& pv, const std::
   bool any = false;
   for (size_t p = 0; p < phases; ++p) any |= (small[p] = voxels[p] > 0 && voxels[p] <= kSurroundedUpTo);
   if (!any) return around;
-  const auto [nx, ny, nz] = pv.size;
+  const int64_t nx = pv.size[0], ny = pv.size[1], nz = pv.size[2]; // not a binding: captured below (clang 14)
   const int64_t strides[3] = {1, nx, nx * ny}, extents[3] = {nx, ny, nz};
   using Contact = std::pair<int16_t, int16_t>; // a small phase's voxel, a face neighbour of another phase
   std::vector<std::vector<Contact>> slices(static_cast<size_t>(nz));
@@ -217,7 +217,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   // Each phase's voxels counted on the way, by each thread on its own (a
   // serial count after the map took 50 ms of the liver's 25M voxels).
   tbb::enumerable_thread_specific<std::vector<int64_t>> counted(std::vector<int64_t>(pv.labels.size(), 0));
-  parallel_for(tbb::blocked_range<size_t>(0, v.labels.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, v.labels.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<int64_t>& mine = counted.local();
     for (size_t n = r.begin(); n != r.end(); ++n) {
       const int16_t p = !table.empty() ? table[size_t(v.labels[n] - first)]

@@ -131,7 +131,7 @@ void number_corner_classes(const NodeTriangles& nt, const Triangles& tris, const
   // reads in order.
   std::vector<int32_t> corner_at(nt.tri.size()), class_at(nt.tri.size());
   copy_off.assign(num_nodes + 1, 0);
-  parallel_for(tbb::blocked_range<size_t>(0, num_nodes, 1024), [&](const tbb::blocked_range<size_t>& range) {
+  detail::parallel_for(tbb::blocked_range<size_t>(0, num_nodes, 1024), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<int32_t> parent;
     for (size_t n = range.begin(); n != range.end(); ++n) {
       const auto at = size_t(nt.off[n]);

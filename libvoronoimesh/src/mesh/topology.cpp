@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <utility>
 
 namespace vm::detail {
@@ -74,7 +75,10 @@ EdgeTable edge_table(const Triangles& tris, const NodeTriangles& nt) {
       out.he.insert(out.he.end(), local.halfedges().begin(), local.halfedges().end());
     }
   });
-  const auto [edge_start, he_start] = block_starts(
+  // Named vectors, not a structured binding: the lambdas below capture them,
+  // which Debian 12's clang 14 (the fuzz build) cannot do for bindings.
+  std::vector<size_t> edge_start, he_start;
+  std::tie(edge_start, he_start) = block_starts(
       blocks, [](const Block& b) { return b.nodes.size(); }, [](const Block& b) { return b.he.size(); });
   EdgeTable et;
   et.nodes.resize(edge_start.back());
@@ -153,7 +157,8 @@ NodePhases node_phases(const NodeTriangles& nt, const std::vector<PhasePair>& pa
       out.ends.push_back(int32_t(out.phase.size()));
     }
   });
-  const auto [node_start, phase_start] = block_starts(
+  std::vector<size_t> node_start, phase_start; // named, as edge_table()'s (clang 14)
+  std::tie(node_start, phase_start) = block_starts(
       blocks, [](const Block& b) { return b.ends.size(); }, [](const Block& b) { return b.phase.size(); });
   NodePhases np;
   np.off.resize(num_nodes + 1);
