@@ -45,6 +45,8 @@ def main():
         sys.exit("serial_share.py: no samples (give `perf script -F tid,time,ip,sym` of a `perf record -g` run)")
     start = min(s[1] for s in samples)
     wall = max(s[1] for s in samples) - start
+    if wall <= 0:
+        sys.exit("serial_share.py: the samples span no time (too short a run to measure)")
     window_of = lambda time: int((time - start) / args.window)
     threads = collections.defaultdict(set)  # window -> the threads sampled in it
     for tid, time, _ in samples:

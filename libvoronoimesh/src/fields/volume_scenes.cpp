@@ -217,7 +217,8 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   // Each phase's voxels counted on the way, by each thread on its own (a
   // serial count after the map took 50 ms of the liver's 25M voxels).
   tbb::enumerable_thread_specific<std::vector<int64_t>> counted(std::vector<int64_t>(pv.labels.size(), 0));
-  detail::parallel_for(tbb::blocked_range<size_t>(0, v.labels.size(), 1 << 16), [&](const tbb::blocked_range<size_t>& r) {
+  const tbb::blocked_range<size_t> all_voxels(0, v.labels.size(), 1 << 16);
+  detail::parallel_for(all_voxels, [&](const tbb::blocked_range<size_t>& r) {
     std::vector<int64_t>& mine = counted.local();
     for (size_t n = r.begin(); n != r.end(); ++n) {
       const int16_t p = !table.empty() ? table[size_t(v.labels[n] - first)]
