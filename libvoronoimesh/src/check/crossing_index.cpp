@@ -168,25 +168,25 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
   }
 }
 
-uint32_t CrossingIndex::shared_corner(const Triangle& a, const Triangle& b) {
-  uint32_t corner = kNoCorner;
-  for (uint32_t k = 0; k < 3; ++k)
-    if (a[k] >= 0 && std::find(b.begin(), b.end(), a[k]) != b.end()) corner = k;
-  return corner;
+bool CrossingIndex::share_a_fan(const Triangle& a, const Triangle& b) {
+  for (int32_t fan : a)
+    if (fan >= 0 && (fan == b[0] || fan == b[1] || fan == b[2])) return true;
+  return false;
 }
 
-void CrossingIndex::near(int32_t slot, std::vector<Neighbour>& out) const {
+void CrossingIndex::near(int32_t slot, std::vector<int32_t>& out) const {
   const Filing& f = filed_[size_t(slot)];
   const size_t before = out.size();
-  for_filed_meeting(f.box, slot, [&](int32_t s) { out.push_back({s, shared_corner(f.fans, filed_[size_t(s)].fans)}); });
-  std::sort(out.begin() + ptrdiff_t(before), out.end(),
-            [](const Neighbour& a, const Neighbour& b) { return a.id < b.id; });
+  for_filed_meeting(f.box, slot, [&](int32_t s) {
+    if (!share_a_fan(f.fans, filed_[size_t(s)].fans)) out.push_back(s);
+  });
+  std::sort(out.begin() + ptrdiff_t(before), out.end());
 }
 
 void CrossingIndex::free_slot(int32_t slot) {
   Filing& f = filed_[size_t(slot)];
   for_cells(f, [&](uint64_t k) { cells_.erase_id(size_t(find(k)), slot); });
-  for (const Neighbour& s : near_.at(size_t(slot))) near_.erase_id(size_t(s.id), slot);
+  for (int32_t s : near_.at(size_t(slot))) near_.erase_id(size_t(s), slot);
   near_.clear(size_t(slot));
   if (f.level >= 0) --level_count_[size_t(f.level)];
   f = Filing{};
@@ -195,17 +195,13 @@ void CrossingIndex::free_slot(int32_t slot) {
 
 std::vector<int32_t> CrossingIndex::lists_unlike_search() const {
   std::vector<int32_t> unlike;
-  std::vector<Neighbour> searched;
+  std::vector<int32_t> searched;
   for (size_t slot = 0; slot < filed_.size(); ++slot) {
     if (filed_[slot].level < 0) continue;
     searched.clear();
     near(int32_t(slot), searched);
     const auto kept = near_.at(slot);
-    const bool same_lists = std::equal(kept.begin(), kept.end(), searched.begin(), searched.end(),
-                                       [](const Neighbour& a, const Neighbour& b) {
-                                         return a.id == b.id && a.corner == b.corner;
-                                       });
-    if (!same_lists) unlike.push_back(int32_t(slot));
+    if (!std::equal(kept.begin(), kept.end(), searched.begin(), searched.end())) unlike.push_back(int32_t(slot));
   }
   return unlike;
 }
@@ -243,7 +239,8 @@ void CrossingIndex::set_grid() {
 
 void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
                            std::span<const Triangle> corner_fans) {
-  // After a flip pass a tenth of the triangles are stale, each near ~40 others.
+  // After a flip pass a tenth of the triangles are stale, each near ~20 others
+  // (on the liver 17, of which 5 share no fan with it and are on its list).
   // Most of what they touch only changes in place: a cell the new filing keeps.
   // That is done in parallel (each entry is written by the task of its own
   // triangle); what comes and goes is collected per triangle and applied in
@@ -252,15 +249,9 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
   for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
   std::vector<Filing> fresh(m);
-  /// A kept neighbour's entry for the stale triangle: in list `list`, at `at`, the corner to set.
-  struct Renewed {
-    int32_t list;
-    uint32_t at, corner;
-  };
   struct Edits {
     std::vector<uint64_t> left, entered; // cells
     std::vector<int32_t> lost, gained; // slots that stay
-    std::vector<Renewed> renewed;
   };
   std::vector<Edits> edits(m);
   detail::parallel_for_each_index(m, [&](size_t i) {
@@ -310,51 +301,31 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   }
   if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
 
-  std::vector<std::vector<Neighbour>> found(m);
+  std::vector<std::vector<int32_t>> found(m);
   detail::parallel_for_each_index(
       m,
       [&](size_t i) {
         const int32_t slot = slot_of_[size_t(stale[i])];
         near(slot, found[i]);
-        // The old list against the new, both sorted by id; stale neighbours
-        // write their own lists. A neighbour kept has its entry for this slot
-        // renewed (no other task writes it): the corner they share may differ.
-        // It is only found here and written below, once every search is done:
-        // an entry's corner shares its 32-bit word with the id that other
-        // tasks' searches of the same list read (ThreadSanitizer saw the race).
+        // The old list against the new, both sorted; stale neighbours write
+        // their own lists, the others gain or lose this slot below.
         const auto old = near_.at(size_t(slot));
         size_t o = 0;
-        for (const Neighbour& s : found[i]) {
-          for (; o < old.size() && old[o].id < s.id; ++o)
-            if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o].id);
-          const bool kept = o < old.size() && old[o].id == s.id;
+        for (int32_t s : found[i]) {
+          for (; o < old.size() && old[o] < s; ++o)
+            if (!is_stale[size_t(old[o])]) edits[i].lost.push_back(old[o]);
+          const bool kept = o < old.size() && old[o] == s;
           o += kept;
-          if (is_stale[size_t(s.id)]) continue;
-          if (!kept) {
-            edits[i].gained.push_back(s.id);
-            continue;
-          }
-          const auto list = near_.at(size_t(s.id));
-          const auto mine = std::lower_bound(list.begin(), list.end(), slot,
-                                             [](const Neighbour& x, int32_t id) { return x.id < id; });
-          edits[i].renewed.push_back({s.id, uint32_t(mine - list.begin()),
-                                      shared_corner(filed_[size_t(s.id)].fans, filed_[size_t(slot)].fans)});
+          if (!kept && !is_stale[size_t(s)]) edits[i].gained.push_back(s);
         }
         for (; o < old.size(); ++o)
-          if (!is_stale[size_t(old[o].id)]) edits[i].lost.push_back(old[o].id);
-      },
-      16);
-  detail::parallel_for_each_index(
-      m,
-      [&](size_t i) {
-        for (const Renewed& r : edits[i].renewed) near_.at(size_t(r.list))[r.at].corner = r.corner;
+          if (!is_stale[size_t(old[o])]) edits[i].lost.push_back(old[o]);
       },
       16);
   for (size_t i = 0; i < m; ++i) {
     const int32_t slot = slot_of_[size_t(stale[i])];
     for (int32_t s : edits[i].lost) near_.erase_id(size_t(s), slot);
-    for (int32_t s : edits[i].gained)
-      near_.insert_by_id(size_t(s), {slot, shared_corner(filed_[size_t(s)].fans, filed_[size_t(slot)].fans)});
+    for (int32_t s : edits[i].gained) near_.insert_by_id(size_t(s), slot);
     near_.reserve(size_t(slot), found[i].size());
   }
   detail::parallel_for_each_index(m, [&](size_t i) {
@@ -461,12 +432,15 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     return a;
   };
   const FanCertificates fans(points, triangles, fans_);
-  // s: the other triangle; corner: t's corner in a fan they share (Neighbour).
-  auto test = [&](int32_t t, int32_t s, uint32_t corner, std::vector<BoxPair>& out) {
-    if (corner != kNoCorner && fans.embedded(corner_fans[size_t(t)][corner])) return; // they meet properly
-    if (!boxes_[size_t(t)].overlaps(boxes_[size_t(s)])) return;
+  auto fans_of = [&](int32_t t) { return corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)]; };
+  auto test = [&](int32_t t, int32_t s, std::vector<BoxPair>& out) {
     if (intersect_improperly(points, triangles[size_t(t)], triangles[size_t(s)], axis_of(t), axis_of(s)))
       out.push_back({std::min(t, s), std::max(t, s)});
+  };
+  // A listed pair, unless a renumbering has put it in one fan since (the fan
+  // tests it then).
+  auto test_listed = [&](int32_t t, int32_t s, std::vector<BoxPair>& out) {
+    if (boxes_[size_t(t)].overlaps(boxes_[size_t(s)]) && !share_a_fan(fans_of(t), fans_of(s))) test(t, s, out);
   };
   // Each pair once: where most triangles are involved, a pair of two involved
   // ones from the lower slot (the upper part of its sorted list) and a pair
@@ -476,25 +450,48 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
   size_t involved_count = 0;
   for (size_t t = 0; t < n; ++t) involved_count += is_involved(int32_t(t));
   const bool from_idle = 2 * involved_count > n;
+  // A pair in a fan, from an involved triangle: once, from the lower one if
+  // both are involved, at the first fan they share; none if a fan they share
+  // is certified embedded (they meet properly).
+  auto test_fans = [&](int32_t t, std::vector<BoxPair>& out) {
+    const Triangle t_fans = fans_of(t);
+    for (int32_t fan : t_fans) {
+      if (fan < 0 || fans.embedded(fan)) continue;
+      for (int32_t corner : fans_.corners(size_t(fan))) {
+        const int32_t s = corner / 3;
+        if (s == t || (is_involved(s) && s < t)) continue;
+        const Triangle s_fans = fans_of(s);
+        int32_t first_shared = -1;
+        bool certified = false;
+        for (int32_t f : t_fans)
+          if (f >= 0 && (f == s_fans[0] || f == s_fans[1] || f == s_fans[2])) {
+            if (first_shared < 0) first_shared = f;
+            certified |= fans.embedded(f);
+          }
+        if (first_shared == fan && !certified && boxes_[size_t(t)].overlaps(boxes_[size_t(s)])) test(t, s, out);
+      }
+    }
+  };
   tbb::enumerable_thread_specific<std::vector<BoxPair>> found_of_thread;
   detail::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found_of_thread.local();
     for (auto t = int32_t(r.begin()); t != int32_t(r.end()); ++t) {
       const int32_t slot = slot_of_[size_t(t)];
-      const std::span<const Neighbour> list = near_.at(size_t(slot));
-      auto triangle = [&](const Neighbour& s) { return triangle_of_[size_t(s.id)]; };
+      const std::span<const int32_t> list = near_.at(size_t(slot));
+      auto triangle = [&](int32_t s) { return triangle_of_[size_t(s)]; };
       if (!is_involved(t)) {
         if (from_idle)
-          for (const Neighbour& s : list)
-            if (is_involved(triangle(s))) test(t, triangle(s), s.corner, out);
-      } else if (from_idle) {
-        const auto upper = std::upper_bound(list.begin(), list.end(), slot,
-                                            [](int32_t id, const Neighbour& s) { return id < s.id; });
-        for (auto s = upper; s != list.end(); ++s)
-          if (is_involved(triangle(*s))) test(t, triangle(*s), s->corner, out);
+          for (int32_t s : list)
+            if (is_involved(triangle(s))) test_listed(t, triangle(s), out);
+        continue;
+      }
+      test_fans(t, out);
+      if (from_idle) {
+        for (auto s = std::upper_bound(list.begin(), list.end(), slot); s != list.end(); ++s)
+          if (is_involved(triangle(*s))) test_listed(t, triangle(*s), out);
       } else {
-        for (const Neighbour& s : list)
-          if (!is_involved(triangle(s)) || s.id > slot) test(t, triangle(s), s.corner, out);
+        for (int32_t s : list)
+          if (!is_involved(triangle(s)) || s > slot) test_listed(t, triangle(s), out);
       }
     }
   });
