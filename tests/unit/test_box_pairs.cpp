@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <mutex>
+#include <span>
 #include <random>
 #include <string>
 
@@ -47,18 +49,23 @@ std::vector<Bounds> even_boxes(std::mt19937_64& rng, size_t n) {
   return boxes;
 }
 
-/// The threads' parts of the pairs, joined and sorted.
-std::vector<BoxPair> sorted(const std::vector<std::vector<BoxPair>>& parts) {
+/// The pairs for_each_overlapping_box_pair() hands on, from whichever thread,
+/// joined and sorted.
+std::vector<BoxPair> sorted_pairs(std::span<const Bounds> boxes, std::span<const uint8_t> involved = {}) {
+  std::mutex joining;
   std::vector<BoxPair> pairs;
-  for (const auto& part : parts) {
-    EXPECT_FALSE(part.empty());
-    pairs.insert(pairs.end(), part.begin(), part.end());
-  }
+  bool any_empty = false;
+  detail::for_each_overlapping_box_pair(boxes, involved, [&](std::span<const BoxPair> some) {
+    const std::lock_guard<std::mutex> lock(joining);
+    any_empty |= some.empty();
+    pairs.insert(pairs.end(), some.begin(), some.end());
+  });
+  EXPECT_FALSE(any_empty);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
-/// Checks overlapping_box_pairs() against brute force on `boxes`, with every
+/// Checks for_each_overlapping_box_pair() against brute force on `boxes`, with every
 /// tenth box involved, none and all; at least `least_involved` pairs involved.
 void expect_every_pair_once(std::mt19937_64& rng, const std::vector<Bounds>& boxes, size_t least_involved) {
   std::vector<uint8_t> involved(boxes.size());
@@ -72,10 +79,10 @@ void expect_every_pair_once(std::mt19937_64& rng, const std::vector<Bounds>& box
       }
   ASSERT_GT(all.size(), some.size());
   ASSERT_GT(some.size(), least_involved);
-  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes)), all);
-  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), some);
+  EXPECT_EQ(sorted_pairs(boxes), all);
+  EXPECT_EQ(sorted_pairs(boxes, involved), some);
   std::fill(involved.begin(), involved.end(), 1);
-  EXPECT_EQ(sorted(detail::overlapping_box_pairs(boxes, involved)), all);
+  EXPECT_EQ(sorted_pairs(boxes, involved), all);
 }
 
 TEST(BoxPairs, every_overlapping_pair_once_with_or_without_involved_boxes) {

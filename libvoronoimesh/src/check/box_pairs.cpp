@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace vm::detail {
 
@@ -227,19 +228,6 @@ void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<cons
     });
   for (const auto& rest : found)
     if (!rest.empty()) visit(rest);
-}
-
-std::vector<std::vector<BoxPair>> overlapping_box_pairs(std::span<const Bounds> boxes,
-                                                        std::span<const uint8_t> involved) {
-  tbb::enumerable_thread_specific<std::vector<BoxPair>> found;
-  for_each_overlapping_box_pair(boxes, involved, [&](std::span<const BoxPair> some) {
-    auto& mine = found.local();
-    mine.insert(mine.end(), some.begin(), some.end());
-  });
-  std::vector<std::vector<BoxPair>> parts;
-  for (auto& part : found)
-    if (!part.empty()) parts.push_back(std::move(part));
-  return parts;
 }
 
 } // namespace vm::detail

@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <vector>
 
 namespace vm::detail {
 
@@ -31,21 +30,16 @@ inline Bounds triangle_bounds(std::span<const Vec3> points, const std::array<int
 /// Indices {i, j}, i < j, of two boxes.
 using BoxPair = std::array<int32_t, 2>;
 
-/// Every pair of boxes that overlap (touching included), each once, in an order
-/// that depends on the thread count (callers must not depend on it). Boxes
-/// must be finite. With `involved` (one flag per box; empty: all boxes), only
-/// the pairs with at least one involved box: checking a few moved triangles
-/// against the rest then costs little more than finding their neighbours.
-/// The pairs come in parts, as the threads found them: joined into one list,
-/// 9.2M pairs on 1M triangles were a copy of 74 MB in one thread.
-std::vector<std::vector<BoxPair>> overlapping_box_pairs(std::span<const Bounds> boxes,
-                                                        std::span<const uint8_t> involved = {});
-
-/// The same pairs, handed to `visit` a few thousand at a time as they are
-/// found, from several threads at once (`visit` must be safe to call so), in
-/// an order that depends on the thread count. Where each pair is looked at
-/// once (a check), this spares the list: on 1.7M triangles after the remesh
-/// pass's splits, 8.3M pairs, 66 MB written to fresh memory and read back.
+/// Every pair of boxes that overlap (touching included), each once, handed to
+/// `visit` a few thousand at a time as they are found, from several threads at
+/// once (`visit` must be safe to call so), in an order that depends on the
+/// thread count (callers must not depend on it). Boxes must be finite. With
+/// `involved` (one flag per box; empty: all boxes), only the pairs with at
+/// least one involved box: checking a few moved triangles against the rest
+/// then costs little more than finding their neighbours. No list of them all
+/// is made: where each pair is looked at once (a check), that spares it (on
+/// 1.7M triangles after the remesh pass's splits, 8.3M pairs, 66 MB written to
+/// fresh memory and read back); a caller that keeps some keeps only those.
 void for_each_overlapping_box_pair(std::span<const Bounds> boxes, std::span<const uint8_t> involved,
                                    const std::function<void(std::span<const BoxPair>)>& visit);
 

@@ -169,9 +169,7 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
 }
 
 bool CrossingIndex::share_a_fan(const Triangle& a, const Triangle& b) {
-  for (int32_t fan : a)
-    if (fan >= 0 && (fan == b[0] || fan == b[1] || fan == b[2])) return true;
-  return false;
+  return has_fan(b, a[0]) || has_fan(b, a[1]) || has_fan(b, a[2]);
 }
 
 void CrossingIndex::near(int32_t slot, std::vector<int32_t>& out) const {
@@ -464,7 +462,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
         int32_t first_shared = -1;
         bool certified = false;
         for (int32_t f : t_fans)
-          if (f >= 0 && (f == s_fans[0] || f == s_fans[1] || f == s_fans[2])) {
+          if (has_fan(s_fans, f)) {
             if (first_shared < 0) first_shared = f;
             certified |= fans.embedded(f);
           }

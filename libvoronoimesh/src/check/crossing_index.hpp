@@ -13,9 +13,10 @@
 /// fan itself, and most are decided by its certificate). While every
 /// triangle's box stays inside its filing box, two triangles whose boxes
 /// overlap are in one fan or on each other's lists: a check tests the fans and
-/// lists of the triangles that changed and searches nothing. A triangle that leaves its filing box or changes nodes is
-/// filed again, and the lists it is on are mended through a hash of grid cells;
-/// a check after a few flips costs little more than those few triangles.
+/// lists of the triangles that changed and searches nothing. A triangle that
+/// leaves its filing box or changes nodes is filed again, and the lists it is
+/// on are mended through a hash of grid cells; a check after a few flips costs
+/// little more than those few triangles.
 /// Where most triangles change between calls (the first iterations), mending
 /// the index would cost more than checking anew, so those calls are one-off
 /// checks: no index is built until the mesh has settled (a sixth or less
@@ -116,6 +117,10 @@ private:
     int32_t id;
     std::array<int32_t, 3> first;
   };
+  /// Whether `fan` (not -1) is among the corner fans `fans`.
+  static bool has_fan(const Triangle& fans, int32_t fan) {
+    return fan >= 0 && (fan == fans[0] || fan == fans[1] || fan == fans[2]);
+  }
   /// Whether triangles with corner fans `a` and `b` have a fan in common.
   /// Listed pairs had none when listed; should two fans become one without
   /// either triangle filed again, crossings() leaves the pair to the fan.

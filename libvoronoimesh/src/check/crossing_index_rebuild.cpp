@@ -8,6 +8,8 @@
 #include "core/parallel.hpp"
 #include "core/unset_vector.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <atomic>
 #include <limits>
@@ -95,21 +97,24 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   // The lists: every pair of overlapping filing boxes that shares no fan, as
   // near() would find each, but found all at once as a one-off check finds
   // its candidates (a search through the cells per triangle took 1.0 of 1.7 s
-  // on 1M triangles), then dealt to both triangles' lists (in whatever order
-  // the threads deal them) and sorted. The fans are read from a compact copy:
-  // from the filings they were a cache miss each.
+  // on 1M triangles), kept by the thread that found it unless in a fan (most
+  // pairs are, and are never stored), then dealt to both triangles' lists (in
+  // whatever order the threads deal them) and sorted. The fans are read from
+  // a compact copy: from the filings they were a cache miss each.
   std::vector<Triangle> fans(n);
   detail::parallel_for_each_index(n, [&](size_t t) { fans[t] = filed_[t].fans; });
-  const std::vector<std::vector<BoxPair>> pairs = [&] {
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> pairs;
+  {
     UnsetVector<Bounds> filing(n); // each written below
     detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box; });
-    return overlapping_box_pairs(filing);
-  }();
+    for_each_overlapping_box_pair(filing, {}, [&](std::span<const BoxPair> some) {
+      std::vector<BoxPair>& kept = pairs.local();
+      for (const BoxPair& pair : some)
+        if (!share_a_fan(fans[size_t(pair[0])], fans[size_t(pair[1])])) kept.push_back(pair);
+    });
+  }
   auto for_each_pair = [&](auto&& f) {
-    for (const auto& part : pairs)
-      detail::parallel_for_each_index(part.size(), [&](size_t i) {
-        if (!share_a_fan(fans[size_t(part[i][0])], fans[size_t(part[i][1])])) f(part[i]);
-      });
+    for (const auto& part : pairs) detail::parallel_for_each_index(part.size(), [&](size_t i) { f(part[i]); });
   };
   std::vector<std::atomic<uint32_t>> dealt(n);
   detail::parallel_for_each_index(n, [&](size_t t) { dealt[t].store(0, std::memory_order_relaxed); });
