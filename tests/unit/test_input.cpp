@@ -242,6 +242,42 @@ TEST(LabelVolume, nodes_deep_inside_hold_one_value_computed_or_not) {
   }
 }
 
+// Where the field says a box has one set of top values (create then samples a
+// run of lattice nodes once), every point of it has them, bit for bit; it says
+// so deep inside and outside the sphere, never across its surface.
+TEST(LabelVolume, same_top_values_hold_at_every_point_of_the_box) {
+  for (const bool signed_distance : {false, true}) {
+    InputOptions o;
+    if (signed_distance) o.label_function = LabelFunction::signed_distance;
+    const Scene scene = load_input(write_nrrd("same.nrrd", sphere_header, sphere_labels(7)), o);
+    const PhaseField& field = *scene.field;
+    const size_t k = size_t(std::min(o.top_k, field.num_phases()));
+    auto top = [&](const Vec3& x) {
+      std::vector<int32_t> ids(k);
+      std::vector<double> vals(k);
+      field.top_values(x, ids, vals);
+      return std::pair{ids, vals};
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-2, n + 1), length(0, 12);
+    size_t same = 0, across = 0;
+    for (int b = 0; b < 3000; ++b) {
+      const Vec3 lo_vox(u(rng), u(rng), u(rng));
+      const Vec3 hi_vox = lo_vox + Vec3(length(rng), b % 3 ? 0 : length(rng) / 4, b % 5 ? 0 : length(rng) / 4);
+      const bool inside_lo = (lo_vox - centre_vox).norm() < radius_vox, inside_hi = (hi_vox - centre_vox).norm() < radius_vox;
+      if (!field.same_top_values(world(lo_vox), world(hi_vox))) continue;
+      ++same;
+      across += inside_lo != inside_hi;
+      const auto first = top(world(lo_vox));
+      for (int t = 1; t <= 8; ++t)
+        ASSERT_EQ(top(world(lo_vox + (hi_vox - lo_vox) * (t / 8.0))), first) << lo_vox.transpose() << " to " << hi_vox.transpose();
+    }
+    EXPECT_GT(same, 300u) << "deep inside and outside, boxes are one phase's";
+    EXPECT_EQ(across, 0u) << "a box across the surface has two phases";
+    EXPECT_FALSE(field.same_top_values(world(centre_vox), world(centre_vox + Vec3(radius_vox, 0, 0))));
+  }
+}
+
 // The phase functions are computed in parallel blocks: any thread count gives the same values.
 TEST(LabelVolume, phase_functions_do_not_depend_on_the_thread_count) {
   const std::string path = write_nrrd("threads.nrrd", sphere_header, sphere_labels(3, [](int i, int j, int k) {

@@ -23,6 +23,11 @@ namespace {
 /// balls_5 and seeds17_2 only (docs/algorithm.md).
 constexpr double kSlowRate = 0.2;
 
+/// Nodes along a row asked at once whether the field fills them alone
+/// (NodeSource::same_along_row()): long enough to spare most evaluations,
+/// short enough that most runs away from interfaces are.
+constexpr int32_t kSameRun = 8;
+
 /// splitmix64's finaliser: well-spread bits from a node and phase.
 uint64_t mix_bits(uint64_t x) {
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -167,18 +172,29 @@ NodeValues::NodeValues(const NodeSource& source, const TetLattice& lattice, doub
         SampledField::NodeSamples at;
         for (int64_t r = rows.begin(); r < rows.end(); ++r) {
           const TetLattice::NodeRow row = lattice.node_row(r);
-          for (int32_t x = 0; x < row.count; ++x) {
-            const GridPoint p{row.x0 + row.step * x, row.y, row.z};
-            if (!source.try_at(p, buffer, at)) {
-              const int64_t n = grid.node_index(p[0], p[1], p[2]);
-              lower_atomically(first_bad, n);
-              continue;
+          auto point = [&](int32_t x) { return GridPoint{row.x0 + row.step * x, row.y, row.z}; };
+          for (int32_t run = 0; run < row.count; run += kSameRun) {
+            const int32_t end = std::min(row.count, run + kSameRun);
+            // A run the field fills alone has its first node's samples (the
+            // same NaN too, reported from there): sampled once.
+            const bool same = source.same_along_row(point(run), point(end - 1));
+            for (int32_t x = run; x < end; ++x) {
+              const size_t id = size_t(row.first_id + x);
+              if (same && x > run) {
+                label_[id] = label_[id - 1], lead[id] = lead[id - 1];
+                continue;
+              }
+              if (!source.try_at(point(x), buffer, at)) {
+                const GridPoint p = point(x);
+                lower_atomically(first_bad, grid.node_index(p[0], p[1], p[2]));
+                if (same) break;
+                continue;
+              }
+              label_[id] = at.ids[0];
+              lead[id] = k_ > 1 ? float_below(at.values[0] - at.values[1]) : std::numeric_limits<float>::infinity();
+              // The floor is below every stored value of its node, and slot 0 is the node's largest.
+              range = {std::min(range[0], at.floor), std::max(range[1], at.values[0])};
             }
-            const size_t id = size_t(row.first_id + x);
-            label_[id] = at.ids[0];
-            lead[id] = k_ > 1 ? float_below(at.values[0] - at.values[1]) : std::numeric_limits<float>::infinity();
-            // The floor is below every stored value of its node, and slot 0 is the node's largest.
-            range = {std::min(range[0], at.floor), std::max(range[1], at.values[0])};
           }
         }
         return range;

@@ -33,6 +33,10 @@ void PhaseField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<dou
   }
 }
 
+bool PhaseField::same_top_values([[maybe_unused]] const Vec3& lo, [[maybe_unused]] const Vec3& hi) const {
+  return false;
+}
+
 void PhaseField::kept_points([[maybe_unused]] const Vec3& lo, [[maybe_unused]] const Vec3& hi,
                              [[maybe_unused]] std::vector<Vec3>& out) const {}
 

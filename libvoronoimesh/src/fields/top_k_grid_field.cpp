@@ -162,12 +162,11 @@ const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
 void TopKGridField::locate(const Vec3& x, Place& p) const {
   uint64_t brick[3][2]; // per axis, the brick of the cell's lower and upper node
   for (int a = 0; a < 3; ++a) {
-    const double t = (x[a] - grid_.domain.min[a]) / spacing_[a];
-    const double clamped = std::clamp(t, 0.0, double(grid_.cells[a]));
-    const uint64_t i0 = uint64_t(std::min<int64_t>(int64_t(clamped), grid_.cells[a] - 1));
+    const double clamped = grid_coordinate(a, x[a]);
+    const uint64_t i0 = lower_node(a, clamped);
     p.lower[a] = i0;
     p.f[a] = clamped - double(i0);
-    p.inside[a] = t == clamped;
+    p.inside[a] = (x[a] - grid_.domain.min[a]) / spacing_[a] == clamped;
     for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick;
   }
   const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
@@ -266,6 +265,25 @@ void TopKGridField::kept_points(const Vec3& lo, const Vec3& hi, std::vector<Vec3
         if (std::binary_search(kept_.begin(), kept_.end(), grid_.node_index(i, j, k)))
           out.push_back(grid_.domain.min + Vec3(double(i), double(j), double(k)).cwiseProduct(spacing_));
       }
+}
+
+bool TopKGridField::same_top_values(const Vec3& lo, const Vec3& hi) const {
+  if (!lo.allFinite() || !hi.allFinite()) return false;
+  // The bricks of every corner of every cell a point of the box interpolates
+  // from (the cells of lo and hi and those between: locate() is monotone).
+  std::array<uint64_t, 3> first{}, last{};
+  for (int a = 0; a < 3; ++a) {
+    first[size_t(a)] = lower_node(a, grid_coordinate(a, lo[a])) / kBrick;
+    last[size_t(a)] = (lower_node(a, grid_coordinate(a, hi[a])) + 1) / kBrick;
+  }
+  const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
+  const int32_t one = brick_[first[0] + nb0 * (first[1] + nb1 * first[2])];
+  if (one >= 0) return false; // values stored node by node
+  for (uint64_t k = first[2]; k <= last[2]; ++k)
+    for (uint64_t j = first[1]; j <= last[1]; ++j)
+      for (uint64_t i = first[0]; i <= last[0]; ++i)
+        if (brick_[i + nb0 * (j + nb1 * k)] != one) return false;
+  return true;
 }
 
 void TopKGridField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {

@@ -13,6 +13,7 @@
 #include "voronoimesh/core/types.hpp"
 #include "voronoimesh/fields/phase_field.hpp"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -75,6 +76,8 @@ public:
   double value(int i, const Vec3& x) const override;
   Vec3 gradient(int i, const Vec3& x) const override;
   void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const override;
+  /// True when every cell the box meets has all its corners in uniform bricks of one phase.
+  bool same_top_values(const Vec3& lo, const Vec3& hi) const override;
   /// Makes grid nodes kept points (PhaseField::kept_points()), each in the
   /// phase that leads there: a voxel-faithful label volume's voxel centres.
   /// @param nodes the nodes' linear indices (GridSpec::node_index()), ascending
@@ -113,6 +116,12 @@ private:
   /// computed is kept and returned again for the same field and point.
   const Cell& cell(const Vec3& x) const;
   void locate(const Vec3& x, Place& p) const;
+  /// Coordinate x along axis a in grid steps, clamped to the grid.
+  double grid_coordinate(int a, double x) const {
+    return std::clamp((x - grid_.domain.min[a]) / spacing_[a], 0.0, double(grid_.cells[a]));
+  }
+  /// The lower node along axis a of the cell holding grid coordinate t (the last cell holds the far face).
+  uint64_t lower_node(int a, double t) const { return uint64_t(std::min<int64_t>(int64_t(t), grid_.cells[a] - 1)); }
   /// The cell at `p`; the weights' derivatives only with `gradients` (sampling needs none).
   void fill_cell(const Place& p, Cell& c, bool gradients) const;
   /// Slot of node (i, j, k) in the dense arrays; precondition: its brick is not uniform.

@@ -58,6 +58,13 @@ public:
   /// @param ids  receives the phase ids; its size is k, at most num_phases()
   /// @param vals receives their values, one per entry of `ids`
   virtual void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const;
+  /// True when top_values() gives the same ids and values at every point of
+  /// the box [lo, hi], as in a region one phase fills alone: samplers then
+  /// evaluate the box once (most lattice nodes of a label volume lie in such
+  /// regions). False says nothing. The default: false.
+  /// @param lo  the box's lower corner
+  /// @param hi  its upper corner
+  virtual bool same_top_values(const Vec3& lo, const Vec3& hi) const;
 
   /// Points that improvement must leave in their own phase (a voxel-faithful
   /// label volume's centres of voxels in thin structures: CrossingGuard::commit()
