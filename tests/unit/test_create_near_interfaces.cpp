@@ -9,10 +9,14 @@
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/array_input.hpp"
 
+#include "voronoimesh/fields/input.hpp"
+
 #include "fixtures.hpp"
+#include "nrrd_file.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -104,6 +108,87 @@ TEST(NodeValues, near_interfaces_hold_every_node_a_cut_reads_with_the_values_of_
     }
     EXPECT_EQ(held, near.held_nodes()) << c.name;
     if (c.name == "four spheres") EXPECT_LT(held, lattice.num_nodes() / 2) << c.name; // the point of it
+  }
+}
+
+// Runs of nodes decided at once where keys run along rows (a label volume's
+// regions of one phase) hold exactly the nodes that comparing each node with
+// each neighbour holds.
+TEST(NodeValues, held_nodes_are_those_next_to_another_key_or_unsure) {
+  for (const Lattice kind : {Lattice::bcc, Lattice::cube6})
+    for (const bool box : {false, true}) {
+      GridSpec grid;
+      grid.cells = {70, 40, 36}; // rows of 36 bcc nodes: runs of 16 and shorter ends
+      const detail::TetLattice lattice(grid, kind);
+      std::mt19937_64 rng(7);
+      std::vector<int32_t> key(size_t(lattice.num_nodes()));
+      for (int64_t n = 0; n < lattice.num_nodes(); ++n) {
+        const detail::GridPoint p = lattice.grid_point(n);
+        key[size_t(n)] = (p[0] / 36 + p[1] / 20 + p[2] / 18) % 3; // blocks of one key
+        if (rng() % 400 == 0) key[size_t(n)] = rng() % 2 ? -1 : 5; // unsure nodes, lone keys
+      }
+      const std::vector<uint8_t> held = detail::held_near_interfaces(lattice, key, box);
+      int64_t count = 0;
+      for (int64_t n = 0; n < lattice.num_nodes(); ++n) {
+        const detail::GridPoint p = lattice.grid_point(n);
+        const bool on_box = p[0] == 0 || p[1] == 0 || p[2] == 0 || p[0] == grid.cells[0] || p[1] == grid.cells[1] ||
+                            p[2] == grid.cells[2];
+        bool expected = key[size_t(n)] < 0 || (box && on_box);
+        lattice.for_each_neighbour(n, [&](int64_t m) { expected = expected || key[size_t(m)] != key[size_t(n)]; });
+        ASSERT_EQ(held[size_t(n)] != 0, expected) << "node " << n << " at " << p[0] << ", " << p[1] << ", " << p[2];
+        count += expected;
+      }
+      EXPECT_LT(count, lattice.num_nodes() / 2) << "most nodes lie in runs of one key";
+    }
+}
+
+/// `field` with nothing said of regions one phase fills alone
+/// (PhaseField::same_top_values()'s default): sampled node by node.
+class NodeByNode final : public PhaseField {
+public:
+  explicit NodeByNode(const PhaseField& field) : field_(field) {}
+  int num_phases() const override { return field_.num_phases(); }
+  std::string phase_name(int i) const override { return field_.phase_name(i); }
+  void values(const Vec3& x, std::span<double> out) const override { field_.values(x, out); }
+  double value(int i, const Vec3& x) const override { return field_.value(i, x); }
+  Vec3 gradient(int i, const Vec3& x) const override { return field_.gradient(i, x); }
+  void top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const override {
+    field_.top_values(x, ids, vals);
+  }
+
+private:
+  const PhaseField& field_;
+};
+
+// A label volume's field says where one phase fills a run of lattice nodes,
+// which are then sampled once: the nodes get what sampling each gives them.
+TEST(NodeValues, runs_one_phase_fills_hold_what_each_node_sampled_holds) {
+  constexpr int n = 56;
+  std::vector<uint8_t> labels;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const bool ball = std::hypot(i - 27.3, j - 25.6, k - 28.1) < 17;
+        labels.push_back(uint8_t(i == 6 && j == 7 && k == 8 ? 3 : k >= 30 && k < 34 ? 2 : ball ? 1 : 0));
+      }
+  const Scene scene = load_input(
+      test::write_nrrd("runs.nrrd", "type: uchar\ndimension: 3\nsizes: 56 56 56\nspacings: 1 1 1\n", labels));
+  const NodeByNode node_by_node(*scene.field);
+  for (const Lattice kind : {Lattice::bcc, Lattice::cube6}) {
+    const GridSpec grid = grid_for_lattice(scene.grid, kind);
+    const detail::TetLattice lattice(grid, kind);
+    const double snap = 0.2 * grid.h(), untie = kUntieFraction * grid.h();
+    const detail::NodeValues runs(detail::NodeSource(*scene.field, grid, 4), lattice, snap, untie, false);
+    const detail::NodeValues each(detail::NodeSource(node_by_node, grid, 4), lattice, snap, untie, false);
+    ASSERT_EQ(runs.held_nodes(), each.held_nodes());
+    for (int64_t node = 0; node < lattice.num_nodes(); ++node) {
+      ASSERT_EQ(runs.label(node), each.label(node)) << "node " << node;
+      ASSERT_EQ(runs.held(node), each.held(node)) << "node " << node;
+      if (!runs.held(node)) continue;
+      for (int32_t phase = 0; phase < scene.field->num_phases(); ++phase)
+        ASSERT_EQ(runs.value(node, phase), each.value(node, phase)) << "node " << node << ", phase " << phase;
+    }
+    EXPECT_LT(runs.held_nodes(), lattice.num_nodes() / 4) << "most nodes lie in runs of one phase";
   }
 }
 
