@@ -175,14 +175,27 @@ void convolve_axis(const std::vector<float>& in, const Box& from, std::vector<fl
   // The input index along the axis of output q + t, edge voxels repeating.
   auto source = [&](int64_t q, int64_t t) { return std::clamp<int64_t>(q + t, 0, volume[a] - 1) - from.lo[a]; };
   if (a == 0) {
+    // Outputs whose taps all lie inside the volume: tap by tap over the
+    // whole stretch (contiguous, vectorised), each output summed in the
+    // same tap order as the outputs near the volume's ends.
+    const int64_t inner_lo = std::clamp(r, dst.lo[0], dst.hi[0]);
+    const int64_t inner_hi = std::clamp(volume[0] - r, inner_lo, dst.hi[0]);
     for (int64_t line = 0; line < s[1] * s[2]; ++line) {
       const float* src = in.data() + line * s[0];
       float* dst_line = out.data() + line * d[0];
-      for (int64_t q = dst.lo[0]; q < dst.hi[0]; ++q) {
+      auto near_end = [&](int64_t q) {
         float sum = 0;
         for (int64_t t = -r; t <= r; ++t) sum += w[size_t(std::abs(t))] * src[source(q, t)];
         dst_line[q - dst.lo[0]] = sum;
+      };
+      for (int64_t q = dst.lo[0]; q < inner_lo; ++q) near_end(q);
+      for (int64_t t = -r; t <= r; ++t) {
+        const float weight = w[size_t(std::abs(t))];
+        const float* from_tap = src + (inner_lo + t - from.lo[0]);
+        float* to = dst_line + (inner_lo - dst.lo[0]);
+        for (int64_t x = 0; x < inner_hi - inner_lo; ++x) to[x] += weight * from_tap[x];
       }
+      for (int64_t q = inner_hi; q < dst.hi[0]; ++q) near_end(q);
     }
     return;
   }
