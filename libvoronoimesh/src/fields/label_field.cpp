@@ -126,17 +126,24 @@ std::vector<int32_t> uniform_bricks(const PhaseVoxels& v, const Index3& reach) {
 /// The phases present in `window` and the box each occupies there.
 std::vector<std::pair<int16_t, Box>> phase_boxes(const PhaseVoxels& v, const Box& window) {
   std::vector<std::pair<int16_t, Box>> found;
-  size_t last = 0;
-  window.for_each([&](int64_t i, int64_t j, int64_t k) {
-    const int16_t p = phase_at(v, i, j, k);
-    if (last >= found.size() || found[last].first != p) {
-      last = size_t(std::find_if(found.begin(), found.end(), [&](const auto& f) { return f.first == p; }) - found.begin());
-      if (last == found.size()) found.push_back({p, Box{{i, j, k}, {i + 1, j + 1, k + 1}}});
+  // Row by row along x, a run of one phase at a time: most rows are a few runs.
+  for (int64_t k = window.lo[2]; k < window.hi[2]; ++k)
+    for (int64_t j = window.lo[1]; j < window.hi[1]; ++j) {
+      const int16_t* row = &v.phase[size_t(v.size[0] * (j + v.size[1] * k))];
+      for (int64_t i = window.lo[0]; i < window.hi[0];) {
+        const int16_t p = row[i];
+        const int64_t first = i;
+        while (i < window.hi[0] && row[i] == p) ++i;
+        const Box run{{first, j, k}, {i, j + 1, k + 1}};
+        auto at = std::find_if(found.begin(), found.end(), [&](const auto& f) { return f.first == p; });
+        if (at == found.end()) {
+          found.push_back({p, run});
+          continue;
+        }
+        Box& b = at->second;
+        for (size_t a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], run.lo[a]), b.hi[a] = std::max(b.hi[a], run.hi[a]);
+      }
     }
-    Box& b = found[last].second;
-    const Index3 at{i, j, k};
-    for (size_t a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], at[a]), b.hi[a] = std::max(b.hi[a], at[a] + 1);
-  });
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return found;
 }
