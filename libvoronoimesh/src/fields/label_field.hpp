@@ -4,6 +4,7 @@
 /// only in a narrow band around its region and only among the K largest per
 /// voxel, so memory and time grow with the voxels, not with the labels.
 
+#include "core/unset_vector.hpp"
 #include "fields/top_k_grid_field.hpp"
 
 #include <array>
@@ -42,7 +43,11 @@ struct PhaseVoxels {
   std::array<int64_t, 3> size{};
   Vec3 spacing = Vec3::Ones();
   Vec3 origin = Vec3::Zero();
-  std::vector<int16_t> phase; ///< phase per voxel (x fastest); -1 = not a phase (left to the others)
+  /// Phase per voxel (x fastest); -1 = not a phase (left to the others). Left
+  /// unset when sized, so that the threads mapping labels to phases touch its
+  /// pages first (zeroed by one thread, its 50 MB on the liver were a serial
+  /// stretch of fresh memory).
+  UnsetVector<int16_t> phase;
   std::vector<std::string> names;
   std::vector<int32_t> labels; ///< label value of each phase, strictly increasing
   std::vector<std::optional<Rgb>> colors; ///< display colour of each phase, when known (may be shorter)
