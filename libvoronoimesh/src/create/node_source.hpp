@@ -56,7 +56,8 @@ public:
   /// True when every grid point of the row from p to q (along x, y and z as
   /// p's) has p's samples: where the field says so (PhaseField::same_top_values()).
   bool same_along_row(const GridPoint& p, const GridPoint& q) const {
-    return field_ && field_->same_top_values(grid_.node_position(p[0], p[1], p[2]), grid_.node_position(q[0], q[1], q[2]));
+    return field_ &&
+           field_->same_top_values(grid_.node_position(p[0], p[1], p[2]), grid_.node_position(q[0], q[1], q[2]));
   }
   /// As try_at(), throwing throw_not_finite()'s error for a value that is NaN or infinite.
   SampledField::NodeSamples at(const GridPoint& p, Buffer& buffer) const {

@@ -73,7 +73,8 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
     for (int64_t r = rows.begin(); r < rows.end(); ++r) {
       const TetLattice::NodeRow row = lattice.node_row(r);
       for (int64_t id = row.first_id + row.count - 2; id >= row.first_id; --id)
-        if (key[size_t(id + 1)] == key[size_t(id)]) run_after[size_t(id)] = uint8_t(std::min(255, run_after[size_t(id + 1)] + 1));
+        if (key[size_t(id + 1)] == key[size_t(id)])
+          run_after[size_t(id)] = uint8_t(std::min(255, run_after[size_t(id + 1)] + 1));
     }
   });
   std::vector<uint8_t> held(key.size());
@@ -85,7 +86,8 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
       const Offsets& around = by_parity[size_t(row.x0 & 1)];
       // Runs of inner nodes (neighbours at the fixed offsets, all in their rows)
       // whose own key v is sure and every neighbour's too: none is held.
-      const int32_t inner_from = (2 - row.x0 + row.step - 1) / row.step, inner_to = (grid.cells[0] - 2 - row.x0) / row.step + 1;
+      const int32_t inner_from = (2 - row.x0 + row.step - 1) / row.step;
+      const int32_t inner_to = (grid.cells[0] - 2 - row.x0) / row.step + 1;
       auto all_have = [&](int64_t from, int32_t count, int32_t v) {
         return key[size_t(from)] == v && run_after[size_t(from)] + 1 >= count;
       };
@@ -129,7 +131,6 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
   });
   return held;
 }
-
 
 std::array<double, 2> lattice_value_range(const SampledField& field, const TetLattice& lattice,
                                           std::array<int32_t, 2> layers) {
