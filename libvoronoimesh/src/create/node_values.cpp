@@ -84,6 +84,8 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
       const bool inner_row = row.y >= 2 && row.z >= 2 && row.y + 2 <= grid.cells[1] && row.z + 2 <= grid.cells[2];
       const bool box_row = box && (row.y == 0 || row.z == 0 || row.y == grid.cells[1] || row.z == grid.cells[2]);
       const Offsets& around = by_parity[size_t(row.x0 & 1)];
+      // Where the other-kind neighbours' offsets start from, for the node at grid x `gx` (bcc).
+      auto other_base = [&](int64_t gx) { return lattice.node_id(gx - 1, row.y - 1, row.z - 1); };
       // Runs of inner nodes (neighbours at the fixed offsets, all in their rows)
       // whose own key v is sure and every neighbour's too: none is held.
       const int32_t inner_from = (2 - row.x0 + row.step - 1) / row.step;
@@ -98,7 +100,7 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
         for (const int64_t o : around.same)
           if (!all_have(id + o, count, v)) return false;
         if (bcc) {
-          const int64_t base = lattice.node_id(row.x0 + row.step * x - 1, row.y - 1, row.z - 1);
+          const int64_t base = other_base(row.x0 + row.step * x);
           for (const int64_t o : around.other)
             if (!all_have(base + o, count, v)) return false;
         }
@@ -119,7 +121,7 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
         if (!h && inner) {
           for (const int64_t o : around.same) h |= key[size_t(id + o)] != own;
           if (bcc) {
-            const int64_t base = lattice.node_id(gx - 1, row.y - 1, row.z - 1);
+            const int64_t base = other_base(gx);
             for (const int64_t o : around.other) h |= key[size_t(base + o)] != own;
           }
         } else if (!h) {

@@ -162,11 +162,11 @@ const TopKGridField::Cell& TopKGridField::cell(const Vec3& x) const {
 void TopKGridField::locate(const Vec3& x, Place& p) const {
   uint64_t brick[3][2]; // per axis, the brick of the cell's lower and upper node
   for (int a = 0; a < 3; ++a) {
-    const double clamped = grid_coordinate(a, x[a]);
-    const uint64_t i0 = lower_node(a, clamped);
+    const double t = grid_steps(a, x[a]), in_grid = clamped(a, t);
+    const uint64_t i0 = lower_node(a, in_grid);
     p.lower[a] = i0;
-    p.f[a] = clamped - double(i0);
-    p.inside[a] = (x[a] - grid_.domain.min[a]) / spacing_[a] == clamped;
+    p.f[a] = in_grid - double(i0);
+    p.inside[a] = t == in_grid;
     for (uint64_t side = 0; side < 2; ++side) brick[a][side] = (i0 + side) / kBrick;
   }
   const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
@@ -273,8 +273,8 @@ bool TopKGridField::same_top_values(const Vec3& lo, const Vec3& hi) const {
   // from (the cells of lo and hi and those between: locate() is monotone).
   std::array<uint64_t, 3> first{}, last{};
   for (int a = 0; a < 3; ++a) {
-    first[size_t(a)] = lower_node(a, grid_coordinate(a, lo[a])) / kBrick;
-    last[size_t(a)] = (lower_node(a, grid_coordinate(a, hi[a])) + 1) / kBrick;
+    first[size_t(a)] = lower_node(a, clamped(a, grid_steps(a, lo[a]))) / kBrick;
+    last[size_t(a)] = (lower_node(a, clamped(a, grid_steps(a, hi[a]))) + 1) / kBrick;
   }
   const auto nb0 = uint64_t(bricks_[0]), nb1 = uint64_t(bricks_[1]);
   const int32_t one = brick_[first[0] + nb0 * (first[1] + nb1 * first[2])];

@@ -116,10 +116,10 @@ private:
   /// computed is kept and returned again for the same field and point.
   const Cell& cell(const Vec3& x) const;
   void locate(const Vec3& x, Place& p) const;
-  /// Coordinate x along axis a in grid steps, clamped to the grid.
-  double grid_coordinate(int a, double x) const {
-    return std::clamp((x - grid_.domain.min[a]) / spacing_[a], 0.0, double(grid_.cells[a]));
-  }
+  /// Coordinate x along axis a in grid steps.
+  double grid_steps(int a, double x) const { return (x - grid_.domain.min[a]) / spacing_[a]; }
+  /// Grid steps t along axis a clamped to the grid.
+  double clamped(int a, double t) const { return std::clamp(t, 0.0, double(grid_.cells[a])); }
   /// The lower node along axis a of the cell holding grid coordinate t (the last cell holds the far face).
   uint64_t lower_node(int a, double t) const { return uint64_t(std::min<int64_t>(int64_t(t), grid_.cells[a] - 1)); }
   /// The cell at `p`; the weights' derivatives only with `gradients` (sampling needs none).
