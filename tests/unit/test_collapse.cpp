@@ -1,6 +1,10 @@
 // Collapsing junction slivers (improve/collapse.hpp): triangles that no flip may mend
 // because their short edge lies along a junction.
 
+#include "fixtures.hpp"
+
+#include "improve/node_merge.hpp"
+
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/improve/collapse.hpp"
@@ -8,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -103,6 +108,50 @@ TEST(Collapse, collapses_nothing_when_off_or_without_slivers) {
   EXPECT_EQ(collapse_junction_slivers(mesh, off), 0u);
   InterfaceMesh fine = InterfaceMesh::from_node_mesh(three_fins({0, 1, 2, 3}));
   EXPECT_EQ(collapse_junction_slivers(fine), 0u);
+}
+
+// A closed surface: an octahedron whose lower apex sits just under its waist.
+// Merging the upper apex into a waist corner flattens the top into the waist's
+// plane: no triangle turns over and the surface stays valid, but across the
+// waist it turns back by 174 degrees onto the low bottom, a fold.
+TEST(Collapse, a_merge_that_folds_a_surface_fails_when_folds_are_refused) {
+  NodeMesh m;
+  m.domain = {Vec3(-2, -2, -2), Vec3(2, 2, 2)};
+  m.points = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -0.1)};
+  const int32_t px = 0, nx = 1, py = 2, ny = 3, top = 4, bottom = 5;
+  m.triangles = {{px, py, top}, {py, nx, top}, {nx, ny, top}, {ny, px, top},
+                 {py, px, bottom}, {nx, py, bottom}, {ny, nx, bottom}, {px, ny, bottom}};
+  m.pairs.assign(m.triangles.size(), PhasePair{0, 1});
+  ASSERT_TRUE(validate(m).ok()) << validate(m).summary();
+  ASSERT_EQ(count_folds(m), 0u);
+  std::vector<int32_t> into(m.num_nodes(), -1), turned, kept;
+  into[size_t(top)] = px;
+  NodeMesh trial;
+  detail::merge_nodes(m, into, trial, turned, kept);
+  ASSERT_TRUE(turned.empty());
+  ASSERT_TRUE(validate(trial).ok()) << validate(trial).summary();
+  ASSERT_GT(count_folds(trial), 0u);
+  std::vector<int32_t> failed;
+  EXPECT_TRUE(detail::find_merge_failures(trial, into, false, nullptr, failed));
+  EXPECT_TRUE(failed.empty());
+  EXPECT_TRUE(detail::find_merge_failures(trial, into, false, nullptr, failed, {}, nullptr, nullptr, {}, true));
+  EXPECT_NE(std::find(failed.begin(), failed.end(), px), failed.end());
+}
+
+// The initial mesh of 30 Voronoi cells at grid 32 has thousands of junction
+// triangles below q 0.5: one call makes an eighth as many collapses as it has
+// candidates (a fixed 64 left most slivers of big meshes standing), and none
+// that folds a surface at the nodes it keeps.
+TEST(Collapse, a_call_with_many_candidates_makes_more_than_64_and_folds_no_surface) {
+  InterfaceMesh mesh = test::initial_mesh(test::example_scene("voronoi30.json", 32));
+  const size_t folds_before = count_folds(mesh.to_node_mesh());
+  CollapseParams params;
+  params.below_quality = 0.5;
+  EXPECT_GT(collapse_junction_slivers(mesh, params), 64u);
+  const NodeMesh after = mesh.to_node_mesh();
+  const ValidationReport report = validate(after);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  EXPECT_LE(count_folds(after), folds_before);
 }
 
 } // namespace

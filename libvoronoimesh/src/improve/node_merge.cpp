@@ -6,6 +6,7 @@
 #include "core/indices_where.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 
 #include <algorithm>
@@ -153,7 +154,8 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
 
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed,
-                         const NodeMesh* before, const CrossingIndex* index, std::span<const uint8_t> reshaped) {
+                         const NodeMesh* before, const CrossingIndex* index, std::span<const uint8_t> reshaped,
+                         bool refuse_surface_folds) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -175,7 +177,9 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   // 1.4M triangles.
   NodeMesh local = trial.empty_like();
   std::vector<int32_t> local_id(trial.num_nodes(), -1), trial_id;
+  std::vector<uint8_t> local_at_target;
   for (int32_t t : indices_where(trial.num_triangles(), [&](size_t t) { return touches(core, t); })) {
+    local_at_target.push_back(touches(target, size_t(t)));
     const auto& tri = trial.triangles[size_t(t)];
     std::array<int32_t, 3> renamed;
     for (size_t k = 0; k < 3; ++k) {
@@ -194,6 +198,13 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   if (!report.ok() && report.nodes.empty()) return false;
   for (int32_t n : report.nodes)
     if (core[size_t(trial_id[size_t(n)])]) nodes.push_back(trial_id[size_t(n)]);
+  // A fold with a triangle at a target is the merge's (the cut-out holds both
+  // triangles of every edge at a core node), and blamed on its corners.
+  if (refuse_surface_folds)
+    for (const Fold& f : sharpest_folds(local, std::numeric_limits<size_t>::max()))
+      for (size_t t : f.triangles)
+        if (local_at_target[t])
+          for (int32_t v : local.triangles[t]) nodes.push_back(trial_id[size_t(v)]);
   if (!guard_crossings) return true;
   // A crossing counts if one of its triangles is at a target. After a retry,
   // only pairs with a triangle at a changed node can be new: any other pair was
@@ -226,7 +237,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index,
-                     bool close_folds) {
+                     bool close_folds, bool refuse_surface_folds) {
   // Ids back to this mesh's nodes (ids ascend with the nodes). Ids from 0 to
   // the last node are the nodes themselves (one process): no search, which
   // took 10 ms a round on 1M triangles.
@@ -265,7 +276,8 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     // merged mesh validated (by every rank, if any rank saw them).
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
     if (!blamed) {
-      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index, reshaped);
+      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index, reshaped,
+                                   refuse_surface_folds);
       changed.assign(m.num_nodes(), 0);
     }
     if (peers) blamed = !peers->any(!blamed);

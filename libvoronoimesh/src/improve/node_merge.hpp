@@ -85,10 +85,12 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 /// of in a search of the whole trial). `reshaped`: empty, or merge_nodes()'s
 /// flags for `trial` (without an index): then only pairs with a reshaped
 /// triangle are searched, since two triangles as they were cannot have come to cross.
+/// `refuse_surface_folds`: also append the corners of triangles at a merge
+/// target on a surface edge that folds (MeshStats::folds).
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
                          const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr,
-                         std::span<const uint8_t> reshaped = {});
+                         std::span<const uint8_t> reshaped = {}, bool refuse_surface_folds = false);
 
 /// Which collapses of a batch to drop for a failure at a node: (node id, index
 /// of the collapse in the batch) pairs, sorted. A flat list, not a hash
@@ -115,11 +117,13 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param index          null, or the guard's index up to date with `m` (CrossingGuard::index_for()), to
 ///                       find crossings around the merges instead of in the whole merged mesh
 /// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
+/// @param refuse_surface_folds also fail merges after which a surface edge at a target folds
+///                       (find_merge_failures())
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
-                     const CrossingIndex* index = nullptr, bool close_folds = false);
+                     const CrossingIndex* index = nullptr, bool close_folds = false, bool refuse_surface_folds = false);
 
 } // namespace vm::detail
