@@ -25,9 +25,10 @@ constexpr double kHuddle = 0.1;
 /// (onto_box_faces()).
 constexpr double kOntoBox = 0.25;
 /// A call makes up to one collapse per this many candidates when that is more
-/// than CollapseParams::max_collapses. An eighth, not all: on the property
+/// than CollapseParams::max_collapses. An eighth, not more: on the property
 /// tier's coarse random cases, whose junction triangles are nearly all
-/// candidates, a quarter folded 108 more surface edges (of 5,140) and an eighth 39.
+/// candidates, a quarter folded 108 more surface edges (of 5,140) and an eighth
+/// 39, both measured before collapses that fold were refused.
 constexpr size_t kCandidatesPerCollapse = 8;
 
 using detail::CollapsePeers;
