@@ -74,12 +74,17 @@ TEST(Parallel, indices_where_lists_what_a_serial_scan_finds_in_order) {
   // some blocks keep nothing; every fifth-or-so index kept, in a pattern with no period.
   for (size_t threads : kThreadCounts) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    for (size_t n : {size_t(0), size_t(1), size_t(16383), size_t(16384), size_t(16385), size_t(100003)}) {
+    // A list given to fill is reused: what it held before (longer, shorter, or
+    // other indices) must not show.
+    std::vector<int32_t> reused(70000, -7);
+    for (size_t n : {size_t(100003), size_t(0), size_t(1), size_t(16383), size_t(16384), size_t(16385)}) {
       auto keep = [](size_t i) { return (i * 2654435761u >> 7) % 5 == 0 || (i >= 40000 && i < 60000 && i % 2); };
       std::vector<int32_t> expected;
       for (size_t i = 0; i < n; ++i)
         if (keep(i)) expected.push_back(int32_t(i));
       EXPECT_EQ(detail::indices_where(n, keep), expected) << n << " indices, " << threads << " threads";
+      detail::indices_where(n, keep, reused);
+      EXPECT_EQ(reused, expected) << n << " indices into a list in use, " << threads << " threads";
     }
     EXPECT_TRUE(detail::indices_where(50000, [](size_t) { return false; }).empty());
   }

@@ -4,9 +4,10 @@
 
 #include "check/crossing_index.hpp"
 
+#include "check/self_intersections.hpp"
+#include "core/indices_where.hpp"
 #include "core/key_set.hpp"
 #include "core/parallel.hpp"
-#include "voronoimesh/check/intersections.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -187,7 +188,7 @@ void CrossingIndex::free_slot(int32_t slot) {
   for (int32_t s : near_.at(size_t(slot))) near_.erase_id(size_t(s), slot);
   near_.clear(size_t(slot));
   if (f.level >= 0) --level_count_[size_t(f.level)];
-  f = Filing{};
+  f = Filing::none();
   triangle_of_[size_t(slot)] = -1;
 }
 
@@ -246,7 +247,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   const size_t m = stale.size();
   std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
   for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
-  std::vector<Filing> fresh(m);
+  UnsetVector<Filing> fresh(m); // each written below
   struct Edits {
     std::vector<uint64_t> left, entered; // cells
     std::vector<int32_t> lost, gained; // slots that stay
@@ -343,38 +344,38 @@ std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::s
   keys_.clear();
   cell_of_key_.clear();
   last_triangles_.assign(triangles.begin(), triangles.end());
-  last_boxes_ = boxes_;
-  NodeMesh mesh;
-  mesh.points.assign(points.begin(), points.end());
-  mesh.triangles = last_triangles_;
-  return find_self_intersections(mesh, std::numeric_limits<size_t>::max(), involved).pairs;
+  last_boxes_.resize(boxes_.size());
+  detail::parallel_for_each_index(boxes_.size(), [&](size_t t) { last_boxes_[t] = boxes_[t]; });
+  return find_self_intersections(MeshArrays{points, triangles, {}}, std::numeric_limits<size_t>::max(), involved, false)
+      .pairs;
 }
 
-std::vector<int32_t> CrossingIndex::find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
-                                               std::span<const Triangle> corner_fans, bool& anew) {
+const std::vector<int32_t>& CrossingIndex::find_stale(std::span<const Vec3> points,
+                                                      std::span<const Triangle> triangles,
+                                                      std::span<const Triangle> corner_fans, bool& anew) {
   const size_t n = triangles.size();
   boxes_.resize(n);
   detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
-  std::vector<int32_t> stale;
+  stale_.clear();
   anew = filed_.empty() || slot_of_.size() != n || n == 0;
-  if (anew) return stale;
-  std::vector<uint8_t> is_stale(n);
-  detail::parallel_for_each_index(n, [&](size_t t) {
-    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
-    const Filing& f = filed_[size_t(slot_of_[t])];
-    is_stale[t] = !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
-  });
-  for (size_t t = 0; t < n; ++t)
-    if (is_stale[t]) stale.push_back(int32_t(t));
-  for (size_t i = 0; i < stale.size() && !anew; ++i)
-    anew = !fits_grid(filing_for(boxes_[size_t(stale[i])], triangles[size_t(stale[i])], {}).box);
-  return stale;
+  if (anew) return stale_;
+  detail::indices_where(
+      n,
+      [&](size_t t) {
+        const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
+        const Filing& f = filed_[size_t(slot_of_[t])];
+        return !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
+      },
+      stale_);
+  for (size_t i = 0; i < stale_.size() && !anew; ++i)
+    anew = !fits_grid(filing_for(boxes_[size_t(stale_[i])], triangles[size_t(stale_[i])], {}).box);
+  return stale_;
 }
 
 bool CrossingIndex::refresh(std::span<const Vec3> points, std::span<const Triangle> triangles,
                             std::span<const Triangle> corner_fans) {
   bool anew = false;
-  const std::vector<int32_t> stale = find_stale(points, triangles, corner_fans, anew);
+  const std::vector<int32_t>& stale = find_stale(points, triangles, corner_fans, anew);
   // Where crossings() would check anew, leave that to it.
   if (anew || kDropShare * stale.size() > triangles.size()) return false;
   if (!stale.empty()) refile(stale, triangles, corner_fans);
@@ -389,7 +390,7 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
   // Up to date first: triangles with other nodes or fans, or out of their
   // filing box, are filed again.
   bool anew = false;
-  const std::vector<int32_t> stale = find_stale(points, triangles, corner_fans, anew);
+  const std::vector<int32_t>& stale = find_stale(points, triangles, corner_fans, anew);
   if (!anew && kDropShare * stale.size() > n) {
     settled_calls_ = 0;
     return one_off(points, triangles, involved);

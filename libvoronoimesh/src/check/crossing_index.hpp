@@ -31,6 +31,7 @@
 #include "check/box_pairs.hpp"
 #include "check/embedded_fans.hpp"
 #include "check/triangle_pair.hpp"
+#include "core/unset_vector.hpp"
 #include "voronoimesh/core/pooled_lists.hpp"
 
 #include <array>
@@ -103,11 +104,14 @@ private:
   /// and the first cell of the box there, and the nodes and fans it had.
   /// Level -1: not filed yet (a triangle renumber() was given as new) or a
   /// free slot, in no cell.
+  /// Trivial to make, so that a rebuild's filings (100 MB on 1M triangles)
+  /// are first touched by the threads that fill them: none() is a slot not filed.
   struct Filing {
-    Bounds box{Vec3::Zero(), Vec3::Zero()};
-    std::array<int64_t, 3> first{};
-    Triangle nodes{-1, -1, -1}, fans{-1, -1, -1};
-    int8_t level = -1;
+    Bounds box;
+    std::array<int64_t, 3> first;
+    Triangle nodes, fans;
+    int8_t level;
+    static Filing none() { return {{Vec3::Zero(), Vec3::Zero()}, {}, {-1, -1, -1}, {-1, -1, -1}, -1}; }
   };
   /// A triangle filed in a cell, with the first cell of its filing (a search
   /// takes it in one cell only). Its filing box is read from filed_, and only
@@ -156,10 +160,10 @@ private:
   /// Appends the filed slots whose filing box meets `box`.
   void filed_meeting(const Bounds& box, std::vector<int32_t>& out) const;
   /// Sets boxes_ for the mesh now and returns the triangles whose filing is
-  /// stale; `anew` when the index cannot be mended (none kept, another
-  /// triangle count, or a stale box beyond the grid).
-  std::vector<int32_t> find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
-                                  std::span<const Triangle> corner_fans, bool& anew);
+  /// stale (in stale_, valid until the next call); `anew` when the index cannot
+  /// be mended (none kept, another triangle count, or a stale box beyond the grid).
+  const std::vector<int32_t>& find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                         std::span<const Triangle> corner_fans, bool& anew);
 
   double cell_size_ = 0;                   ///< level 0; level l has cells 2^l times as large
   std::vector<double> inverse_cell_size_;  ///< by level
@@ -170,8 +174,12 @@ private:
   // list entry cost 63 ms per collapse on 493k triangles, grains100).
   std::vector<int32_t> slot_of_;     ///< by triangle
   std::vector<int32_t> triangle_of_; ///< by slot; -1 for a free one
-  std::vector<Filing> filed_;        ///< by slot
-  std::vector<Bounds> boxes_;          ///< each triangle's box now
+  UnsetVector<Filing> filed_;        ///< by slot
+  // Arrays of every call, kept so that their memory is reused (fresh memory
+  // is first touched one page at a time) and, where they grow, left unset for
+  // the parallel loops that fill them.
+  UnsetVector<Bounds> boxes_;          ///< each triangle's box now
+  std::vector<int32_t> stale_;         ///< find_stale()'s answer
   std::vector<int32_t> level_count_;   ///< triangles filed in each level
   std::vector<uint64_t> keys_;         ///< open addressing, kFreeSlot where free (core/key_set.hpp)
   std::vector<uint32_t> cell_of_key_; ///< the cells_ list of each key in keys_
@@ -182,7 +190,7 @@ private:
   /// Without an index: the triangles and boxes of the last call, to see
   /// whether the mesh has settled enough to build one.
   std::vector<Triangle> last_triangles_;
-  std::vector<Bounds> last_boxes_;
+  UnsetVector<Bounds> last_boxes_;
   int settled_calls_ = 0; ///< calls in a row without an index that found few changes
   size_t refiled_ = 0;
   bool rebuilt_ = false;

@@ -29,7 +29,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   triangle_of_ = slot_of_;
 
   // The cells, from every triangle's (key, id) entries sorted.
-  filed_.assign(n, Filing{});
+  filed_.clear();
+  filed_.resize(n); // each written below, by the thread of its triangle
   std::vector<uint32_t> offset(n + 1, 0);
   detail::parallel_for_each_index(n, [&](size_t t) {
     filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
@@ -101,7 +102,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   // pairs are, and are never stored), then dealt to both triangles' lists (in
   // whatever order the threads deal them) and sorted. The fans are read from
   // a compact copy: from the filings they were a cache miss each.
-  std::vector<Triangle> fans(n);
+  UnsetVector<Triangle> fans(n); // each written below
   detail::parallel_for_each_index(n, [&](size_t t) { fans[t] = filed_[t].fans; });
   tbb::enumerable_thread_specific<std::vector<BoxPair>> pairs;
   {

@@ -75,7 +75,8 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
       continue;
     }
     while (next_free < triangle_of_.size() && triangle_of_[next_free] >= 0) ++next_free;
-    if (next_free == triangle_of_.size()) filed_.emplace_back(), triangle_of_.push_back(-1), near_.add_list();
+    if (next_free == triangle_of_.size())
+      filed_.push_back(Filing::none()), triangle_of_.push_back(-1), near_.add_list();
     slot_of[t] = int32_t(next_free++);
   }
   slot_of_ = std::move(slot_of);

@@ -8,6 +8,7 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include "check/box_pairs.hpp"
+#include "check/self_intersections.hpp"
 #include "check/triangle_pair.hpp"
 #include "core/indices_where.hpp"
 #include "core/key_set.hpp"
@@ -27,6 +28,7 @@ namespace vm {
 namespace {
 
 using detail::Bounds;
+using detail::MeshArrays;
 
 /// Intersecting pairs found by one thread: all counted, the smallest kept.
 struct Found {
@@ -47,7 +49,7 @@ struct Found {
   }
 };
 
-void check_input(const NodeMesh& m, bool needs_pairs) {
+void check_input(const MeshArrays& m, bool needs_pairs) {
   if (needs_pairs && m.pairs.size() != m.triangles.size())
     throw InvalidInput("find_self_intersections: one phase pair per triangle expected");
   // Scanned in parallel (each check scans the whole mesh); of bad node ids, the first bad triangle's is named.
@@ -70,7 +72,7 @@ void check_input(const NodeMesh& m, bool needs_pairs) {
 /// flagged ones included), in increasing order, through a hash of coarse cells
 /// covering the flagged boxes; all triangles when a third or more are flagged
 /// (no gain then). Lets a check after a few local changes skip most of the mesh.
-std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> flagged) {
+std::vector<int32_t> near_flagged(const MeshArrays& m, std::span<const uint8_t> flagged) {
   const size_t nt = m.triangles.size();
   auto box_of = [&](size_t t) { return detail::triangle_bounds(m.points, m.triangles[t]); };
   // Every scan of the whole mesh here runs in parallel: a remesh call checks it a dozen times.
@@ -134,13 +136,19 @@ std::vector<int32_t> near_flagged(const NodeMesh& m, std::span<const uint8_t> fl
   });
 }
 
-IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+IntersectionReport find_in(const MeshArrays& m, size_t max_reported, std::span<const uint8_t> involved,
                            bool across_surfaces_only);
 
 } // namespace
 
 IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
                                            bool across_surfaces_only) {
+  return detail::find_self_intersections(MeshArrays{m.points, m.triangles, m.pairs}, max_reported, involved,
+                                         across_surfaces_only);
+}
+
+IntersectionReport detail::find_self_intersections(const MeshArrays& m, size_t max_reported,
+                                                   std::span<const uint8_t> involved, bool across_surfaces_only) {
   check_input(m, across_surfaces_only);
   if (!involved.empty() && involved.size() != m.triangles.size())
     throw InvalidInput("find_self_intersections: one involved flag per triangle expected");
@@ -148,15 +156,16 @@ IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reporte
   if (near.size() == m.triangles.size()) return find_in(m, max_reported, involved, across_surfaces_only);
   // Only the triangles near the flagged ones, with the same nodes (shared nodes
   // are compared by id). `near` is increasing, so pairs stay sorted.
-  NodeMesh part;
-  part.points = m.points;
+  std::vector<std::array<int32_t, 3>> part_triangles;
+  std::vector<PhasePair> part_pairs;
   std::vector<uint8_t> part_involved;
   for (int32_t t : near) {
-    part.triangles.push_back(m.triangles[size_t(t)]);
-    if (!m.pairs.empty()) part.pairs.push_back(m.pairs[size_t(t)]);
+    part_triangles.push_back(m.triangles[size_t(t)]);
+    if (!m.pairs.empty()) part_pairs.push_back(m.pairs[size_t(t)]);
     part_involved.push_back(involved[size_t(t)]);
   }
-  IntersectionReport report = find_in(part, max_reported, part_involved, across_surfaces_only);
+  IntersectionReport report =
+      find_in(MeshArrays{m.points, part_triangles, part_pairs}, max_reported, part_involved, across_surfaces_only);
   for (auto& pair : report.pairs)
     for (int32_t& t : pair) t = near[size_t(t)];
   return report;
@@ -164,7 +173,7 @@ IntersectionReport find_self_intersections(const NodeMesh& m, size_t max_reporte
 
 namespace {
 
-IntersectionReport find_in(const NodeMesh& m, size_t max_reported, std::span<const uint8_t> involved,
+IntersectionReport find_in(const MeshArrays& m, size_t max_reported, std::span<const uint8_t> involved,
                            bool across_surfaces_only) {
   const size_t nt = m.triangles.size();
   IntersectionReport report;

@@ -6,6 +6,7 @@
 /// 10-20 ms each on 1M triangles, on one core while the other waited.
 
 #include "core/parallel.hpp"
+#include "core/unset_vector.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -13,13 +14,17 @@
 
 namespace vm::detail {
 
-/// The i in [0, n) for which keep(i) is true, increasing. keep is called once
-/// for each index, from any thread, and may only read shared data.
-template <class Index = int32_t, class Keep> std::vector<Index> indices_where(size_t n, const Keep& keep) {
+/// The i in [0, n) for which keep(i) is true, increasing, into `out` (its
+/// memory reused: a caller that asks again and again keeps one list, instead of
+/// fresh memory each time). keep is called once for each index, from any
+/// thread, and may only read shared data.
+template <class Index, class Keep> void indices_where(size_t n, const Keep& keep, std::vector<Index>& out) {
   // Each block counts its own, then writes from its place in the list.
   constexpr size_t kBlock = size_t(1) << 14;
   const size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<uint8_t> kept(n);
+  // Each flag is written below by the task of its block (zeroed first, in this
+  // thread, they were a serial pass over fresh memory in every whole-mesh check).
+  UnsetVector<uint8_t> kept(n);
   std::vector<size_t> start(blocks + 1, 0);
   parallel_for_each_index(
       blocks,
@@ -30,7 +35,7 @@ template <class Index = int32_t, class Keep> std::vector<Index> indices_where(si
       },
       1);
   for (size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
-  std::vector<Index> out(start[blocks]);
+  out.resize(start[blocks]);
   parallel_for_each_index(
       blocks,
       [&](size_t b) {
@@ -39,6 +44,12 @@ template <class Index = int32_t, class Keep> std::vector<Index> indices_where(si
           if (kept[i]) out[at++] = Index(i);
       },
       1);
+}
+
+/// The i in [0, n) for which keep(i) is true, increasing, as a new list.
+template <class Index = int32_t, class Keep> std::vector<Index> indices_where(size_t n, const Keep& keep) {
+  std::vector<Index> out;
+  indices_where(n, keep, out);
   return out;
 }
 

@@ -59,7 +59,8 @@ template <class... Fs> void parallel_invoke(const Fs&... fs) {
 
 /// Parallel loop over independent indices. Blocked ranges keep TBB's per-task
 /// cost off per-element work; each index is handled on its own, so results do
-/// not depend on how the range is split.
+/// not depend on how the range is split. Fewer than two grains of indices run
+/// as one task: loops over chunks, blocks or slices pass a grain of 1.
 template <class F> void parallel_for_each_index(size_t n, F&& f, size_t grain = 512) {
   detail::parallel_for(tbb::blocked_range<size_t>(0, n, grain), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) f(i);
