@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 
 namespace vm::detail {
 
@@ -96,7 +97,7 @@ void CornerFans::update(std::span<const int32_t> changed, std::span<const Triang
       node_[size_t(fan)] = triangles[size_t(t)][k];
       touched.push_back(fan);
     }
-  std::sort(touched.begin(), touched.end());
+  detail::parallel_sort(touched.begin(), touched.end(), std::less<int32_t>());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   // Each fan's corners and shape are its own: ordered in parallel.
   detail::parallel_for_each_index(touched.size(), [&](size_t i) { order(size_t(touched[i]), triangles); });
