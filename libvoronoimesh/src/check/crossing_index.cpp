@@ -354,6 +354,7 @@ const std::vector<int32_t>& CrossingIndex::find_stale(std::span<const Vec3> poin
                                                       std::span<const Triangle> triangles,
                                                       std::span<const Triangle> corner_fans, bool& anew) {
   const size_t n = triangles.size();
+  if (n > boxes_.capacity()) boxes_.clear(); // all found anew below: nothing to move into the larger array
   boxes_.resize(n);
   detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
   stale_.clear();
