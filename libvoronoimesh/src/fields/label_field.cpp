@@ -100,7 +100,7 @@ std::vector<int64_t> thin_voxels(const PhaseVoxels& v) {
         }
         if (thin) of_slice[z].push_back(at);
       }
-  });
+  }, 1); // a slice a task: under the default grain (512) a volume's slices ran as one task
   std::vector<int64_t> thin;
   for (const auto& slice : of_slice) thin.insert(thin.end(), slice.begin(), slice.end());
   return thin;

@@ -123,7 +123,7 @@ std::vector<int32_t> phases_around_small_ones(const PhaseVoxels& pv, const std::
               if (const int16_t q = pv.phase[size_t(n + step * strides[a])]; q >= 0 && q != p)
                 slices[slice].push_back({p, q});
       }
-  });
+  }, 1); // a slice a task: under the default grain (512) a volume's slices ran as one task
   std::map<Contact, int64_t> count;
   for (const auto& slice : slices)
     for (const Contact& c : slice) ++count[c];
