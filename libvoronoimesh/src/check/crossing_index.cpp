@@ -344,7 +344,7 @@ std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::s
   keys_.clear();
   cell_of_key_.clear();
   last_triangles_.assign(triangles.begin(), triangles.end());
-  last_boxes_.resize(boxes_.size());
+  resize_to_overwrite(last_boxes_, boxes_.size());
   detail::parallel_for_each_index(boxes_.size(), [&](size_t t) { last_boxes_[t] = boxes_[t]; });
   return find_self_intersections(MeshArrays{points, triangles, {}}, std::numeric_limits<size_t>::max(), involved, false)
       .pairs;
@@ -354,8 +354,7 @@ const std::vector<int32_t>& CrossingIndex::find_stale(std::span<const Vec3> poin
                                                       std::span<const Triangle> triangles,
                                                       std::span<const Triangle> corner_fans, bool& anew) {
   const size_t n = triangles.size();
-  if (n > boxes_.capacity()) boxes_.clear(); // all found anew below: nothing to move into the larger array
-  boxes_.resize(n);
+  resize_to_overwrite(boxes_, n);
   detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
   stale_.clear();
   anew = filed_.empty() || slot_of_.size() != n || n == 0;

@@ -102,10 +102,10 @@ public:
 private:
   /// Where a triangle is filed: its grown box, the grid level it is filed in
   /// and the first cell of the box there, and the nodes and fans it had.
-  /// Level -1: not filed yet (a triangle renumber() was given as new) or a
-  /// free slot, in no cell.
-  /// Trivial to make, so that a rebuild's filings (100 MB on 1M triangles)
-  /// are first touched by the threads that fill them: none() is a slot not filed.
+  /// none(), level -1: not filed yet (a triangle renumber() was given as new)
+  /// or a free slot, in no cell. Trivial to make (no member initializers), so
+  /// that a rebuild's filings (100 MB on 1M triangles) are first touched by
+  /// the threads that fill them.
   struct Filing {
     Bounds box;
     std::array<int64_t, 3> first;

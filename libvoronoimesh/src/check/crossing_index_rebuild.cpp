@@ -29,8 +29,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   triangle_of_ = slot_of_;
 
   // The cells, from every triangle's (key, id) entries sorted.
-  filed_.clear();
-  filed_.resize(n); // each written below, by the thread of its triangle
+  resize_to_overwrite(filed_, n); // each written below, by the thread of its triangle
   std::vector<uint32_t> offset(n + 1, 0);
   detail::parallel_for_each_index(n, [&](size_t t) {
     filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);

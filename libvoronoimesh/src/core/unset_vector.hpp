@@ -9,6 +9,7 @@
 /// 0.3 s so, with the other core idle. Left unset, the pages are first touched
 /// by the threads that fill them.
 
+#include <cstddef>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -35,5 +36,13 @@ template <class T> struct DefaultInitAllocator : std::allocator<T> {
 /// A vector whose resize() and size constructor leave trivial items unset:
 /// every item must be written before it is read.
 template <class T> using UnsetVector = std::vector<T, DefaultInitAllocator<T>>;
+
+/// Sizes `v` to n items that are all about to be written: where it must grow
+/// its memory, nothing it held is moved over first (a serial copy into fresh
+/// pages), and no item is set.
+template <class T> void resize_to_overwrite(UnsetVector<T>& v, size_t n) {
+  if (n > v.capacity()) v.clear();
+  v.resize(n);
+}
 
 } // namespace vm::detail
