@@ -10,7 +10,6 @@
 #include "core/unset_vector.hpp"
 #include "improve/field_orientation.hpp"
 #include "improve/flip_log.hpp"
-#include "improve/flip_recheck.hpp"
 #include "improve/part_agreement.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -25,6 +24,11 @@ namespace {
 
 using detail::FlipCandidate;
 using detail::FlipPeers;
+
+/// Times a flip_edges() call flips again around the flips it undid for
+/// crossings (banning those that crossed); if flips still cross after that,
+/// the call flips nothing.
+constexpr int kMaxFlipRepairs = 3;
 
 /// Quality of every face, kept current across flips.
 class FaceQuality {
@@ -127,15 +131,6 @@ void choose_greedily(const InterfaceMesh& mesh, const std::vector<FlipCandidate>
   }
 }
 
-/// The start of the first attempt: every face's quality and the candidates of
-/// round 1, best first. An undo gives back the mesh bit for bit
-/// (improve/flip_log.hpp), so a later attempt's round 1 finds the same
-/// candidates but the banned ones, without judging every edge again.
-struct FirstRound {
-  std::vector<double> quality;
-  std::vector<FlipCandidate> found;
-};
-
 /// Best gain first, ties by the edge's nodes (not its OpenMesh id, so that the
 /// order depends on the mesh alone).
 bool better(const FlipCandidate& a, const FlipCandidate& b) {
@@ -143,44 +138,33 @@ bool better(const FlipCandidate& a, const FlipCandidate& b) {
   return std::tie(a.nodes[0], a.nodes[1]) < std::tie(b.nodes[0], b.nodes[1]);
 }
 
-/// The rounds of Algorithm 5, never flipping a `banned` edge; every flip goes
-/// into `log`. `first` is filled by the first attempt and read by the others.
-FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::vector<char>& banned,
-                      FirstRound& first, detail::FlipLog& log, FlipPeers* peers) {
+/// The rounds of Algorithm 5 over `edges` (every edge: the paper's), never
+/// flipping a `banned` one (one flag an edge); every flip goes into `log`.
+FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector<int32_t> edges,
+                      const std::vector<uint8_t>& banned, detail::FlipLog& log, FlipPeers* peers) {
   FlipStats stats;
-  const bool again = !first.quality.empty();
-  FaceQuality quality = again ? FaceQuality(mesh, first.quality) : FaceQuality(mesh);
-  // Round 1 judges every edge; later rounds only the edges of faces a flip changed
-  // and the candidates that lost to a neighbouring flip.
-  std::vector<int32_t> edges(again ? 0 : mesh.omesh().n_edges());
-  std::iota(edges.begin(), edges.end(), 0);
+  FaceQuality quality(mesh);
+  const size_t logged = log.size();
   // Each judged entry is written by the task of its edge: assigned in this
   // thread first, the first round's 50 MB on 1M triangles were a serial pass
-  // over fresh memory in every attempt.
+  // over fresh memory.
   detail::UnsetVector<FlipCandidate> judged;
   std::vector<FlipCandidate> found;
   std::vector<uint8_t> take;
   for (int round = 0; round < params.max_rounds; ++round) {
-    found.clear();
-    if (round == 0 && again) {
-      for (const FlipCandidate& c : first.found)
-        if (!banned[size_t(c.edge)]) found.push_back(c);
-    } else {
-      judged.resize(edges.size());
-      detail::parallel_for_each_index(edges.size(), [&](size_t i) {
-        judged[i] = FlipCandidate{-1, edges[i], {}};
-        if (banned[size_t(edges[i])]) return;
-        judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
-      });
-      // Gathered and sorted in parallel: `better` is a total order (an edge's
-      // nodes are its own), so the list is the same for any thread count.
-      const std::vector<int32_t> gaining =
-          detail::indices_where(judged.size(), [&](size_t i) { return judged[i].gain > 0; });
-      found.resize(gaining.size());
-      detail::parallel_for_each_index(gaining.size(), [&](size_t i) { found[i] = judged[size_t(gaining[i])]; });
-      detail::parallel_sort(found.begin(), found.end(), better);
-      if (round == 0) first = {quality.values(), found};
-    }
+    judged.resize(edges.size());
+    detail::parallel_for_each_index(edges.size(), [&](size_t i) {
+      judged[i] = FlipCandidate{-1, edges[i], {}};
+      if (banned[size_t(edges[i])]) return;
+      judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
+    });
+    // Gathered and sorted in parallel: `better` is a total order (an edge's
+    // nodes are its own), so the list is the same for any thread count.
+    const std::vector<int32_t> gaining =
+        detail::indices_where(judged.size(), [&](size_t i) { return judged[i].gain > 0; });
+    found.resize(gaining.size());
+    detail::parallel_for_each_index(gaining.size(), [&](size_t i) { found[i] = judged[size_t(gaining[i])]; });
+    detail::parallel_sort(found.begin(), found.end(), better);
     if (peers ? !peers->any(!found.empty()) : found.empty()) break;
     take.assign(found.size(), 0);
     if (peers) peers->choose(found, take);
@@ -193,7 +177,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
         continue;
       }
       const OMesh::EdgeHandle eh(found[c].edge);
-      log.flip(mesh, eh, {found[c].nodes[0], found[c].nodes[1]});
+      log.flip(mesh, eh, found[c].nodes);
       ++stats.flips;
       for (int side = 0; side < 2; ++side) {
         const auto f = om.face_handle(om.halfedge_handle(eh, side));
@@ -205,83 +189,141 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, const std::
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
   }
-  if (stats.flips) mesh.faces_changed(log.faces());
+  if (stats.flips) {
+    const std::vector<int32_t> faces = log.faces();
+    mesh.faces_changed(std::span(faces).subspan(2 * logged));
+  }
   return stats;
 }
 
-/// The flipped edges whose faces now cross another triangle, or (with a field)
-/// face against their phase pair's direction at a junction; each is charged to
-/// the last flip that made the face.
-std::vector<int32_t> crossing_flips(const InterfaceMesh& mesh, const detail::FlipLog& log, const FlipParams& params,
-                                    CrossingGuard& guard, detail::FlipRecheck& recheck, FlipPeers* peers) {
-  const OMesh& om = mesh.omesh();
-  std::vector<int32_t> last_flip(om.n_faces(), -1);
-  std::vector<uint8_t> flipped(om.n_faces(), 0);
-  const auto& edges = log.edges();
+/// The flips to blame (by their edge's nodes before the flip) for the
+/// crossings of the faces flagged in `test` with any triangle: for each face of
+/// a crossing pair, the last flip that made it and stays (`undone` flags those
+/// that do not). With a field, also that flip for each tested junction face that
+/// faces against its phase pair. A face no staying flip made is as old as the
+/// call, and so is a crossing of two such faces.
+std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const detail::FlipLog& log,
+                                                const std::vector<uint8_t>& undone, const std::vector<uint8_t>& test,
+                                                const FlipParams& params, CrossingGuard& guard,
+                                                FlipPeers* peers) {
+  std::vector<int32_t> last_flip(mesh.num_triangles(), -1);
   const std::vector<int32_t> faces = log.faces(); // two per flip, in order
-  for (size_t j = 0; j < faces.size(); ++j) {
-    last_flip[size_t(faces[j])] = int32_t(j / 2);
-    flipped[size_t(faces[j])] = 1;
-  }
+  for (size_t j = 0; j < faces.size(); ++j)
+    if (!undone[j / 2]) last_flip[size_t(faces[j])] = int32_t(j / 2);
   const auto& triangles = mesh.triangles();
-  const auto pairs = guard.crossings(mesh, recheck.faces_to_test(mesh, flipped));
-  recheck.checked(mesh, std::move(flipped), pairs);
   if (peers) // another rank answers for the rest
     for (size_t f = 0; f < last_flip.size(); ++f)
       if (last_flip[f] >= 0 && !peers->answers_for(triangles[f])) last_flip[f] = -1;
-  std::vector<int32_t> culprits;
-  for (const auto& pair : pairs)
+  std::vector<std::array<int32_t, 2>> culprits;
+  for (const auto& pair : guard.crossings(mesh, test))
     for (int32_t f : pair)
-      if (last_flip[size_t(f)] >= 0) culprits.push_back(edges[size_t(last_flip[size_t(f)])]);
+      if (last_flip[size_t(f)] >= 0) culprits.push_back(log.edge_nodes(size_t(last_flip[size_t(f)])));
   if (params.field)
     for (size_t f = 0; f < last_flip.size(); ++f)
-      if (last_flip[f] >= 0 && detail::touches_junction(mesh, triangles[f]) &&
+      if (test[f] && last_flip[f] >= 0 && detail::touches_junction(mesh, triangles[f]) &&
           !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
                                      *params.field))
-        culprits.push_back(edges[size_t(last_flip[f])]);
+        culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
   return culprits;
+}
+
+/// The flips of `log` to undo now (one flag each): those not `undone` yet whose
+/// edge's nodes are among `culprits`, and those that must be undone with them
+/// (FlipLog::with_dependents()). With peers, a flip is flagged as one process
+/// flags it once every rank has heard of the others' flags: each rank says
+/// which flips it flagged that it decides (improve/flip_peers.hpp), until no
+/// rank flags one more.
+std::vector<uint8_t> to_undo(const InterfaceMesh& mesh, const detail::FlipLog& log,
+                             std::vector<std::array<int32_t, 2>> culprits, const std::vector<uint8_t>& undone,
+                             FlipPeers* peers) {
+  std::vector<uint8_t> undo(log.size(), 0);
+  while (true) {
+    std::sort(culprits.begin(), culprits.end());
+    const std::vector<uint8_t> before = undo;
+    for (size_t i = 0; i < log.size(); ++i)
+      undo[i] = undo[i] || (!undone[i] && std::binary_search(culprits.begin(), culprits.end(), log.edge_nodes(i)));
+    log.with_dependents(undo, undone, mesh.num_nodes());
+    if (!peers) return undo;
+    culprits.clear();
+    for (size_t i = 0; i < log.size(); ++i)
+      if (undo[i] && !before[i] && peers->decides(log.edge_nodes(i))) culprits.push_back(log.edge_nodes(i));
+    if (!peers->agree_on_culprits(culprits)) return undo;
+  }
+}
+
+/// The edges of the faces with a node of a flip flagged in `undone_now`, each
+/// once: where flips may gain now, the undone ones' edges and those that lost
+/// to them.
+std::vector<int32_t> edges_around(const InterfaceMesh& mesh, const detail::FlipLog& log,
+                                  const std::vector<uint8_t>& undone_now) {
+  std::vector<uint8_t> near(mesh.num_nodes(), 0);
+  for (size_t i = 0; i < log.size(); ++i)
+    if (undone_now[i])
+      for (int32_t n : log.quad(i)) near[size_t(n)] = 1;
+  const OMesh& om = mesh.omesh();
+  const auto& triangles = mesh.triangles();
+  std::vector<int32_t> edges;
+  for (size_t f = 0; f < triangles.size(); ++f)
+    if (near[size_t(triangles[f][0])] || near[size_t(triangles[f][1])] || near[size_t(triangles[f][2])])
+      for (auto e : om.fe_range(OMesh::FaceHandle(int(f)))) edges.push_back(e.idx());
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
 }
 
 /// flip_edges() without the collapses, with or without peers.
 FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
+  const size_t edge_count = mesh.omesh().n_edges();
+  std::vector<int32_t> every(edge_count);
+  std::iota(every.begin(), every.end(), 0);
+  std::vector<uint8_t> banned(edge_count, 0);
+  detail::FlipLog log;
+  FlipStats stats = flip_rounds(mesh, params, std::move(every), banned, log, peers);
+  if (!params.guard_crossings) return stats;
   // A flip moves no node but can still push the new diagonal through a
   // neighbouring surface where a phase is thinner than the quad. Such flips are
-  // found after the rounds (later attempts test only what may differ from the
-  // last check, improve/flip_recheck.hpp), all flips are undone exactly
-  // (improve/flip_log.hpp), the culprits banned, and the rounds run again; if
-  // that keeps failing, this call flips nothing.
-  std::vector<char> banned(mesh.omesh().n_edges(), 0);
+  // found after the rounds and undone exactly (improve/flip_log.hpp), with the
+  // later flips that share a node with them; the culprits are banned for the
+  // call, and the edges around what was undone flip again (up to
+  // kMaxFlipRepairs times). The faces that brings back or makes are checked in
+  // turn, until no crossing is left that a flip made: a mesh without crossings
+  // keeps none. (Undoing every flip and flipping anew, as before, cost a third
+  // of the pass on grain maps.)
   CrossingGuard own_guard;
   CrossingGuard& guard = params.guard ? *params.guard : own_guard;
-  detail::FlipRecheck recheck;
-  FirstRound first;
-  FlipStats stats;
-  for (int attempt = 0;; ++attempt) {
-    detail::FlipLog log;
-    stats = flip_rounds(mesh, params, banned, first, log, peers);
-    if (!params.guard_crossings) break;
-    std::vector<int32_t> culprits =
-        log.empty() ? std::vector<int32_t>{} : crossing_flips(mesh, log, params, guard, recheck, peers);
-    if (peers) {
-      // The ranks' culprits, as nodes; mapped back to the edges this rank flipped.
-      const auto& edges = log.edges();
-      const auto& flipped = log.nodes();
-      std::vector<std::array<int32_t, 2>> nodes;
-      for (int32_t e : culprits)
-        nodes.push_back(flipped[size_t(std::find(edges.begin(), edges.end(), e) - edges.begin())]);
-      const bool any = peers->agree_on_culprits(nodes);
-      culprits.clear();
-      for (size_t i = 0; i < edges.size(); ++i)
-        if (std::find(nodes.begin(), nodes.end(), flipped[i]) != nodes.end()) culprits.push_back(edges[i]);
-      if (!any) break;
-    } else if (culprits.empty()) {
+  std::vector<uint8_t> undone(log.size(), 0);
+  std::vector<uint8_t> test(mesh.num_triangles(), 0);
+  for (int32_t f : log.faces()) test[size_t(f)] = 1;
+  for (int repairs = 0;; ++repairs) {
+    std::vector<std::array<int32_t, 2>> culprits =
+        log.empty() ? std::vector<std::array<int32_t, 2>>{} : culprits_of(mesh, log, undone, test, params, guard, peers);
+    if (peers ? !peers->agree_on_culprits(culprits) : culprits.empty()) break;
+    if (repairs == kMaxFlipRepairs) { // as crossed as ever: this call flips nothing
+      std::vector<uint8_t> rest(log.size());
+      for (size_t i = 0; i < rest.size(); ++i) rest[i] = !undone[i];
+      log.undo(mesh, rest);
+      undone.assign(log.size(), 1);
       break;
     }
-    log.undo(mesh);
-    stats = {};
-    if (attempt == kMaxFlipAttempts) break;
-    for (int32_t e : culprits) banned[size_t(e)] = 1;
+    const std::vector<uint8_t> undo = to_undo(mesh, log, culprits, undone, peers);
+    std::sort(culprits.begin(), culprits.end());
+    std::fill(test.begin(), test.end(), 0);
+    const std::vector<int32_t> faces = log.faces();
+    for (size_t i = 0; i < log.size(); ++i) {
+      if (std::binary_search(culprits.begin(), culprits.end(), log.edge_nodes(i))) banned[size_t(log.edges()[i])] = 1;
+      undone[i] = undone[i] || undo[i];
+      if (undo[i]) test[size_t(faces[2 * i])] = test[size_t(faces[2 * i + 1])] = 1;
+    }
+    log.undo(mesh, undo);
+    const size_t logged = log.size();
+    const FlipStats again = flip_rounds(mesh, params, edges_around(mesh, log, undo), banned, log, peers);
+    stats.flips += again.flips;
+    stats.rounds += again.rounds;
+    undone.resize(log.size(), 0);
+    const std::vector<int32_t> made = log.faces();
+    for (size_t j = 2 * logged; j < made.size(); ++j) test[size_t(made[j])] = 1;
   }
+  stats.flips -= size_t(std::count(undone.begin(), undone.end(), 1));
   return stats;
 }
 

@@ -1,5 +1,7 @@
 #include "improve/flip_log.hpp"
 
+#include <algorithm>
+
 namespace vm::detail {
 
 namespace {
@@ -38,7 +40,7 @@ void rotate_edge(OMesh& om, OMesh::EdgeHandle edge) {
 
 } // namespace
 
-void FlipLog::flip(InterfaceMesh& mesh, OMesh::EdgeHandle edge, const std::array<int32_t, 2>& nodes) {
+void FlipLog::flip(InterfaceMesh& mesh, OMesh::EdgeHandle edge, const std::array<int32_t, 4>& quad) {
   OMesh& om = mesh.omesh_for_topology();
   Handles h;
   for (int side = 0; side < 2; ++side) {
@@ -51,23 +53,35 @@ void FlipLog::flip(InterfaceMesh& mesh, OMesh::EdgeHandle edge, const std::array
   for (size_t c = 0; c < 4; ++c) h.corner_out[c] = om.halfedge_handle(h.corners[c]);
   rotate_edge(om, edge);
   edges_.push_back(edge.idx());
-  nodes_.push_back(nodes);
+  quads_.push_back(quad);
   before_.push_back(h);
 }
 
-void FlipLog::undo(InterfaceMesh& mesh) {
+void FlipLog::with_dependents(std::vector<uint8_t>& undo, const std::vector<uint8_t>& undone,
+                              size_t node_count) const {
+  std::vector<uint8_t> touched(node_count, 0); // a node of a flip flagged so far
+  for (size_t i = 0; i < quads_.size(); ++i) {
+    if (undone[i]) continue;
+    const auto& quad = quads_[i];
+    undo[i] = undo[i] || std::any_of(quad.begin(), quad.end(), [&](int32_t n) { return touched[size_t(n)]; });
+    if (undo[i])
+      for (int32_t n : quad) touched[size_t(n)] = 1;
+  }
+}
+
+void FlipLog::undo(InterfaceMesh& mesh, const std::vector<uint8_t>& which) {
   OMesh& om = mesh.omesh_for_topology();
+  std::vector<int32_t> faces;
   for (size_t i = edges_.size(); i-- > 0;) {
+    if (!which[i]) continue;
     const OMesh::EdgeHandle edge(edges_[i]);
     for (int k = 0; k < 3; ++k) rotate_edge(om, edge); // with the logged flip, four: the cycles as before
     const Handles& h = before_[i];
     for (size_t side = 0; side < 2; ++side) om.set_halfedge_handle(h.faces[side], h.face_first[side]);
     for (size_t c = 0; c < 4; ++c) om.set_halfedge_handle(h.corners[c], h.corner_out[c]);
+    faces.insert(faces.end(), {h.faces[0].idx(), h.faces[1].idx()});
   }
-  mesh.faces_changed(faces());
-  edges_.clear();
-  nodes_.clear();
-  before_.clear();
+  mesh.faces_changed(faces);
 }
 
 std::vector<int32_t> FlipLog::faces() const {

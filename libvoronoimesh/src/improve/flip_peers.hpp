@@ -34,9 +34,13 @@ public:
   /// True when this rank answers for the crossings of the triangle with these
   /// nodes (the windows of the others hold what this one may lack).
   virtual bool answers_for(const std::array<int32_t, 3>& triangle) = 0;
+  /// True when this rank decides the flip of the edge with these nodes (i < j)
+  /// as one process would: the owner of the lower node, as in choose().
+  virtual bool decides(const std::array<int32_t, 2>& edge) = 0;
   /// Replaces `culprits` (flipped edges, as their nodes before the flip) with
   /// every rank's, those whose nodes are in this window; returns whether any
-  /// rank had one (then every rank undoes its flips and tries again).
+  /// rank had one (then every rank undoes those flips and the ones after them
+  /// that share a node, improve/flip_log.hpp).
   virtual bool agree_on_culprits(std::vector<std::array<int32_t, 2>>& culprits) = 0;
 };
 

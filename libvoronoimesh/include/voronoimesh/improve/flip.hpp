@@ -39,10 +39,6 @@ struct FlipParams {
   double ear_below = 1;
 };
 
-/// Times flip_edges() bans the flips that made surfaces cross and tries again
-/// before giving up on flipping for that call.
-constexpr int kMaxFlipAttempts = 3;
-
 /// What one flip_edges() call did.
 struct FlipStats {
   size_t flips = 0;     ///< edges flipped
@@ -56,9 +52,9 @@ struct FlipStats {
 /// and a flip never creates an edge that exists in another patch. In rounds: all
 /// edges are judged in parallel, then the best (by quality gain, ties by edge)
 /// that share no node are flipped; so the result is the same for any thread count.
-/// With guard_crossings, flips whose new triangles would cross another surface
-/// are banned (and, after kMaxFlipAttempts, the call flips nothing): a mesh
-/// without crossings keeps none. Then degenerate junction triangles are collapsed
+/// With guard_crossings, flips whose new triangles cross another surface are
+/// undone, with the later flips that share a node with them, until no flip
+/// made a crossing: a mesh without crossings keeps none. Then degenerate junction triangles are collapsed
 /// (collapse_junction_slivers), which renumbers the nodes.
 /// @param mesh   the mesh, changed in place (collapses renumber its nodes)
 /// @param params quality threshold, rounds, collapsing and the crossing guard
