@@ -34,9 +34,6 @@ constexpr int kMaxFlipRepairs = 3;
 class FaceQuality {
 public:
   explicit FaceQuality(const InterfaceMesh& mesh) : mesh_(mesh), q_(mesh.qualities()) {}
-  /// Quality as it was, for the same mesh.
-  FaceQuality(const InterfaceMesh& mesh, std::vector<double> q) : mesh_(mesh), q_(std::move(q)) {}
-  const std::vector<double>& values() const { return q_; }
   double operator[](OMesh::FaceHandle f) const { return q_[size_t(f.idx())]; }
   /// After a flip changed face f (triangles() is updated only after the rounds).
   void update(OMesh::FaceHandle f) {
@@ -189,10 +186,7 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     stats.rounds = round + 1;
   }
-  if (stats.flips) {
-    const std::vector<int32_t> faces = log.faces();
-    mesh.faces_changed(std::span(faces).subspan(2 * logged));
-  }
+  if (stats.flips) mesh.faces_changed(log.faces(logged));
   return stats;
 }
 
@@ -207,9 +201,9 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
                                                 const FlipParams& params, CrossingGuard& guard,
                                                 FlipPeers* peers) {
   std::vector<int32_t> last_flip(mesh.num_triangles(), -1);
-  const std::vector<int32_t> faces = log.faces(); // two per flip, in order
-  for (size_t j = 0; j < faces.size(); ++j)
-    if (!undone[j / 2]) last_flip[size_t(faces[j])] = int32_t(j / 2);
+  for (size_t i = 0; i < log.size(); ++i)
+    if (!undone[i])
+      for (int32_t f : log.faces_of(i)) last_flip[size_t(f)] = int32_t(i);
   const auto& triangles = mesh.triangles();
   if (peers) // another rank answers for the rest
     for (size_t f = 0; f < last_flip.size(); ++f)
@@ -308,11 +302,11 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
     const std::vector<uint8_t> undo = to_undo(mesh, log, culprits, undone, peers);
     std::sort(culprits.begin(), culprits.end());
     std::fill(test.begin(), test.end(), 0);
-    const std::vector<int32_t> faces = log.faces();
     for (size_t i = 0; i < log.size(); ++i) {
       if (std::binary_search(culprits.begin(), culprits.end(), log.edge_nodes(i))) banned[size_t(log.edges()[i])] = 1;
       undone[i] = undone[i] || undo[i];
-      if (undo[i]) test[size_t(faces[2 * i])] = test[size_t(faces[2 * i + 1])] = 1;
+      if (undo[i])
+        for (int32_t f : log.faces_of(i)) test[size_t(f)] = 1;
     }
     log.undo(mesh, undo);
     const size_t logged = log.size();
@@ -320,8 +314,7 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
     stats.flips += again.flips;
     stats.rounds += again.rounds;
     undone.resize(log.size(), 0);
-    const std::vector<int32_t> made = log.faces();
-    for (size_t j = 2 * logged; j < made.size(); ++j) test[size_t(made[j])] = 1;
+    for (int32_t f : log.faces(logged)) test[size_t(f)] = 1;
   }
   stats.flips -= size_t(std::count(undone.begin(), undone.end(), 1));
   return stats;

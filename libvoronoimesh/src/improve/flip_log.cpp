@@ -79,16 +79,16 @@ void FlipLog::undo(InterfaceMesh& mesh, const std::vector<uint8_t>& which) {
     const Handles& h = before_[i];
     for (size_t side = 0; side < 2; ++side) om.set_halfedge_handle(h.faces[side], h.face_first[side]);
     for (size_t c = 0; c < 4; ++c) om.set_halfedge_handle(h.corners[c], h.corner_out[c]);
-    faces.insert(faces.end(), {h.faces[0].idx(), h.faces[1].idx()});
+    for (int32_t f : faces_of(i)) faces.push_back(f);
   }
   mesh.faces_changed(faces);
 }
 
-std::vector<int32_t> FlipLog::faces() const {
+std::vector<int32_t> FlipLog::faces(size_t first) const {
   std::vector<int32_t> faces;
-  faces.reserve(2 * before_.size());
-  for (const Handles& h : before_)
-    for (const auto f : h.faces) faces.push_back(f.idx());
+  faces.reserve(2 * (before_.size() - first));
+  for (size_t i = first; i < before_.size(); ++i)
+    for (int32_t f : faces_of(i)) faces.push_back(f);
   return faces;
 }
 

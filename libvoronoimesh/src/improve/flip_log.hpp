@@ -50,8 +50,12 @@ public:
   std::array<int32_t, 2> edge_nodes(size_t flip) const { return {quads_[flip][0], quads_[flip][1]}; }
   /// The nodes of a flip's quad: its edge's two before the flip, then the two opposite.
   const std::array<int32_t, 4>& quad(size_t flip) const { return quads_[flip]; }
-  /// The two faces of every flipped edge (a flip changes just those), in order.
-  std::vector<int32_t> faces() const;
+  /// The two faces of a flipped edge (a flip changes just those).
+  std::array<int32_t, 2> faces_of(size_t flip) const {
+    return {before_[flip].faces[0].idx(), before_[flip].faces[1].idx()};
+  }
+  /// The two faces of every flipped edge from flip `first` on, in order.
+  std::vector<int32_t> faces(size_t first = 0) const;
 
 private:
   /// What a flip moves besides its halfedge cycles: the first halfedge of its
