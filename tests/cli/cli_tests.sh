@@ -312,6 +312,9 @@ expect_error "unknown option" 2 "The following argument was not expected: --bogu
 expect_error "option without its value" 2 "--grid.*\(see --help\)" -- "$vm" mesh -o out.ply --grid
 expect_error "option value not a number" 2 "--snap.*abc.*\(see --help\)" -- "$vm" mesh --snap abc -o out.ply
 expect_error "output option missing" 2 "--output is required \(see --help\)" -- "$vm" mesh
+# A misspelt option is named even where a required one is missing too (CLI11 would name only the latter).
+expect_error "unknown option, output missing" 2 "The following argument was not expected: --bogus \(see --help\)" -- "$vm" mesh --bogus
+expect_error "unknown option, mesh missing" 2 "The following argument was not expected: --bogus \(see --help\)" -- "$vm" smooth --bogus
 expect_error "no subcommand" 2 "subcommand.*\(see --help\)" -- "$vm"
 # Options for volumes are refused where they would be ignored, naming the input and the option.
 expect_error "volume option on a scene" 2 "grids/scene\.json: --voxels-per-cell applies only to volumes, and this is a scene" -- "$vm" create grids/scene.json --voxels-per-cell 2 -o out.ply

@@ -84,8 +84,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e); // --help, --version
     // One line and exit 2, as for every other bad input (CLI11 prints two and
-    // exits with its own codes, 105 to 109).
-    std::fprintf(stderr, "voronoimesh: %s (see --help)\n", e.what());
+    // exits with its own codes, 105 to 109). CLI11 checks required options
+    // before it looks for unknown ones, so a misspelt option would be answered
+    // with "--output is required"; the misspelling is named instead.
+    const std::vector<std::string> unknown = app.remaining(true);
+    const bool misspelt = dynamic_cast<const CLI::RequiredError*>(&e) && !unknown.empty();
+    std::fprintf(stderr, "voronoimesh: %s (see --help)\n", misspelt ? CLI::ExtrasError(unknown).what() : e.what());
     return 2;
   }
   return exit_code;
