@@ -6,6 +6,10 @@
 
 #include "core/parallel.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+
 namespace vm::detail {
 
 CrossingIndex::TrialCrossings CrossingIndex::crossings_with(std::span<const Vec3> points,
@@ -38,12 +42,22 @@ CrossingIndex::TrialCrossings CrossingIndex::crossings_with(std::span<const Vec3
       },
       1);
   TrialCrossings found;
-  for (size_t e = 0; e < extra.size(); ++e) {
+  for (size_t e = 0; e < extra.size(); ++e)
     for (int32_t s : crossed[e]) found.with_mesh.push_back({int32_t(e), s});
-    for (size_t f = e + 1; f < extra.size(); ++f)
-      if (box[e].overlaps(box[f]) && intersect_improperly(points, extra[e], extra[f], axis[e], axis[f]))
-        found.among_extra.push_back({int32_t(e), int32_t(f)});
-  }
+  // Extra triangles against each other, their candidate pairs found through
+  // a grid as a one-off check finds them (testing every pair was quadratic in
+  // the trial: batches of junction collapses on the closed voxel-faithful liver
+  // took 200 s, and a sweep along x still 45 s, its box faces' triangles all
+  // at one x).
+  tbb::enumerable_thread_specific<std::vector<BoxPair>> among;
+  for_each_overlapping_box_pair(box, {}, [&](std::span<const BoxPair> candidates) {
+    std::vector<BoxPair>& out = among.local();
+    for (const auto [e, f] : candidates)
+      if (intersect_improperly(points, extra[size_t(e)], extra[size_t(f)], axis[size_t(e)], axis[size_t(f)]))
+        out.push_back({e, f});
+  });
+  for (const auto& part : among) found.among_extra.insert(found.among_extra.end(), part.begin(), part.end());
+  std::sort(found.among_extra.begin(), found.among_extra.end()); // in the order of the extra triangles
   return found;
 }
 
