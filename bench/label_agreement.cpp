@@ -7,7 +7,7 @@
 // label; the worst label), labels missing from the mesh, and seconds.
 //
 // usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T] [--lattice bcc|cube6]
-//                        [--voxel-faithful]
+//                        [--voxel-faithful] [--snap S]
 //        label_agreement --header
 
 #include "voronoimesh/check/locate.hpp"
@@ -36,6 +36,7 @@ struct Options {
   int iterations = 20;
   int threads = 2;
   std::optional<vm::Lattice> lattice; ///< none: the CLI's default (vm::lattice_for())
+  double snap = vm::MeshOptions{}.snap;
 };
 
 /// Voxel centres of one label: how many, and how many lie in its phase.
@@ -58,6 +59,7 @@ int run(const std::string& path, const Options& o) {
   vm::MeshOptions options;
   options.close = true;
   options.lattice = o.lattice;
+  options.snap = o.snap;
   options.pipeline = o.pipeline;
   options.iterations = o.iterations;
   options.threads = o.threads;
@@ -120,7 +122,7 @@ int main(int argc, char** argv) {
   }
   if (argc < 2) {
     std::fputs("usage: label_agreement VOLUME [--voxels-per-cell F] [--pipeline P] [--iterations N] [--threads T]\n"
-               "                       [--lattice bcc|cube6] [--voxel-faithful]\n"
+               "                       [--lattice bcc|cube6] [--voxel-faithful] [--snap S]\n"
                "       label_agreement --header\n",
                stderr);
     return 2;
@@ -133,6 +135,7 @@ int main(int argc, char** argv) {
     else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
     else if (flag == "--threads" && i + 1 < argc) o.threads = std::atoi(argv[++i]);
     else if (flag == "--voxel-faithful") o.input.voxel_faithful = true;
+    else if (flag == "--snap" && i + 1 < argc) o.snap = std::atof(argv[++i]);
     else if (flag == "--lattice" && i + 1 < argc) o.lattice = std::strcmp(argv[++i], "cube6") == 0 ? vm::Lattice::cube6 : vm::Lattice::bcc;
     else {
       std::fprintf(stderr, "label_agreement: unknown option '%s'\n", flag.c_str());

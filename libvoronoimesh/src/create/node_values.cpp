@@ -424,13 +424,35 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
     const double rate = (grad[size_t(s)] - grad[size_t(t)]).norm();
     return rate < kSlowRate ? int64_t(double(eps_) * rate / kSlowRate) : eps_; // NaN: by value
   };
+  // A kept point of the field (a voxel-faithful volume's centre of a voxel in
+  // a structure one voxel thin) at this node must stay in its label: nothing
+  // snaps there. On flat voxels (CGAL's liver: 0.62 x 0.62 x 1.33) 0.2 h, h
+  // the largest spacing, is more than the label's lead at its centre (0.3 of
+  // the smallest), and snapping tied a one-voxel sheet's every centre. Asked
+  // only of a node where some pair would snap.
+  int kept = -1;
+  auto is_kept = [&] {
+    if (kept < 0) {
+      kept = 0;
+      if (field_ && field_->keeps_points()) {
+        const GridPoint g = lattice_->grid_point(id);
+        const Vec3 at = lattice_->grid().node_position(g[0], g[1], g[2]);
+        const Vec3 within = 1e-6 * lattice_->grid().spacing();
+        thread_local std::vector<Vec3> points;
+        points.clear();
+        field_->kept_points(at - within, at + within, points);
+        kept = !points.empty();
+      }
+    }
+    return kept == 1;
+  };
   if (eps_ > 0 && level == kSnap)
     for (int a = 0; a < k_; ++a)
       for (int b = a + 1; b < k_; ++b) {
         const int32_t vi = q[by_id[a]];
         int32_t& vj = q[by_id[b]];
         const int64_t gap = std::llabs(int64_t(vi) - vj);
-        if (vi != vj && gap < eps_ && gap < threshold(by_id[a], by_id[b])) {
+        if (vi != vj && gap < eps_ && gap < threshold(by_id[a], by_id[b]) && !is_kept()) {
           vj = vi;
           changed = true;
         }

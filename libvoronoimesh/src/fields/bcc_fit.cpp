@@ -2,14 +2,39 @@
 
 #include "core/parallel.hpp"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 
 namespace vm::detail {
 
-std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v) {
+namespace {
+
+/// Whether the phase `own` leads at the midpoint of the lattice edge between
+/// grid nodes `lo` and `hi` by more than `margin`, the values interpolated
+/// linearly as create does.
+bool leads_between(const PhaseField& field, int32_t own, const Vec3& lo, const Vec3& hi, double margin) {
+  constexpr size_t kMostIds = 16; // InputOptions::top_k's largest
+  std::array<int32_t, 2 * kMostIds> ids{};
+  std::array<double, 2 * kMostIds> values{};
+  const size_t k = std::min<size_t>(kMostIds, size_t(field.num_phases()));
+  field.top_values(lo, std::span(ids).first(k), std::span(values).first(k));
+  field.top_values(hi, std::span(ids).subspan(k, k), std::span(values).subspan(k, k));
+  const double mine = field.value(own, lo) + field.value(own, hi);
+  for (size_t i = 0; i < 2 * k; ++i)
+    if (ids[i] != own && field.value(ids[i], lo) + field.value(ids[i], hi) + 2 * margin >= mine) return false;
+  return true;
+}
+
+} // namespace
+
+std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v, const PhaseField& field, double margin) {
   const auto& n = v.size;
   const std::array<int64_t, 3> stride{1, n[0], n[0] * n[1]};
+  auto centre = [&](int64_t node) {
+    const int64_t at[3] = {node % n[0], node / n[0] % n[1], node / (n[0] * n[1])};
+    return Vec3(v.origin + v.spacing.cwiseProduct(Vec3(double(at[0]), double(at[1]), double(at[2]))));
+  };
   // Integer counts: the same totals whichever thread adds first. Such voxels are rare, so the atomics rarely meet.
   std::vector<std::atomic<int64_t>> count(v.labels.size());
   parallel_for_each_index(size_t(n[2]), [&](size_t k) {
@@ -25,7 +50,9 @@ std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v) {
         const int16_t own = v.phase[size_t(here)];
         const int64_t lo = at[axis] > 0 ? here - stride[axis] : here, hi = at[axis] + 1 < n[axis] ? here + stride[axis] : here;
         const int16_t a = v.phase[size_t(lo)], b = v.phase[size_t(hi)];
-        if (own >= 0 && a == b && a != own) count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
+        if (own < 0 || a == own || b == own) continue;
+        if (a == b || !leads_between(field, own, centre(lo), centre(hi), margin))
+          count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
       }
   }, 1);
   std::vector<int64_t> total(count.size());

@@ -18,7 +18,11 @@ namespace vm::detail {
 /// interpolates the values of the edge's ends linearly. A voxel whose two
 /// neighbours along that axis share one label other than its own is therefore
 /// outvoted whatever the phase functions (a structure one voxel thin there).
+/// One between two other labels is outvoted unless its phase's values at the
+/// edge's ends (`field`, on the voxel grid) sum to more than any other
+/// phase's by `margin` (what snapping may take from it: a two-voxel label of
+/// CGAL's liver lay between two others, and the bcc lattice lost it).
 /// Beyond the volume a voxel's neighbour is itself, as the field extends.
-std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& voxels);
+std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& voxels, const PhaseField& field, double margin);
 
 } // namespace vm::detail

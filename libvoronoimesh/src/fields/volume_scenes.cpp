@@ -94,6 +94,10 @@ void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string
 /// A label the bcc lattice would lose more than this share of decides for cube6.
 constexpr double kBccLossAllowed = 0.01;
 
+/// Create's default snapping (CreateParams::snap, paper sect. 4.1), in grid
+/// spacings: what it may take from a phase's values at a lattice node.
+constexpr double kCreateSnap = 0.2;
+
 /// Scene::phase_around: for each phase of at most kSurroundedUpTo voxels,
 /// the phase its voxels touch most often across a face (ties: the lower id).
 /// Slices of voxels in parallel, neighbours looked at only for small phases.
@@ -135,8 +139,9 @@ std::vector<int32_t> phases_around_small_ones(const PhaseVoxels& pv, const std::
 
 /// Whether create should take every node of the voxel grid, with the line that
 /// says so, or says how many voxel centres the bcc lattice cannot hold.
-bool needs_every_grid_node(const PhaseVoxels& pv, const std::vector<int64_t>& voxels, std::vector<std::string>& notes) {
-  const std::vector<int64_t> lost = voxels_bcc_cannot_hold(pv);
+bool needs_every_grid_node(const PhaseVoxels& pv, const PhaseField& field, double snap,
+                           const std::vector<int64_t>& voxels, std::vector<std::string>& notes) {
+  const std::vector<int64_t> lost = voxels_bcc_cannot_hold(pv, field, snap);
   size_t worst = 0;
   int64_t total = 0;
   for (size_t p = 0; p < lost.size(); ++p) {
@@ -244,7 +249,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   const double per_cell = o.voxel_faithful && o.voxels_per_cell == 0 ? 1 : o.voxels_per_cell;
   auto field = label_field(pv, params, path);
   const bool every_node = o.voxel_faithful && resolved_voxels_per_cell(per_cell, field->grid().spacing()) == 1 &&
-                          needs_every_grid_node(pv, voxels, notes);
+                          needs_every_grid_node(pv, *field, kCreateSnap * field->grid().h(), voxels, notes);
   std::vector<int32_t> around = phases_around_small_ones(pv, voxels);
   const GridSpec grid = volume_scene_grid(field->grid(), per_cell, path, notes);
   Scene scene{grid, field, true, std::move(voxels), std::move(around), std::move(notes)};

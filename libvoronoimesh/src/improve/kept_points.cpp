@@ -6,6 +6,9 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
 
 namespace vm::detail {
 namespace {
@@ -20,7 +23,80 @@ bool within(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
   return (b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 && (a - c).cross(p - c).dot(n) >= 0;
 }
 
+/// The solid angle of triangle (a, b, c) seen from p, signed: positive where p
+/// lies behind it (against its normal), as from inside a closed surface whose
+/// normals point out (Van Oosterom and Strackee's formula).
+double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+  const Vec3 u = a - p, v = b - p, w = c - p;
+  const double lu = u.norm(), lv = v.norm(), lw = w.norm();
+  return 2 * std::atan2(u.dot(v.cross(w)), lu * lv * lw + u.dot(v) * lw + u.dot(w) * lv + v.dot(w) * lu);
+}
+
 } // namespace
+
+std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const NodeMesh& trial,
+                                               std::span<const int32_t> into, std::span<const uint8_t> check,
+                                               const PhaseField& field) {
+  // Each target's triangles before (at it or at a node merged into it) and after (at it).
+  std::vector<int32_t> target_of(before.num_nodes(), -1);
+  for (size_t b = 0; b < into.size(); ++b)
+    if (into[b] >= 0 && check[size_t(into[b])]) target_of[b] = target_of[size_t(into[b])] = into[b];
+  std::vector<std::pair<int32_t, int32_t>> old_at, new_at; // (target, triangle)
+  auto gather = [&](const NodeMesh& m, std::vector<std::pair<int32_t, int32_t>>& at) {
+    for (size_t t = 0; t < m.num_triangles(); ++t) {
+      int32_t target = -1;
+      for (int32_t v : m.triangles[t]) target = std::max(target, target_of[size_t(v)]);
+      if (target >= 0) at.emplace_back(target, int32_t(t)); // merges share no triangle: one target
+    }
+    std::sort(at.begin(), at.end());
+  };
+  gather(before, old_at);
+  gather(trial, new_at);
+  std::vector<int32_t> targets;
+  for (const auto& [target, t] : old_at)
+    if (targets.empty() || targets.back() != target) targets.push_back(target);
+  std::vector<uint8_t> loses(targets.size(), 0);
+  auto range = [](const std::vector<std::pair<int32_t, int32_t>>& at, int32_t target) {
+    return std::span(std::lower_bound(at.begin(), at.end(), std::pair{target, -1}),
+                     std::lower_bound(at.begin(), at.end(), std::pair{target + 1, -1}));
+  };
+  detail::parallel_for_each_index(targets.size(), [&](size_t i) {
+    const auto old_triangles = range(old_at, targets[i]), new_triangles = range(new_at, targets[i]);
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const auto& [target, t] : old_triangles)
+      for (int32_t v : before.triangles[size_t(t)]) lo = lo.cwiseMin(before.points[size_t(v)]), hi = hi.cwiseMax(before.points[size_t(v)]);
+    for (const auto& [target, t] : new_triangles)
+      for (int32_t v : trial.triangles[size_t(t)]) lo = lo.cwiseMin(trial.points[size_t(v)]), hi = hi.cwiseMax(trial.points[size_t(v)]);
+    thread_local std::vector<Vec3> points;
+    points.clear();
+    field.kept_points(lo, hi, points);
+    // Winding number of the phase's boundary there, normals out of the phase.
+    auto winding = [](const NodeMesh& m, std::span<const std::pair<int32_t, int32_t>> triangles, int32_t phase,
+                      const Vec3& p) {
+      double sum = 0;
+      for (const auto& [target, t] : triangles) {
+        const PhasePair& pair = m.pairs[size_t(t)];
+        if (pair[0] != phase && pair[1] != phase) continue;
+        const auto& tri = m.triangles[size_t(t)];
+        // The normal points into pair[1]: out of pair[0].
+        const double angle = solid_angle(m.points[size_t(tri[0])], m.points[size_t(tri[1])], m.points[size_t(tri[2])], p);
+        sum += pair[0] == phase ? angle : -angle;
+      }
+      return sum / (4 * std::numbers::pi);
+    };
+    for (const Vec3& p : points) {
+      const int32_t phase = field.kept_phase(p);
+      if (winding(before, old_triangles, phase, p) - winding(trial, new_triangles, phase, p) > 0.5) {
+        loses[i] = 1;
+        break;
+      }
+    }
+  });
+  std::vector<int32_t> out;
+  for (size_t i = 0; i < targets.size(); ++i)
+    if (loses[i]) out.push_back(targets[i]);
+  return out;
+}
 
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
                                                   std::span<const uint8_t> involved, const PhaseField& field) {

@@ -7,6 +7,7 @@
 
 #include "voronoimesh/fields/phase_field.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
+#include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <cstdint>
 #include <span>
@@ -25,5 +26,23 @@ namespace vm::detail {
 /// @return the triangle ids
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
                                                   std::span<const uint8_t> involved, const PhaseField& field);
+
+/// The merge targets whose merge took a kept point out of its phase: node
+/// merges (improve/node_merge.hpp) replace the triangles at a target and the
+/// nodes merged into it by the triangles at the target, over the same ring, so
+/// the old and the new triangles of a phase's boundary there close up; a kept
+/// point lies between them, and was swept, where their winding numbers (sums
+/// of solid angles, normals out of the phase) differ by one. Only a point that
+/// was in its phase and no longer is counts (remesh collapses took the centres
+/// of a one-voxel sheet of flat voxels out of it: 14% of them).
+/// @param before the mesh the trial was merged from
+/// @param trial  the merged mesh (the same node ids; merged nodes left unused)
+/// @param into   per node of `before`, the target it merges into, or -1
+/// @param check  per node, whether this process answers for it as a target
+/// @param field  the phase functions, which give the kept points
+/// @return the targets, ascending
+std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const NodeMesh& trial,
+                                               std::span<const int32_t> into, std::span<const uint8_t> check,
+                                               const PhaseField& field);
 
 } // namespace vm::detail

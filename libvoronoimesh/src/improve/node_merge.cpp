@@ -1,6 +1,7 @@
 #include "improve/node_merge.hpp"
 
 #include "improve/collapse_peers.hpp"
+#include "improve/kept_points.hpp"
 
 #include "check/crossing_index.hpp"
 #include "core/indices_where.hpp"
@@ -155,7 +156,7 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed,
                          const NodeMesh* before, const CrossingIndex* index, std::span<const uint8_t> reshaped,
-                         bool refuse_surface_folds) {
+                         bool refuse_surface_folds, const PhaseField* kept) {
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -205,6 +206,8 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
       for (size_t t : f.triangles)
         if (local_at_target[t])
           for (int32_t v : local.triangles[t]) nodes.push_back(trial_id[size_t(v)]);
+  if (kept && before && kept->keeps_points())
+    for (int32_t a : merges_losing_kept_points(*before, trial, into, target, *kept)) nodes.push_back(a);
   if (!guard_crossings) return true;
   // A crossing counts if one of its triangles is at a target. After a retry,
   // only pairs with a triangle at a changed node can be new: any other pair was
@@ -237,7 +240,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index,
-                     bool close_folds, bool refuse_surface_folds) {
+                     bool close_folds, bool refuse_surface_folds, const PhaseField* kept) {
   // Ids back to this mesh's nodes (ids ascend with the nodes). Ids from 0 to
   // the last node are the nodes themselves (one process): no search, which
   // took 10 ms a round on 1M triangles.
@@ -277,7 +280,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
     if (!blamed) {
       blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index, reshaped,
-                                   refuse_surface_folds);
+                                   refuse_surface_folds, kept);
       changed.assign(m.num_nodes(), 0);
     }
     if (peers) blamed = !peers->any(!blamed);

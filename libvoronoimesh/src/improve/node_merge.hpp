@@ -7,6 +7,7 @@
 /// (improve/remesh.cpp).
 
 #include "voronoimesh/check/stats.hpp"
+#include "voronoimesh/fields/phase_field.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
 #include <algorithm>
@@ -86,11 +87,14 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 /// flags for `trial` (without an index): then only pairs with a reshaped
 /// triangle are searched, since two triangles as they were cannot have come to cross.
 /// `refuse_surface_folds`: also append the corners of triangles at a merge
-/// target on a surface edge that folds (MeshStats::folds).
+/// target on a surface edge that folds (MeshStats::folds). `kept`: null, or
+/// phase functions whose kept points a merge must not take out of their phase
+/// (improve/kept_points.hpp; with `before`): appends the target of such a merge.
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
                          CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
                          const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr,
-                         std::span<const uint8_t> reshaped = {}, bool refuse_surface_folds = false);
+                         std::span<const uint8_t> reshaped = {}, bool refuse_surface_folds = false,
+                         const PhaseField* kept = nullptr);
 
 /// Which collapses of a batch to drop for a failure at a node: (node id, index
 /// of the collapse in the batch) pairs, sorted. A flat list, not a hash
@@ -119,11 +123,14 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
 /// @param refuse_surface_folds also fail merges after which a surface edge at a target folds
 ///                       (find_merge_failures())
+/// @param kept           null, or phase functions whose kept points (PhaseField::kept_points()) a merge
+///                       must not take out of their phase (the failure is at its target)
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
                      std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
-                     const CrossingIndex* index = nullptr, bool close_folds = false, bool refuse_surface_folds = false);
+                     const CrossingIndex* index = nullptr, bool close_folds = false, bool refuse_surface_folds = false,
+                     const PhaseField* kept = nullptr);
 
 } // namespace vm::detail
