@@ -31,10 +31,6 @@ bool leads_between(const PhaseField& field, int32_t own, const Vec3& lo, const V
 std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v, const PhaseField& field, double margin) {
   const auto& n = v.size;
   const std::array<int64_t, 3> stride{1, n[0], n[0] * n[1]};
-  auto centre = [&](int64_t node) {
-    const int64_t at[3] = {node % n[0], node / n[0] % n[1], node / (n[0] * n[1])};
-    return Vec3(v.origin + v.spacing.cwiseProduct(Vec3(double(at[0]), double(at[1]), double(at[2]))));
-  };
   // Integer counts: the same totals whichever thread adds first. Such voxels are rare, so the atomics rarely meet.
   std::vector<std::atomic<int64_t>> count(v.labels.size());
   parallel_for_each_index(size_t(n[2]), [&](size_t k) {
@@ -50,8 +46,15 @@ std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v, const PhaseFie
         const int16_t own = v.phase[size_t(here)];
         const int64_t lo = at[axis] > 0 ? here - stride[axis] : here, hi = at[axis] + 1 < n[axis] ? here + stride[axis] : here;
         const int16_t a = v.phase[size_t(lo)], b = v.phase[size_t(hi)];
-        if (own < 0 || a == own || b == own) continue;
-        if (a == b || !leads_between(field, own, centre(lo), centre(hi), margin))
+        if (own < 0 || a == own || b == own) continue; // (at the volume's edge a neighbour is `here`)
+        if (a == b) {
+          count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
+          continue;
+        }
+        const Vec3 centre = v.origin + v.spacing.cwiseProduct(Vec3(double(i), double(j), double(k)));
+        Vec3 step = Vec3::Zero();
+        step[int(axis)] = v.spacing[int(axis)];
+        if (!leads_between(field, own, centre - step, centre + step, margin))
           count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
       }
   }, 1);
