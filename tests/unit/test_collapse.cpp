@@ -132,9 +132,9 @@ TEST(Collapse, a_merge_that_folds_a_surface_fails_when_folds_are_refused) {
   ASSERT_TRUE(validate(trial).ok()) << validate(trial).summary();
   ASSERT_GT(count_folds(trial), 0u);
   std::vector<int32_t> failed;
-  EXPECT_TRUE(detail::find_merge_failures(trial, into, false, nullptr, failed));
+  EXPECT_TRUE(detail::find_merge_failures(trial, into, {}, failed));
   EXPECT_TRUE(failed.empty());
-  EXPECT_TRUE(detail::find_merge_failures(trial, into, false, nullptr, failed, {}, nullptr, nullptr, {}, true));
+  EXPECT_TRUE(detail::find_merge_failures(trial, into, {.refuse_surface_folds = true}, failed));
   EXPECT_NE(std::find(failed.begin(), failed.end(), px), failed.end());
 }
 

@@ -153,10 +153,10 @@ void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
   kept.insert(kept.end(), now_kept.begin(), now_kept.end());
 }
 
-bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed,
-                         const NodeMesh* before, const CrossingIndex* index, std::span<const uint8_t> reshaped,
-                         bool refuse_surface_folds, const PhaseField* kept) {
+bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, const MergeChecks& checks,
+                         std::vector<int32_t>& nodes, std::span<const uint8_t> changed, const NodeMesh* before,
+                         std::span<const uint8_t> reshaped) {
+  CollapsePeers* const peers = checks.peers;
   // Validation is local: a merge changes only triangles at its target a, whose
   // corners (a and its ring, the "core") are the only nodes whose triangles,
   // edges and fans can change. The triangles at core nodes are validated alone;
@@ -201,21 +201,21 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
     if (core[size_t(trial_id[size_t(n)])]) nodes.push_back(trial_id[size_t(n)]);
   // A fold with a triangle at a target is the merge's (the cut-out holds both
   // triangles of every edge at a core node), and blamed on its corners.
-  if (refuse_surface_folds)
+  if (checks.refuse_surface_folds)
     for (const Fold& f : sharpest_folds(local, std::numeric_limits<size_t>::max()))
       for (size_t t : f.triangles)
         if (local_at_target[t])
           for (int32_t v : local.triangles[t]) nodes.push_back(trial_id[size_t(v)]);
-  if (kept && before && kept->keeps_points())
-    for (int32_t a : merges_losing_kept_points(*before, trial, into, target, *kept)) nodes.push_back(a);
-  if (!guard_crossings) return true;
+  if (checks.kept && before && checks.kept->keeps_points())
+    for (int32_t a : merges_losing_kept_points(*before, trial, into, target, *checks.kept)) nodes.push_back(a);
+  if (!checks.guard_crossings) return true;
   // A crossing counts if one of its triangles is at a target. After a retry,
   // only pairs with a triangle at a changed node can be new: any other pair was
   // tested in the last trial, and had it crossed, its collapses would be gone.
   std::vector<uint8_t> involved(trial.num_triangles(), 0), searched;
   for (int32_t t : at_target) involved[size_t(t)] = 1;
-  if (index && before) {
-    report_trial_crossings(trial, involved, *before, into, *index, nodes);
+  if (checks.index && before) {
+    report_trial_crossings(trial, involved, *before, into, *checks.index, nodes);
     return true;
   }
   // A triangle at a target as it was (only its target's other triangles
@@ -237,10 +237,9 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
 }
 
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
-                     bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
-                     std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, const CrossingIndex* index,
-                     bool close_folds, bool refuse_surface_folds, const PhaseField* kept) {
+                     const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
+                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, bool close_folds) {
+  CollapsePeers* const peers = checks.peers;
   // Ids back to this mesh's nodes (ids ascend with the nodes). Ids from 0 to
   // the last node are the nodes themselves (one process): no search, which
   // took 10 ms a round on 1M triangles.
@@ -279,8 +278,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     // merged mesh validated (by every rank, if any rank saw them).
     bool blamed = peers ? peers->any(!failed.empty()) : !failed.empty();
     if (!blamed) {
-      blamed = find_merge_failures(trial, into, guard_crossings, peers, failed, changed, &m, index, reshaped,
-                                   refuse_surface_folds, kept);
+      blamed = find_merge_failures(trial, into, checks, failed, changed, &m, reshaped);
       changed.assign(m.num_nodes(), 0);
     }
     if (peers) blamed = !peers->any(!blamed);

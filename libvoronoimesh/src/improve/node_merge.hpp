@@ -71,30 +71,43 @@ double quality_after_merge(const Mesh& mesh, int32_t b, int32_t a, const Vec3& t
 /// old index of each kept node to `kept`.
 void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept);
 
-/// Where `trial` (a mesh after merge_nodes() by `into`) fails: appends the nodes
-/// of validation problems around merge targets and, if asked, the corners of
-/// triangles at a merge target that cross a triangle of another surface.
-/// Returns false if it fails somewhere no node names (then nothing in the
-/// batch can be trusted). `peers`: in a distributed run, which rank answers
-/// for which target; null in one process. `changed`: empty, or when `trial`
+/// What a batch of merges must pass besides a valid mesh, and what helps to
+/// check it: shared by find_merge_failures() and merge_passing().
+struct MergeChecks {
+  /// Fail merges after which a triangle at a target crosses another surface.
+  bool guard_crossings = false;
+  /// Fail merges after which a surface edge at a target folds (MeshStats::folds).
+  bool refuse_surface_folds = false;
+  /// Null, or phase functions whose kept points (PhaseField::kept_points(),
+  /// improve/kept_points.hpp) a merge must not take out of their phase: the
+  /// failure is at the merge's target.
+  const PhaseField* kept = nullptr;
+  /// In a distributed run, how the ranks agree (which rank answers for which
+  /// target); null in one process.
+  CollapsePeers* peers = nullptr;
+  /// Null, or the guard's index up to date with the mesh before the merges
+  /// (CrossingIndex::refresh(), CrossingGuard::index_for()), through which the
+  /// crossings of the triangles at targets are found (the same pairs, found
+  /// around them instead of in a search of the whole merged mesh).
+  const CrossingIndex* index = nullptr;
+};
+
+/// Where `trial` (a mesh after merge_nodes() by `into`) fails `checks`: appends
+/// the nodes of validation problems around merge targets and the nodes named
+/// by the checks asked for (the corners of triangles at a target that cross a
+/// triangle of another surface or fold, the target that takes a kept point
+/// out of its phase). Returns false if it fails somewhere no node names (then
+/// nothing in the batch can be trusted). `changed`: empty, or when `trial`
 /// retries a batch whose last trial's crossings were all reported, one flag per
 /// node set where that trial differed (the ends of the collapses dropped since):
 /// then only crossings with a triangle at a flagged node are searched for.
-/// `index`: null, or an index up to date with `before`, the mesh `trial` was
-/// merged from (CrossingIndex::refresh()), through which the crossings of the
-/// triangles at targets are found (the same pairs, found around them instead
-/// of in a search of the whole trial). `reshaped`: empty, or merge_nodes()'s
-/// flags for `trial` (without an index): then only pairs with a reshaped
-/// triangle are searched, since two triangles as they were cannot have come to cross.
-/// `refuse_surface_folds`: also append the corners of triangles at a merge
-/// target on a surface edge that folds (MeshStats::folds). `kept`: null, or
-/// phase functions whose kept points a merge must not take out of their phase
-/// (improve/kept_points.hpp; with `before`): appends the target of such a merge.
-bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, bool guard_crossings,
-                         CollapsePeers* peers, std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
-                         const NodeMesh* before = nullptr, const CrossingIndex* index = nullptr,
-                         std::span<const uint8_t> reshaped = {}, bool refuse_surface_folds = false,
-                         const PhaseField* kept = nullptr);
+/// `before`: null, or the mesh `trial` was merged from (needed by the index and
+/// the kept points). `reshaped`: empty, or merge_nodes()'s flags for `trial`
+/// (without an index): then only pairs with a reshaped triangle are searched,
+/// since two triangles as they were cannot have come to cross.
+bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, const MergeChecks& checks,
+                         std::vector<int32_t>& nodes, std::span<const uint8_t> changed = {},
+                         const NodeMesh* before = nullptr, std::span<const uint8_t> reshaped = {});
 
 /// Which collapses of a batch to drop for a failure at a node: (node id, index
 /// of the collapse in the batch) pairs, sorted. A flat list, not a hash
@@ -112,25 +125,16 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param chosen         the collapses {a, b} as node ids
 /// @param blame          the indices in `chosen` of the collapses to drop for a failure at each node id, sorted
 ///                       (at least every collapse whose target's new ring the node is in, and the target)
-/// @param guard_crossings also fail merges after which a triangle at a target crosses another surface
-/// @param peers          in a distributed run, how the ranks agree; null in one process
+/// @param checks         what the merged mesh must pass besides validation (find_merge_failures())
 /// @param node_ids       the id of each node of `m`, increasing
 /// @param kept_triangles set to the old index of each triangle of the merged mesh
 /// @param moved_to       empty, or where each collapse's a goes (not finite: it stays)
 /// @param made           if given, set to one flag per collapse of `chosen`: made or not
-/// @param index          null, or the guard's index up to date with `m` (CrossingGuard::index_for()), to
-///                       find crossings around the merges instead of in the whole merged mesh
 /// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
-/// @param refuse_surface_folds also fail merges after which a surface edge at a target folds
-///                       (find_merge_failures())
-/// @param kept           null, or phase functions whose kept points (PhaseField::kept_points()) a merge
-///                       must not take out of their phase (the failure is at its target)
 /// @return the number of collapses made (0: `m` unchanged)
 size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
-                     bool guard_crossings, CollapsePeers* peers, std::span<const int64_t> node_ids,
-                     std::vector<int32_t>& kept_triangles,
+                     const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
-                     const CrossingIndex* index = nullptr, bool close_folds = false, bool refuse_surface_folds = false,
-                     const PhaseField* kept = nullptr);
+                     bool close_folds = false);
 
 } // namespace vm::detail

@@ -423,8 +423,9 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     detail::UnsetVector<int64_t> ids(m.num_nodes());
     detail::parallel_for_each_index(ids.size(), [&](size_t n) { ids[n] = int64_t(n); });
     std::vector<int32_t> kept_triangles, kept_nodes;
-    const size_t done = detail::merge_passing(m, chosen, blame, params.guard_crossings, nullptr, ids, kept_triangles,
-                                              moved_to, nullptr, nullptr, point_merges, false, field);
+    const detail::MergeChecks checks{.guard_crossings = params.guard_crossings, .kept = field};
+    const size_t done =
+        detail::merge_passing(m, chosen, blame, checks, ids, kept_triangles, moved_to, nullptr, point_merges);
     if (done == 0) return false;
     (point_merges ? stats.point_merges : stats.collapses) += done;
     detail::drop_unused_nodes(m, kept_nodes);
