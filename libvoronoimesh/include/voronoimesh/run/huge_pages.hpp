@@ -12,6 +12,9 @@
 /// executable restarts itself with it, once, before doing anything else. The
 /// meshes are the same; the liver's whole run took 14% less time, the CT-like
 /// volume's 22%, 1,000 grains at grid 64 16%, at about the same peak memory.
+/// On a fresh VM whose first touches of memory were slow (2026-12-04) the
+/// liver ran 4-24% faster without it and the 1M case 3% faster with it
+/// (docs/benchmarks.md, "Huge pages"): the gain depends on the machine.
 /// A library cannot do this for its host (Python, ParaView): set
 /// GLIBC_TUNABLES=glibc.malloc.hugetlb=1 before starting it instead.
 
