@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 
 namespace vm::detail {
 
@@ -410,17 +411,20 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   bool changed = false;
   // A pair slower than kSlowRate snaps within eps_ x rate / kSlowRate (the
   // class comment); each phase's gradient is found once, when first asked.
+  std::optional<Vec3> position; // the node's, found once, when first asked
+  auto node_at = [&]() -> const Vec3& {
+    if (!position) {
+      const GridPoint g = lattice_->grid_point(id);
+      position = lattice_->grid().node_position(g[0], g[1], g[2]);
+    }
+    return *position;
+  };
   std::array<Vec3, 16> grad;
   uint32_t known = 0;
-  Vec3 x = Vec3::Zero();
   auto threshold = [&](int s, int t) {
     if (!field_) return eps_;
-    if (known == 0) {
-      const GridPoint g = lattice_->grid_point(id);
-      x = lattice_->grid().node_position(g[0], g[1], g[2]);
-    }
     for (const int u : {s, t})
-      if (!(known >> u & 1u)) grad[size_t(u)] = field_->gradient(ids[size_t(u)], x), known |= 1u << u;
+      if (!(known >> u & 1u)) grad[size_t(u)] = field_->gradient(ids[size_t(u)], node_at()), known |= 1u << u;
     const double rate = (grad[size_t(s)] - grad[size_t(t)]).norm();
     return rate < kSlowRate ? int64_t(double(eps_) * rate / kSlowRate) : eps_; // NaN: by value
   };
@@ -435,12 +439,10 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
     if (kept < 0) {
       kept = 0;
       if (field_ && field_->keeps_points()) {
-        const GridPoint g = lattice_->grid_point(id);
-        const Vec3 at = lattice_->grid().node_position(g[0], g[1], g[2]);
         const Vec3 within = 1e-6 * lattice_->grid().spacing();
         thread_local std::vector<Vec3> points;
         points.clear();
-        field_->kept_points(at - within, at + within, points);
+        field_->kept_points(node_at() - within, node_at() + within, points);
         kept = !points.empty();
       }
     }
