@@ -44,7 +44,7 @@ Options options_from(const py::kwargs& kwargs, Input input) {
       {"min_size", [&](const py::handle& v) { m.min_size = v.cast<double>(); }},
       {"threads", [&](const py::handle& v) { m.threads = v.cast<int>(); }},
       {"close", [&](const py::handle& v) { m.close = v.cast<bool>(); }},
-      {"snap", [&](const py::handle& v) { m.snap = v.cast<double>(); }},
+      {"snap", [&](const py::handle& v) { m.snap = in.snap = v.cast<double>(); }},
       {"validate", [&](const py::handle& v) { m.validate = v.cast<bool>(); }},
       {"stop_when_converged", [&](const py::handle& v) {
          if (v.is_none()) return m.stop_when_converged.reset(); // the input's default

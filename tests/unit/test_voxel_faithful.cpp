@@ -6,7 +6,10 @@
 // counted per label. The default loses such labels.
 
 #include "voronoimesh/check/locate.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/run/mesher.hpp"
+#include "voronoimesh/run/mesher.hpp"
 #include "voronoimesh/run/meshing.hpp"
 
 #include "nrrd_file.hpp"
@@ -16,6 +19,7 @@
 #include <array>
 #include <cstdio>
 #include <map>
+#include <string>
 #include <vector>
 
 namespace {
@@ -171,11 +175,10 @@ TEST(VoxelFaithful, auto_lattice_is_bcc_unless_voxel_faithful) {
   EXPECT_EQ(lattice_for(given, kept), Lattice::bcc);
 }
 
-// Two voxels of label 3 between labels 1 and 2, each off the bcc lattice and
-// between a voxel of 1 and one of 2 along its lattice edge (as label 84 of
-// CGAL's liver, which the bcc lattice lost): --lattice auto sees that bcc
-// cannot hold them, and create keeps both centres in their label.
-TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
+// A 32^3 volume with two voxels of label 3 between labels 1 and 2, each off
+// the bcc lattice and between a voxel of 1 and one of 2 along its lattice
+// edge (as label 84 of CGAL's liver, which the bcc lattice lost).
+std::vector<int16_t> two_voxels_between_two_labels() {
   std::vector<int16_t> labels(size_t(kSize * kSize * kSize));
   for (int k = 0; k < kSize; ++k)
     for (int j = 0; j < kSize; ++j)
@@ -185,6 +188,14 @@ TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
         const int side = j != 16 ? j - 16 : k != 15 ? k - 15 : i < 15 ? -1 : i > 16 ? 1 : 0;
         labels[size_t(i + kSize * (j + kSize * k))] = int16_t(side < 0 ? 1 : side > 0 ? 2 : 3);
       }
+  return labels;
+}
+
+// Two voxels of label 3 between labels 1 and 2 (two_voxels_between_two_labels()):
+// --lattice auto sees that bcc cannot hold them, and create keeps both
+// centres in their label.
+TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
+  const std::vector<int16_t> labels = two_voxels_between_two_labels();
   const std::string path = test::write_nrrd("between_two.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
   const Scene scene = load_input(path, faithful());
   std::remove(path.c_str());
@@ -195,6 +206,33 @@ TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
   const auto by_label = shares(create_mesh(scene, o), scene, labels, Vec3::Ones());
   EXPECT_EQ(by_label.at(3).voxels, 2);
   EXPECT_EQ(by_label.at(3).inside, 2);
+}
+
+// The voxel centres the bcc lattice cannot hold depend on how much snapping
+// may take from their label at the lattice's nodes: a Mesher reads a volume
+// for the snap its create will use (MeshOptions::snap), not the default's.
+TEST(VoxelFaithful, bcc_losses_are_counted_for_the_snap_create_is_given) {
+  std::vector<int16_t> labels(size_t(kSize * kSize * kSize));
+  uint32_t random = 12345;
+  for (size_t v = 0; v < labels.size(); ++v) {
+    random = random * 1664525u + 1013904223u; // labels 1 and 2 in halves, 8% of voxels label 3
+    labels[v] = int16_t((random >> 24) < 20 ? 3 : v / (kSize * kSize) % kSize < 16 ? 1 : 2);
+  }
+  const std::string path = test::write_nrrd("snap_losses.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
+  auto centres_lost_at = [&](double snap) {
+    MeshOptions o;
+    o.snap = snap;
+    const Scene scene = Mesher(o).read(path, faithful());
+    EXPECT_EQ(scene.notes.size(), 1u);
+    return scene.notes.empty() ? 0 : std::stoi(scene.notes.back()); // "N voxel centres lie in ..."
+  };
+  const int unsnapped = centres_lost_at(0), snapped = centres_lost_at(0.2);
+  InputOptions bad = faithful();
+  bad.snap = 0.7;
+  EXPECT_THROW(load_input(path, bad), InvalidInput);
+  std::remove(path.c_str());
+  EXPECT_GT(unsnapped, 0);
+  EXPECT_GT(snapped, unsnapped);
 }
 
 // The tiny test image of mesher suites: label 1 is one voxel.

@@ -94,10 +94,6 @@ void refuse_huge_field(int64_t nodes, int top_k, double extra, const std::string
 /// A label the bcc lattice would lose more than this share of decides for cube6.
 constexpr double kBccLossAllowed = 0.01;
 
-/// Create's default snapping (CreateParams::snap, paper sect. 4.1), in grid
-/// spacings: what it may take from a phase's values at a lattice node.
-constexpr double kCreateSnap = 0.2;
-
 /// Scene::phase_around: for each phase of at most kSurroundedUpTo voxels,
 /// the phase its voxels touch most often across a face (ties: the lower id).
 /// Slices of voxels in parallel, neighbours looked at only for small phases.
@@ -169,6 +165,7 @@ void check_input_options(const InputOptions& o) {
   if (!(o.smoothing > 0 && o.smoothing <= 8)) throw InvalidInput(cat("--smoothing: must be in (0, 8] voxels, got ", o.smoothing));
   if (!(o.band >= 1 && o.band <= 64)) throw InvalidInput(cat("--band: must be in [1, 64] voxels, got ", o.band));
   if (o.top_k < 1 || o.top_k > 16) throw InvalidInput("--top-k: must be between 1 and 16");
+  if (!(o.snap >= 0 && o.snap <= 0.5)) throw InvalidInput(cat("--snap: must be in [0, 0.5] grid spacings, got ", o.snap));
   if (!(o.voxels_per_cell == 0 || (o.voxels_per_cell >= 1 && o.voxels_per_cell <= 64)))
     throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64] (or 0, the default grid), got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
@@ -249,7 +246,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   const double per_cell = o.voxel_faithful && o.voxels_per_cell == 0 ? 1 : o.voxels_per_cell;
   auto field = label_field(pv, params, path);
   const bool every_node = o.voxel_faithful && resolved_voxels_per_cell(per_cell, field->grid().spacing()) == 1 &&
-                          needs_every_grid_node(pv, *field, kCreateSnap * field->grid().h(), voxels, notes);
+                          needs_every_grid_node(pv, *field, o.snap * field->grid().h(), voxels, notes);
   std::vector<int32_t> around = phases_around_small_ones(pv, voxels);
   const GridSpec grid = volume_scene_grid(field->grid(), per_cell, path, notes);
   Scene scene{grid, field, true, std::move(voxels), std::move(around), std::move(notes)};

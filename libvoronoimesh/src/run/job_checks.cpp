@@ -47,6 +47,12 @@ void check_options(const MeshOptions& o) {
                                         o.size, "), got ", o.min_size));
 }
 
+InputOptions input_options_for(InputOptions input, const MeshOptions& options) {
+  input.top_k = options.top_k;
+  input.snap = options.snap;
+  return input;
+}
+
 std::optional<tbb::global_control> thread_limit(const MeshOptions& o) {
   if (o.threads < 0) throw InvalidOption("threads", cat("must be 0 (all cores) or more, got ", o.threads));
   std::optional<tbb::global_control> limit;
@@ -110,9 +116,7 @@ void check_job(const MeshJob& job) {
   detail::check_outputs(job.outputs);
   detail::check_outputs_apart(job.outputs, {job.input, job.mesh});
   detail::check_options(job.options);
-  InputOptions input = job.input_options;
-  input.top_k = job.options.top_k;
-  detail::check_input_options(input);
+  detail::check_input_options(detail::input_options_for(job.input_options, job.options));
   const Pipeline pipeline = detail::parse_pipeline(job.options);
   // A mesh improved without the input it was made from has no phase functions.
   if (!job.mesh.empty() && job.input.empty() && job.options.iterations > 0 && pipeline.needs_field())

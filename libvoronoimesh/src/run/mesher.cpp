@@ -28,8 +28,7 @@ NodeMesh Mesher::mesh(const Scene& scene) {
 }
 
 Scene Mesher::read(const std::string& path, InputOptions input) {
-  input.top_k = state_->options.top_k;
-  return read_input(path, input, state_->observer);
+  return read_input(path, detail::input_options_for(std::move(input), state_->options), state_->observer);
 }
 
 const MeshOptions& Mesher::options() const { return state_->options; }

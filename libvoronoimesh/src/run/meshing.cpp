@@ -331,8 +331,7 @@ void write_outputs(const NodeMesh& mesh, const RunOutputs& outputs, RunObserver*
 NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
   check_job(job);
   const auto limit = detail::thread_limit(job.options);
-  InputOptions input = job.input_options;
-  input.top_k = job.options.top_k;
+  const InputOptions input = detail::input_options_for(job.input_options, job.options);
   NodeMesh mesh;
   std::shared_ptr<const PhaseField> field;
   MeshJob resolved = job;

@@ -23,6 +23,10 @@ void check_options(const MeshOptions& options);
 /// nor options.size given), off otherwise.
 bool stops_when_converged(const MeshOptions& options, const Scene& scene);
 
+/// `input` with what reading it shares with create: options.top_k, and
+/// options.snap, on which a voxel-faithful volume's choice of lattice depends.
+InputOptions input_options_for(InputOptions input, const MeshOptions& options);
+
 /// Limits TBB to options.threads while alive (none when 0).
 std::optional<tbb::global_control> thread_limit(const MeshOptions& options);
 

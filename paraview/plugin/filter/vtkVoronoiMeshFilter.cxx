@@ -107,6 +107,7 @@ int vtkVoronoiMeshFilter::RequestData(vtkInformation*, vtkInformationVector** in
   input.smoothing = Smoothing;
   if (SignedDistance) input.label_function = vm::LabelFunction::signed_distance;
   input.top_k = options.top_k;
+  input.snap = options.snap;
 
   FilterObserver observer(*this);
   try {

@@ -63,6 +63,10 @@ struct InputOptions {
   /// converted from the frame the file states (refused where it states none).
   World world = World::file;
   int top_k = 4;                 ///< phases kept per voxel, in [1, 16]
+  /// Create's snapping threshold in grid spacings (MeshOptions::snap, which
+  /// the run functions copy here): with voxel_faithful, a voxel centre bcc has
+  /// no node for is lost unless its label leads by more than it.
+  double snap = 0.2;
   // Volumes (labels and distance grids).
   /// The scene's grid: cells of about this many voxels (of the smallest
   /// spacing) along each axis, in [1, 64]; 1 = the voxel grid itself. A

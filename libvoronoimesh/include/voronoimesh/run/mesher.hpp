@@ -37,7 +37,7 @@ public:
   NodeMesh mesh(const Scene& scene);
 
   /// The scene of an input file, read as the Mesher's meshes need it (its
-  /// top_k), watched by its observer: read_input().
+  /// top_k and snap), watched by its observer: read_input().
   /// @param path    the input, anything load_input() reads
   /// @param input   how it is read
   /// @return the scene
