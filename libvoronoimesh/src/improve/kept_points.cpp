@@ -3,12 +3,15 @@
 
 #include "improve/kept_points.hpp"
 
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
+#include <span>
 
 namespace vm::detail {
 namespace {
@@ -41,40 +44,50 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
   std::vector<int32_t> target_of(before.num_nodes(), -1);
   for (size_t b = 0; b < into.size(); ++b)
     if (into[b] >= 0 && check[size_t(into[b])]) target_of[b] = target_of[size_t(into[b])] = into[b];
-  std::vector<std::pair<int32_t, int32_t>> old_at, new_at; // (target, triangle)
-  auto gather = [&](const NodeMesh& m, std::vector<std::pair<int32_t, int32_t>>& at) {
-    for (size_t t = 0; t < m.num_triangles(); ++t) {
-      int32_t target = -1;
-      for (int32_t v : m.triangles[t]) target = std::max(target, target_of[size_t(v)]);
-      if (target >= 0) at.emplace_back(target, int32_t(t)); // merges share no triangle: one target
+  // Each target's triangles of a mesh, in order: those of target a are
+  // triangles[first[a]] to triangles[first[a + 1] - 1]. Counted and placed in
+  // one pass each: sorting (target, triangle) pairs took 0.1 s of every check
+  // of the remesh pass's batches on the voxel-faithful liver (1M triangles).
+  struct AtTargets {
+    std::vector<int32_t> first, triangles;
+    std::span<const int32_t> of(int32_t a) const {
+      return std::span(triangles).subspan(size_t(first[size_t(a)]), size_t(first[size_t(a) + 1] - first[size_t(a)]));
     }
-    std::sort(at.begin(), at.end());
   };
-  gather(before, old_at);
-  gather(trial, new_at);
-  std::vector<int32_t> targets;
-  for (const auto& [target, t] : old_at)
-    if (targets.empty() || targets.back() != target) targets.push_back(target);
+  auto gather = [&](const NodeMesh& m) {
+    std::vector<int32_t> target(m.num_triangles());
+    parallel_for_each_index(target.size(), [&](size_t t) {
+      target[t] = -1;
+      for (int32_t v : m.triangles[t]) target[t] = std::max(target[t], target_of[size_t(v)]); // merges share no triangle
+    });
+    AtTargets at{std::vector<int32_t>(target_of.size() + 1, 0), {}};
+    for (int32_t a : target)
+      if (a >= 0) ++at.first[size_t(a) + 1];
+    std::partial_sum(at.first.begin(), at.first.end(), at.first.begin());
+    at.triangles.resize(size_t(at.first.back()));
+    std::vector<int32_t> next(at.first.begin(), at.first.end() - 1);
+    for (size_t t = 0; t < target.size(); ++t)
+      if (target[t] >= 0) at.triangles[size_t(next[size_t(target[t])]++)] = int32_t(t);
+    return at;
+  };
+  const AtTargets old_at = gather(before), new_at = gather(trial);
+  const std::vector<int32_t> targets =
+      indices_where(target_of.size(), [&](size_t a) { return old_at.first[a + 1] > old_at.first[a]; });
   std::vector<uint8_t> loses(targets.size(), 0);
-  auto range = [](const std::vector<std::pair<int32_t, int32_t>>& at, int32_t target) {
-    return std::span(std::lower_bound(at.begin(), at.end(), std::pair{target, -1}),
-                     std::lower_bound(at.begin(), at.end(), std::pair{target + 1, -1}));
-  };
   detail::parallel_for_each_index(targets.size(), [&](size_t i) {
-    const auto old_triangles = range(old_at, targets[i]), new_triangles = range(new_at, targets[i]);
+    const auto old_triangles = old_at.of(targets[i]), new_triangles = new_at.of(targets[i]);
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const auto& [target, t] : old_triangles)
+    for (int32_t t : old_triangles)
       for (int32_t v : before.triangles[size_t(t)]) lo = lo.cwiseMin(before.points[size_t(v)]), hi = hi.cwiseMax(before.points[size_t(v)]);
-    for (const auto& [target, t] : new_triangles)
+    for (int32_t t : new_triangles)
       for (int32_t v : trial.triangles[size_t(t)]) lo = lo.cwiseMin(trial.points[size_t(v)]), hi = hi.cwiseMax(trial.points[size_t(v)]);
     thread_local std::vector<Vec3> points;
     points.clear();
     field.kept_points(lo, hi, points);
     // Winding number of the phase's boundary there, normals out of the phase.
-    auto winding = [](const NodeMesh& m, std::span<const std::pair<int32_t, int32_t>> triangles, int32_t phase,
-                      const Vec3& p) {
+    auto winding = [](const NodeMesh& m, std::span<const int32_t> triangles, int32_t phase, const Vec3& p) {
       double sum = 0;
-      for (const auto& [target, t] : triangles) {
+      for (int32_t t : triangles) {
         const PhasePair& pair = m.pairs[size_t(t)];
         if (pair[0] != phase && pair[1] != phase) continue;
         const auto& tri = m.triangles[size_t(t)];
