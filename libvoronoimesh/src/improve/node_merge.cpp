@@ -22,6 +22,24 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
 }
 
+/// The flags of `target` that lie within `rings` rings of a node flagged in
+/// `seeds` (one flag per node of `m`).
+std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>& target, std::span<const uint8_t> seeds,
+                                  int rings) {
+  std::vector<uint8_t> near(seeds.begin(), seeds.end());
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<uint8_t> wider = near;
+    parallel_for_each_index(m.num_triangles(), [&](size_t t) {
+      const auto& tri = m.triangles[t];
+      if (near[size_t(tri[0])] | near[size_t(tri[1])] | near[size_t(tri[2])])
+        for (int32_t v : tri) std::atomic_ref<uint8_t>(wider[size_t(v)]).store(1, std::memory_order_relaxed);
+    });
+    near = std::move(wider);
+  }
+  parallel_for_each_index(near.size(), [&](size_t v) { near[v] &= target[v]; });
+  return near;
+}
+
 /// find_merge_failures()'s crossings through the index of `before`, the mesh
 /// the trial was merged from: the trial's triangles at targets (`involved`)
 /// against the triangles of `before` that no merge touched, and each other.
@@ -171,8 +189,14 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   };
   const std::vector<int32_t> at_target =
       indices_where(trial.num_triangles(), [&](size_t t) { return touches(target, t); });
+  // On a retry only the targets near what changed since the last trial are
+  // validated again; the others' cut-outs are as they were, and passed. A
+  // node's triangles change only next to a changed node, and a target's
+  // problems are those of its ring's triangles: the targets within two rings.
+  const std::vector<uint8_t> validated = changed.empty() ? target : targets_near(trial, target, changed, 2);
   for (int32_t t : at_target)
-    for (int32_t v : trial.triangles[size_t(t)]) core[size_t(v)] = 1;
+    if (touches(validated, size_t(t)))
+      for (int32_t v : trial.triangles[size_t(t)]) core[size_t(v)] = 1;
   // The cut-out has its own nodes: validating it with all the trial's (a
   // copy of every point, tables over every node) cost more than the merge on
   // 1.4M triangles.
@@ -180,7 +204,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   std::vector<int32_t> local_id(trial.num_nodes(), -1), trial_id;
   std::vector<uint8_t> local_at_target;
   for (int32_t t : indices_where(trial.num_triangles(), [&](size_t t) { return touches(core, t); })) {
-    local_at_target.push_back(touches(target, size_t(t)));
+    local_at_target.push_back(touches(validated, size_t(t)));
     const auto& tri = trial.triangles[size_t(t)];
     std::array<int32_t, 3> renamed;
     for (size_t k = 0; k < 3; ++k) {
@@ -258,7 +282,8 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
   if (made) made->assign(chosen.size(), 0);
   std::vector<int32_t> into(m.num_nodes(), -1), failed;
   std::vector<uint8_t> reshaped; // per triangle of the trial
-  // Once a trial has searched for crossings: the ends of the collapses dropped since.
+  // Once a trial has been checked: the ends of the collapses dropped since and
+  // the nodes that failed.
   std::vector<uint8_t> changed;
   NodeMesh trial;
   size_t done = 0;
@@ -292,7 +317,10 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
       break;
     }
     size_t dropped = 0;
-    for (int64_t id : failed_ids)
+    for (int64_t id : failed_ids) {
+      // Where the next trial differs, or may fail again: a failure near a
+      // collapse that no blame dropped is found again there (find_merge_failures()).
+      if (const int32_t n = local(id); n >= 0 && !changed.empty()) changed[size_t(n)] = 1;
       for (auto c = std::lower_bound(blame.begin(), blame.end(), std::pair{id, std::numeric_limits<int32_t>::min()});
            c != blame.end() && c->first == id; ++c)
         if (active[size_t(c->second)]) {
@@ -300,6 +328,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
           for (int64_t end_id : {chosen[size_t(c->second)].first, chosen[size_t(c->second)].second})
             if (const int32_t n = local(end_id); n >= 0 && !changed.empty()) changed[size_t(n)] = 1;
         }
+    }
     if (!blamed || dropped == 0) break; // a failure no collapse answers for: keep the mesh as it was
     left -= dropped;
   }

@@ -98,9 +98,11 @@ struct MergeChecks {
 /// triangle of another surface or fold, the target that takes a kept point
 /// out of its phase). Returns false if it fails somewhere no node names (then
 /// nothing in the batch can be trusted). `changed`: empty, or when `trial`
-/// retries a batch whose last trial's crossings were all reported, one flag per
-/// node set where that trial differed (the ends of the collapses dropped since):
-/// then only crossings with a triangle at a flagged node are searched for.
+/// retries a batch whose last trial's failures were all reported, one flag per
+/// node set where that trial differed or failed (the ends of the collapses
+/// dropped since, the nodes reported): then only crossings with a triangle at a
+/// flagged node are searched for, and only targets within two rings of one
+/// validated again.
 /// `before`: null, or the mesh `trial` was merged from (needed by the index and
 /// the kept points). `reshaped`: empty, or merge_nodes()'s flags for `trial`
 /// (without an index): then only pairs with a reshaped triangle are searched,
