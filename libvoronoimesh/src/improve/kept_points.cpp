@@ -7,6 +7,7 @@
 #include "core/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -54,20 +55,28 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
       return std::span(triangles).subspan(size_t(first[size_t(a)]), size_t(first[size_t(a) + 1] - first[size_t(a)]));
     }
   };
+  // A triangle belongs to every target at one of its corners: a collapse's b
+  // may neighbour another's a, so one triangle can lie at two targets, and
+  // each target's old and new triangles close up only with all of theirs.
   auto gather = [&](const NodeMesh& m) {
-    std::vector<int32_t> target(m.num_triangles());
-    parallel_for_each_index(target.size(), [&](size_t t) {
-      target[t] = -1;
-      for (int32_t v : m.triangles[t]) target[t] = std::max(target[t], target_of[size_t(v)]); // merges share no triangle
+    std::vector<std::array<int32_t, 3>> targets(m.num_triangles());
+    parallel_for_each_index(targets.size(), [&](size_t t) {
+      auto& at_t = targets[t];
+      for (size_t k = 0; k < 3; ++k) {
+        const int32_t a = target_of[size_t(m.triangles[t][k])];
+        at_t[k] = std::find(at_t.begin(), at_t.begin() + ptrdiff_t(k), a) == at_t.begin() + ptrdiff_t(k) ? a : -1;
+      }
     });
     AtTargets at{std::vector<int32_t>(target_of.size() + 1, 0), {}};
-    for (int32_t a : target)
-      if (a >= 0) ++at.first[size_t(a) + 1];
+    for (const auto& at_t : targets)
+      for (int32_t a : at_t)
+        if (a >= 0) ++at.first[size_t(a) + 1];
     std::partial_sum(at.first.begin(), at.first.end(), at.first.begin());
     at.triangles.resize(size_t(at.first.back()));
     std::vector<int32_t> next(at.first.begin(), at.first.end() - 1);
-    for (size_t t = 0; t < target.size(); ++t)
-      if (target[t] >= 0) at.triangles[size_t(next[size_t(target[t])]++)] = int32_t(t);
+    for (size_t t = 0; t < targets.size(); ++t)
+      for (int32_t a : targets[t])
+        if (a >= 0) at.triangles[size_t(next[size_t(a)]++)] = int32_t(t);
     return at;
   };
   const AtTargets old_at = gather(before), new_at = gather(trial);
