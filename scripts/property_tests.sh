@@ -7,7 +7,8 @@
 #   scripts/property_tests.sh [CASES=100000] [SEED=1]
 #   JOBS=2 BATCH=500 ITERATIONS=3 BUILD=build scripts/property_tests.sh 20000 7
 # FIRST=N starts at case N (to resume a run that was stopped; batches keep
-# their numbering, so the logs of both runs line up).
+# their numbering, so the logs of both runs line up). VOXEL_FAITHFUL=1 runs only
+# the label cases among them, read voxel-faithful (property_runner --voxel-faithful).
 set -euo pipefail
 cases=${1:-100000}
 seed=${2:-1}
@@ -15,6 +16,7 @@ jobs=${JOBS:-2}
 batch=${BATCH:-500}
 iterations=${ITERATIONS:-3}
 first_case=${FIRST:-0}
+variant=${VOXEL_FAITHFUL:+--voxel-faithful}
 root=$(cd "$(dirname "$0")/.." && pwd)
 runner=${BUILD:-$root/build}/tests/property_runner
 [[ -x $runner ]] || { echo "property_tests.sh: $runner not built (cmake --build build)" >&2; exit 2; }
@@ -24,12 +26,12 @@ trap 'rm -rf "$work"' EXIT
 batches=$(( (cases + batch - 1) / batch ))
 first_batch=$(( first_case / batch ))
 (( first_case % batch == 0 )) || { echo "property_tests.sh: FIRST=$first_case is not a multiple of BATCH=$batch" >&2; exit 2; }
-echo "property tests: $cases cases of seed $seed from case $first_case, $batches batches of $batch, $jobs at a time, $iterations iterations"
+echo "property tests: $cases cases of seed $seed from case $first_case, $batches batches of $batch, $jobs at a time, $iterations iterations${variant:+ (only label cases, read voxel-faithful)}"
 start=$(date +%s)
 # Each batch writes its own log; a batch's exit status only says whether a case failed.
 seq $first_batch $((batches - 1)) | xargs -P "$jobs" -I{} bash -c '
   first=$(( {} * '"$batch"' )); count=$(( '"$cases"' - first < '"$batch"' ? '"$cases"' - first : '"$batch"' ))
-  "'"$runner"'" --seed '"$seed"' --first $first --count $count --iterations '"$iterations"' > "'"$work"'/batch{}.log" 2>&1 || true
+  "'"$runner"'" --seed '"$seed"' --first $first --count $count --iterations '"$iterations"' '"$variant"' > "'"$work"'/batch{}.log" 2>&1 || true
   done_batches=$(ls "'"$work"'" | wc -l)
   echo "batch {} ($first..$((first + count - 1))): $(tail -n 1 "'"$work"'/batch{}.log")  [$done_batches/'"$batches"' batches, $(( $(date +%s) - '"$start"' ))s]"
 '
@@ -40,5 +42,6 @@ if [[ $failures -gt 0 ]]; then
   cat "$work"/batch*.log | grep -A1 '^FAIL' | grep -v '^--$' | sed "s|property_runner|$runner|"
 fi
 # A batch that crashed has no summary line: its cases count as not checked.
-echo "last run: $checked of $((cases - first_case)) cases checked (from case $first_case), $failures failures (seed $seed, $(( $(date +%s) - start )) s)"
-[[ $failures -eq 0 && $checked -eq $((cases - first_case)) ]]
+summaries=$(cat "$work"/batch*.log | grep -c '^checked' || true)
+echo "last run: $checked ${variant:+label }cases checked of $((cases - first_case)) (from case $first_case), $failures failures, $((batches - first_batch - summaries)) batches crashed (seed $seed, $(( $(date +%s) - start )) s)"
+[[ $failures -eq 0 && $summaries -eq $((batches - first_batch)) && ( -n $variant || $checked -eq $((cases - first_case)) ) ]]

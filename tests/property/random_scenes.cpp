@@ -246,7 +246,7 @@ Scene tied_values(Rng& rng, const Frame& f, int top_k) {
 
 /// A label per node from a few label values: noise, or grains (the label of
 /// the nearest of a few seeds), as label volumes or as signed distances.
-Scene labels(Rng& rng, const Frame& f, int top_k) {
+Scene labels(Rng& rng, const Frame& f, int top_k, bool voxel_faithful) {
   const GridSpec grid = f.grid();
   std::vector<int32_t> names;
   for (int l = 0, n = rng.integer(2, 5); l < n; ++l) names.push_back(int32_t(l * 3 + rng.integer(0, 2)));
@@ -284,6 +284,7 @@ Scene labels(Rng& rng, const Frame& f, int top_k) {
   if (o.label_function == LabelFunction::signed_distance) o.band = band;
   else o.smoothing = smoothing;
   o.top_k = top_k;
+  o.voxel_faithful = voxel_faithful;
   return scene_from_labels(grid, labels, o);
 }
 
@@ -309,11 +310,12 @@ std::string RandomCase::description() const {
   s << "seed " << seed << " case " << index << ": " << scene_kind_name(kind) << ", " << scene.field->num_phases()
     << " phases, domain " << point(g.domain.min) << " to " << point(g.domain.max) << ", grid " << g.cells[0] << "x"
     << g.cells[1] << "x" << g.cells[2] << ", " << (options.lattice == Lattice::bcc ? "bcc" : "cube6") << ", snap "
-    << options.snap << ", top_k " << options.top_k << (options.close ? ", close" : "");
+    << options.snap << ", top_k " << options.top_k << (options.close ? ", close" : "")
+    << (voxel_faithful ? ", voxel-faithful" : "");
   return s.str();
 }
 
-RandomCase random_case(uint64_t seed, uint64_t index) {
+RandomCase random_case(uint64_t seed, uint64_t index, bool voxel_faithful) {
   RandomCase c;
   c.seed = seed;
   c.index = index;
@@ -330,7 +332,10 @@ RandomCase random_case(uint64_t seed, uint64_t index) {
   case SceneKind::lattice_ties: lattice_ties(rng, f, text); break;
   case SceneKind::grid_values: c.scene = grid_values(rng, f, c.options.top_k); break;
   case SceneKind::tied_values: c.scene = tied_values(rng, f, c.options.top_k); break;
-  case SceneKind::labels: c.scene = labels(rng, f, c.options.top_k); break;
+  case SceneKind::labels:
+    c.scene = labels(rng, f, c.options.top_k, voxel_faithful);
+    c.voxel_faithful = voxel_faithful;
+    break;
   }
   if (text.count() > 0) {
     c.scene_json = text.json();

@@ -45,11 +45,15 @@ struct RandomCase {
   /// True when the phases are closed forms whose gradients give each surface's
   /// direction (not sampled data), so triangle orientation can be checked against them.
   bool closed_form = false;
+  /// A label case read voxel-faithful (random_case()).
+  bool voxel_faithful = false;
   /// One line: kind, domain, grid, lattice, snap, top_k, close, phases.
   std::string description() const;
 };
 
-/// Case `index` of `seed`.
-RandomCase random_case(uint64_t seed, uint64_t index);
+/// Case `index` of `seed`. With `voxel_faithful`, a label case reads its
+/// labels voxel-faithful (InputOptions::voxel_faithful: kept points the passes
+/// must not carry out of their phase); the other kinds are as without.
+RandomCase random_case(uint64_t seed, uint64_t index, bool voxel_faithful = false);
 
 } // namespace vm::test

@@ -97,6 +97,27 @@ TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
 
 INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
 
+// The label cases again, read voxel-faithful: kept points at voxel centres,
+// which create's snapping, the remesh pass's merges and the guard must keep in
+// their phase, on every lattice and snap the options draw. The long tier:
+// VOXEL_FAITHFUL=1 scripts/property_tests.sh.
+TEST(PropertyQuickTier, label_cases_read_voxel_faithful_stay_valid) {
+  constexpr int kLabelCases = 24;
+  int failed = 0;
+  for (int i = 0; i < kLabelCases; ++i) {
+    const uint64_t index = uint64_t(i) * kSceneKinds + uint64_t(SceneKind::labels);
+    const RandomCase c = random_case(kSeed, index, true);
+    ASSERT_TRUE(c.voxel_faithful);
+    CheckOptions o;
+    o.compare_threads = i % kThreadsEvery == 0;
+    const CaseResult r = check_case(c, o);
+    if (!r.ok() && ++failed <= 3)
+      ADD_FAILURE() << c.description() << "\n  " << r.failures.front() << "\n  reproduce: property_runner --seed "
+                    << kSeed << " --case " << index << " --voxel-faithful --verbose";
+  }
+  EXPECT_EQ(failed, 0);
+}
+
 /// Cases the long tier found failing, as {seed, case}, each fixed since: they
 /// must keep passing. Seed 1, cases 5412 and 5570: a triangle 10^-6 of the
 /// mesh size turned by 93 degrees in the moving passes, clamping's planes
