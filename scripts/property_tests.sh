@@ -10,6 +10,10 @@
 # their numbering, so the logs of both runs line up). VOXEL_FAITHFUL=1 runs only
 # the label cases among them, read voxel-faithful (property_runner --voxel-faithful).
 set -euo pipefail
+# Read whole before it runs (the braces, closed by the last line, with exit in
+# them): bash reads a script as it goes, and editing this file during an
+# 18-minute run broke its summary line.
+{
 cases=${1:-100000}
 seed=${2:-1}
 jobs=${JOBS:-2}
@@ -45,3 +49,5 @@ fi
 summaries=$(cat "$work"/batch*.log | grep -c '^checked' || true)
 echo "last run: $checked ${variant:+label }cases checked of $((cases - first_case)) (from case $first_case), $failures failures, $((batches - first_batch - summaries)) batches crashed (seed $seed, $(( $(date +%s) - start )) s)"
 [[ $failures -eq 0 && $summaries -eq $((batches - first_batch)) && ( -n $variant || $checked -eq $((cases - first_case)) ) ]]
+exit
+}
