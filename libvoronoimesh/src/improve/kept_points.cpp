@@ -62,7 +62,7 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
     std::vector<std::array<int32_t, 3>> targets(m.num_triangles());
     parallel_for_each_index(targets.size(), [&](size_t t) {
       auto& at_t = targets[t];
-      for (size_t k = 0; k < 3; ++k) {
+      for (size_t k = 0; k < 3; ++k) { // the targets at its corners, each once, -1 elsewhere
         const int32_t a = target_of[size_t(m.triangles[t][k])];
         at_t[k] = std::find(at_t.begin(), at_t.begin() + ptrdiff_t(k), a) == at_t.begin() + ptrdiff_t(k) ? a : -1;
       }
