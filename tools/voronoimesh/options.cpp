@@ -38,7 +38,8 @@ void add_create_options(CLI::App* cmd, CreateOptions& o) {
   cmd->add_option("--snap", o.snap,
                   "Snapping threshold in units of the grid spacing h: two phases' values closer than this at a "
                   "lattice node are made equal (paper: 0.2; a pair whose difference grows slower than 0.2 per unit "
-                  "length snaps proportionally less, so no snap moves an interface more than a cell); 0 turns it off")
+                  "length snaps proportionally less, so no snap moves an interface more than a cell); 0 turns it off. "
+                  "With --voxel-faithful it also decides which voxel centres the bcc lattice can hold (--lattice auto)")
       ->capture_default_str();
   cmd->add_option("--lattice", o.lattice,
                   "Background tetrahedra: bcc (every second grid point), cube6 (every grid point) or auto (bcc, but "
