@@ -39,8 +39,12 @@ Args parse(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--verbose" || arg == "--voxel-faithful") {
-      (arg == "--verbose" ? a.verbose : a.voxel_faithful) = true;
+    if (arg == "--verbose") {
+      a.verbose = true;
+      continue;
+    }
+    if (arg == "--voxel-faithful") {
+      a.voxel_faithful = true;
       continue;
     }
     if (arg == "--remesh" && i + 1 < argc) {

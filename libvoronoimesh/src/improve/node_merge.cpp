@@ -22,6 +22,12 @@ Vec3 normal(const NodeMesh& m, const std::array<int32_t, 3>& t) {
   return (m.points[size_t(t[1])] - a).cross(m.points[size_t(t[2])] - a);
 }
 
+/// Whether a corner of triangle t of `m` is flagged (one flag per node).
+bool touches(const NodeMesh& m, std::span<const uint8_t> flags, size_t t) {
+  const auto& tri = m.triangles[t];
+  return (flags[size_t(tri[0])] | flags[size_t(tri[1])] | flags[size_t(tri[2])]) != 0;
+}
+
 /// The flags of `target` that lie within `rings` rings of a node flagged in
 /// `seeds` (one flag per node of `m`).
 std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>& target, std::span<const uint8_t> seeds,
@@ -30,9 +36,8 @@ std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>&
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<uint8_t> wider = near;
     parallel_for_each_index(m.num_triangles(), [&](size_t t) {
-      const auto& tri = m.triangles[t];
-      if (near[size_t(tri[0])] | near[size_t(tri[1])] | near[size_t(tri[2])])
-        for (int32_t v : tri) std::atomic_ref<uint8_t>(wider[size_t(v)]).store(1, std::memory_order_relaxed);
+      if (touches(m, near, t))
+        for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(wider[size_t(v)]).store(1, std::memory_order_relaxed);
     });
     near = std::move(wider);
   }
@@ -55,7 +60,7 @@ void report_trial_crossings(const NodeMesh& trial, std::span<const uint8_t> invo
   for (size_t b = 0; b < into.size(); ++b)
     if (into[b] >= 0) at_merge[b] = 1, at_merge[size_t(into[b])] = 1;
   for (size_t t = 0; t < before.num_triangles(); ++t)
-    for (int32_t v : before.triangles[t]) left_out[t] |= at_merge[size_t(v)];
+    left_out[t] = touches(before, at_merge, t);
   const CrossingIndex::TrialCrossings found = index.crossings_with(trial.points, before.triangles, extra, left_out);
   for (const auto& [e, s] : found.with_mesh) {
     nodes.insert(nodes.end(), extra[size_t(e)].begin(), extra[size_t(e)].end());
@@ -78,8 +83,8 @@ void close_folds_at_targets(const std::vector<int32_t>& into, NodeMesh& out, std
     if (a >= 0) target[size_t(a)] = 1;
   std::vector<std::pair<std::array<int32_t, 3>, int32_t>> at_targets; // sorted corners, triangle
   for (size_t t = 0; t < out.num_triangles(); ++t) {
+    if (!touches(out, target, t)) continue;
     auto corners = out.triangles[t];
-    if (!(target[size_t(corners[0])] | target[size_t(corners[1])] | target[size_t(corners[2])])) continue;
     std::sort(corners.begin(), corners.end());
     at_targets.push_back({corners, int32_t(t)});
   }
@@ -183,19 +188,15 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   std::vector<uint8_t> target(trial.num_nodes(), 0), core(trial.num_nodes(), 0);
   for (int32_t a : into)
     if (a >= 0 && (!peers || peers->answers_for(a))) target[size_t(a)] = 1; // another rank checks its own
-  auto touches = [&](const std::vector<uint8_t>& flags, size_t t) {
-    const auto& tri = trial.triangles[t];
-    return (flags[size_t(tri[0])] | flags[size_t(tri[1])] | flags[size_t(tri[2])]) != 0;
-  };
   const std::vector<int32_t> at_target =
-      indices_where(trial.num_triangles(), [&](size_t t) { return touches(target, t); });
+      indices_where(trial.num_triangles(), [&](size_t t) { return touches(trial, target, t); });
   // On a retry only the targets near what changed since the last trial are
   // validated again; the others' cut-outs are as they were, and passed. A
   // node's triangles change only next to a changed node, and a target's
   // problems are those of its ring's triangles: the targets within two rings.
   const std::vector<uint8_t> validated = changed.empty() ? target : targets_near(trial, target, changed, 2);
   for (int32_t t : at_target)
-    if (touches(validated, size_t(t)))
+    if (touches(trial, validated, size_t(t)))
       for (int32_t v : trial.triangles[size_t(t)]) core[size_t(v)] = 1;
   // The cut-out has its own nodes: validating it with all the trial's (a
   // copy of every point, tables over every node) cost more than the merge on
@@ -203,8 +204,8 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   NodeMesh local = trial.empty_like();
   std::vector<int32_t> local_id(trial.num_nodes(), -1), trial_id;
   std::vector<uint8_t> local_at_target;
-  for (int32_t t : indices_where(trial.num_triangles(), [&](size_t t) { return touches(core, t); })) {
-    local_at_target.push_back(touches(validated, size_t(t)));
+  for (int32_t t : indices_where(trial.num_triangles(), [&](size_t t) { return touches(trial, core, t); })) {
+    local_at_target.push_back(touches(trial, validated, size_t(t)));
     const auto& tri = trial.triangles[size_t(t)];
     std::array<int32_t, 3> renamed;
     for (size_t k = 0; k < 3; ++k) {
