@@ -227,6 +227,81 @@ TEST(CrossingIndex, carries_over_a_rebuild_with_new_triangles_and_nodes) {
   }
 }
 
+// The guard's commit moves many nodes, then puts back, round by round, the
+// nodes of what crosses: after the first round only those moved, and the
+// index, told so, mends and searches from their triangles alone; likewise for
+// the faces a flip changed.
+TEST(CrossingIndex, answers_after_local_changes_as_the_whole_mesh_check_does) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  CrossingIndex index;
+  for (int call = 0; call < 3; ++call) index.crossings(mesh.positions(), mesh.triangles(), {}, mesh.triangle_copies());
+  ASSERT_TRUE(index.indexed());
+  const std::vector<Vec3> before = mesh.positions();
+  std::vector<Vec3> points = before;
+  std::mt19937_64 rng(23);
+  shake(points, rng, mesh.num_nodes() / 3, 0.02 / 16);
+  shake(points, rng, 60, 0.8 / 16);
+  const auto& triangles = mesh.triangles();
+  auto at = [&](const std::vector<uint8_t>& nodes) {
+    std::vector<uint8_t> flags(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t)
+      for (int32_t v : triangles[t]) flags[t] |= nodes[size_t(v)];
+    return flags;
+  };
+  std::vector<uint8_t> changed(points.size());
+  for (size_t n = 0; n < points.size(); ++n) changed[n] = points[n] != before[n];
+  std::vector<uint8_t> involved = at(changed);
+  std::vector<BoxPair> found = index.crossings(points, triangles, involved, mesh.triangle_copies());
+  ASSERT_EQ(found, reference(points, triangles, involved));
+  ASSERT_FALSE(found.empty()); // the shake made crossings to put back
+  size_t rounds = 0, refiled = 0, found_later = 0;
+  while (!found.empty()) {
+    // One corner of each crossing pair goes back (half way in odd rounds, so
+    // that a node may take more than one round, as the guard's may not).
+    std::fill(changed.begin(), changed.end(), 0);
+    for (const auto& pair : found) {
+      const int32_t n = triangles[size_t(pair[rounds % 2])][rounds % 3];
+      points[size_t(n)] = rounds % 2 ? Vec3(0.5 * (points[size_t(n)] + before[size_t(n)])) : before[size_t(n)];
+      changed[size_t(n)] = 1;
+    }
+    involved = at(changed);
+    found = index.crossings_after_changes(points, triangles, involved, mesh.triangle_copies());
+    ASSERT_EQ(found, reference(points, triangles, involved)) << "round " << rounds;
+    EXPECT_TRUE(index.indexed());
+    EXPECT_FALSE(index.rebuilt());
+    EXPECT_TRUE(index.lists_unlike_search().empty()) << "round " << rounds;
+    refiled += index.refiled();
+    found_later += !found.empty();
+    ASSERT_LT(++rounds, 40u);
+  }
+  // The test has teeth: triangles left their filing boxes and were filed
+  // again, and later rounds still had crossings to find.
+  EXPECT_GT(refiled, 0u);
+  EXPECT_GT(found_later, 0u);
+  // After it, a whole check agrees that nothing crosses.
+  EXPECT_EQ(index.crossings(points, triangles, {}, mesh.triangle_copies()), reference(points, triangles, {}));
+
+  // Flips change the nodes of the faces they flip and of no other (as between
+  // the flip pass's repairs): told which, the index files those again.
+  std::vector<Vec3> delta(points.size());
+  for (size_t n = 0; n < points.size(); ++n) delta[n] = points[n] - mesh.positions()[n];
+  mesh.move_nodes(delta);
+  index.crossings(mesh.positions(), mesh.triangles(), {}, mesh.triangle_copies());
+  const std::vector<Triangle> unflipped = mesh.triangles();
+  FlipParams no_guard;
+  no_guard.guard_crossings = false;
+  no_guard.collapse_below = 0;
+  ASSERT_GT(flip_edges(mesh, no_guard).flips, 0u);
+  ASSERT_EQ(mesh.num_triangles(), unflipped.size());
+  std::vector<uint8_t> flipped(unflipped.size());
+  for (size_t t = 0; t < flipped.size(); ++t) flipped[t] = mesh.triangles()[t] != unflipped[t];
+  const auto after_flips = index.crossings_after_changes(mesh.positions(), mesh.triangles(), flipped, mesh.triangle_copies());
+  EXPECT_EQ(after_flips, reference(mesh.positions(), mesh.triangles(), flipped));
+  EXPECT_GT(index.refiled(), 0u);
+  EXPECT_FALSE(index.rebuilt());
+  EXPECT_TRUE(index.lists_unlike_search().empty());
+}
+
 TEST(CrossingIndex, answers_alike_for_any_thread_count) {
   InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
   std::vector<Vec3> points = mesh.positions();

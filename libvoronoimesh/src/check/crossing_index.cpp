@@ -417,14 +417,54 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     refile(stale, triangles, corner_fans), refiled_ = stale.size();
   }
   if (fans_stale_) fans_.build(triangles, corner_fans), fans_stale_ = false;
+  return search(points, triangles, involved, corner_fans, {});
+}
 
-  // Projection axes of the tested triangles, found once each when first needed.
-  std::vector<std::atomic<int8_t>> axis(n);
-  detail::parallel_for_each_index(n, [&](size_t t) { axis[t].store(-2, std::memory_order_relaxed); });
+std::vector<BoxPair> CrossingIndex::crossings_after_changes(std::span<const Vec3> points,
+                                                          std::span<const Triangle> triangles,
+                                                          std::span<const uint8_t> involved,
+                                                          std::span<const Triangle> corner_fans) {
+  const size_t n = triangles.size();
+  const std::vector<int32_t> changed = indices_where(n, [&](size_t t) { return involved[t] != 0; });
+  // Without an index, or where most triangles changed, there is nothing to save.
+  if (filed_.empty() || fans_stale_ || slot_of_.size() != n || boxes_.size() != n || 2 * changed.size() > n)
+    return crossings(points, triangles, involved, corner_fans);
+  if (changed.empty()) return {};
+  refiled_ = 0;
+  rebuilt_ = false;
+  // Only the changed triangles' boxes are new; the others' are the last call's.
+  detail::parallel_for_each_index(changed.size(), [&](size_t i) {
+    const auto t = size_t(changed[i]);
+    boxes_[t] = triangle_bounds(points, triangles[t]);
+  });
+  stale_.clear();
+  for (int32_t t : changed) {
+    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)];
+    const Filing& f = filed_[size_t(slot_of_[size_t(t)])];
+    if (!same(f.nodes, triangles[size_t(t)]) || !same(f.fans, fans) || !contains(f.box, boxes_[size_t(t)]))
+      stale_.push_back(t);
+  }
+  for (int32_t t : stale_)
+    if (!fits_grid(filing_for(boxes_[size_t(t)], triangles[size_t(t)], {}).box))
+      return crossings(points, triangles, involved, corner_fans);
+  if (!stale_.empty()) refile(stale_, triangles, corner_fans), refiled_ = stale_.size();
+  return search(points, triangles, involved, corner_fans, changed);
+}
+
+std::vector<BoxPair> CrossingIndex::search(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                           std::span<const uint8_t> involved, std::span<const Triangle> corner_fans,
+                                           std::span<const int32_t> only) const {
+  const size_t n = triangles.size();
+  // Projection axes of the tested triangles, found once each when first needed
+  // (for a search of a few triangles, found at each test instead: a table of
+  // every triangle's would cost more than the search).
+  std::vector<std::atomic<int8_t>> axis(only.empty() ? n : 0);
+  detail::parallel_for_each_index(axis.size(), [&](size_t t) { axis[t].store(-2, std::memory_order_relaxed); });
   auto axis_of = [&](int32_t t) {
+    const Triangle& tri = triangles[size_t(t)];
+    if (axis.empty()) return projection_axis(points[size_t(tri[0])], points[size_t(tri[1])], points[size_t(tri[2])]);
     int8_t a = axis[size_t(t)].load(std::memory_order_relaxed);
     if (a == -2) {
-      const Triangle& tri = triangles[size_t(t)];
       a = projection_axis(points[size_t(tri[0])], points[size_t(tri[1])], points[size_t(tri[2])]);
       axis[size_t(t)].store(a, std::memory_order_relaxed);
     }
@@ -446,8 +486,9 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
   // with an idle one from the idle one; where few are, every pair from its
   // involved ones (the lower slot if both are).
   auto is_involved = [&](int32_t t) { return involved.empty() || involved[size_t(t)]; };
-  size_t involved_count = 0;
-  for (size_t t = 0; t < n; ++t) involved_count += is_involved(int32_t(t));
+  size_t involved_count = only.size();
+  if (only.empty())
+    for (size_t t = 0; t < n; ++t) involved_count += is_involved(int32_t(t));
   const bool from_idle = 2 * involved_count > n;
   // A pair in a fan, from an involved triangle: once, from the lower one if
   // both are involved, at the first fan they share; none if a fan they share
@@ -472,9 +513,11 @@ std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std:
     }
   };
   tbb::enumerable_thread_specific<std::vector<BoxPair>> found_of_thread;
-  detail::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+  const size_t searched = only.empty() ? n : only.size();
+  detail::parallel_for(tbb::blocked_range<size_t>(0, searched, 64), [&](const tbb::blocked_range<size_t>& r) {
     auto& out = found_of_thread.local();
-    for (auto t = int32_t(r.begin()); t != int32_t(r.end()); ++t) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const int32_t t = only.empty() ? int32_t(i) : only[i];
       const int32_t slot = slot_of_[size_t(t)];
       const std::span<const int32_t> list = near_.at(size_t(slot));
       auto triangle = [&](int32_t s) { return triangle_of_[size_t(s)]; };

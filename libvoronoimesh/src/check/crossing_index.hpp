@@ -57,6 +57,18 @@ public:
   std::vector<BoxPair> crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                  std::span<const uint8_t> involved = {}, std::span<const Triangle> corner_fans = {});
 
+  /// crossings() where the caller knows what changed since the last call on
+  /// this mesh: only the triangles flagged in `involved` moved or have other
+  /// nodes (no renumbering, no other fan ids), as between the rounds of the
+  /// guard's commit, which put some nodes back, and of the flip pass's repairs.
+  /// The index is then brought up to date from those triangles alone and only
+  /// their pairs are searched: the call costs time in the triangles it
+  /// involves, not in the mesh. Without an index kept, or with most triangles
+  /// involved, it is crossings(). The answer is crossings()'s.
+  std::vector<BoxPair> crossings_after_changes(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                               std::span<const uint8_t> involved,
+                                               std::span<const Triangle> corner_fans = {});
+
   /// Carries the index over to a mesh rebuilt from this one (a collapse
   /// renumbers triangles and nodes; a remesh also makes new ones): `old_triangle[t]`
   /// and `old_node[n]` are the old ids of new triangle t and node n, increasing
@@ -146,6 +158,12 @@ private:
   int64_t find(uint64_t key) const; ///< the cell's list, -1 if it has none
   size_t find_or_add(uint64_t key);
   void grow_table(size_t cells); ///< room in keys_ for `cells` cells at a quarter load at most
+  /// The pairs crossings() answers, from an index up to date with the mesh:
+  /// searched from every triangle, or only from those of `only` (the involved
+  /// ones, all of them; then fewer than half of the triangles).
+  std::vector<BoxPair> search(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                              std::span<const uint8_t> involved, std::span<const Triangle> corner_fans,
+                              std::span<const int32_t> only) const;
   /// find_self_intersections() on the mesh as it is; drops the index.
   std::vector<BoxPair> one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                std::span<const uint8_t> involved);

@@ -195,11 +195,12 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
 /// a crossing pair, the last flip that made it and stays (`undone` flags those
 /// that do not). With a field, also that flip for each tested junction face that
 /// faces against its phase pair. A face no staying flip made is as old as the
-/// call, and so is a crossing of two such faces.
+/// call, and so is a crossing of two such faces. `repair`: the faces in `test`
+/// are the only ones changed since the guard's last check (in one process).
 std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const detail::FlipLog& log,
                                                 const std::vector<uint8_t>& undone, const std::vector<uint8_t>& test,
                                                 const FlipParams& params, CrossingGuard& guard,
-                                                FlipPeers* peers) {
+                                                FlipPeers* peers, bool repair) {
   std::vector<int32_t> last_flip(mesh.num_triangles(), -1);
   for (size_t i = 0; i < log.size(); ++i)
     if (!undone[i])
@@ -209,7 +210,7 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
     for (size_t f = 0; f < last_flip.size(); ++f)
       if (last_flip[f] >= 0 && !peers->answers_for(triangles[f])) last_flip[f] = -1;
   std::vector<std::array<int32_t, 2>> culprits;
-  for (const auto& pair : guard.crossings(mesh, test))
+  for (const auto& pair : repair && !peers ? guard.crossings_of_changed(mesh, test) : guard.crossings(mesh, test))
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log.edge_nodes(size_t(last_flip[size_t(f)])));
   if (params.field)
@@ -290,7 +291,8 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   for (int32_t f : log.faces()) test[size_t(f)] = 1;
   for (int repairs = 0;; ++repairs) {
     std::vector<std::array<int32_t, 2>> culprits =
-        log.empty() ? std::vector<std::array<int32_t, 2>>{} : culprits_of(mesh, log, undone, test, params, guard, peers);
+        log.empty() ? std::vector<std::array<int32_t, 2>>{}
+                    : culprits_of(mesh, log, undone, test, params, guard, peers, repairs > 0);
     if (peers ? !peers->agree_on_culprits(culprits) : culprits.empty()) break;
     if (repairs == kMaxFlipRepairs) { // as crossed as ever: this call flips nothing
       std::vector<uint8_t> rest(log.size());

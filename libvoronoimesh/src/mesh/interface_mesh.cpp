@@ -214,15 +214,18 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
     pos_[n] = positions[i];
     mirror_position(n);
   });
-  if (!quality_current_) return;
+  if (quality_current_) update_qualities(faces_at(nodes));
+}
+
+std::vector<int32_t> InterfaceMesh::faces_at(std::span<const int32_t> nodes) const {
   std::vector<int32_t> faces;
   for (int32_t n : nodes)
     for (int32_t c : copies(n))
       for (auto f : mesh_->vf_range(OMesh::VertexHandle(c))) faces.push_back(f.idx());
-  // A face at two placed nodes is listed twice: each is computed once, by one task.
+  // A face at two of the nodes is found twice.
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  update_qualities(faces);
+  return faces;
 }
 
 double InterfaceMesh::quality_of(size_t f) const {

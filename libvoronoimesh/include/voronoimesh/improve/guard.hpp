@@ -109,6 +109,16 @@ public:
   /// @return the crossing pairs of face ids
   std::vector<std::array<int32_t, 2>> crossings(const InterfaceMesh& mesh, std::span<const uint8_t> involved);
 
+  /// crossings() where the faces flagged in `involved` are the only ones that
+  /// moved or were flipped since the guard's last check of this mesh (the
+  /// rounds of a commit after the first, a flip pass's repairs): it then costs
+  /// time in those faces, not in the whole mesh. The same answer.
+  /// @param mesh     the mesh, as of its last InterfaceMesh::topology_changed()
+  /// @param involved one flag per face: the faces changed since the last check
+  /// @return the crossing pairs of face ids
+  std::vector<std::array<int32_t, 2>> crossings_of_changed(const InterfaceMesh& mesh,
+                                                           std::span<const uint8_t> involved);
+
   /// The guard's index, up to date with `mesh`, for checking a trial of edits
   /// to it (CrossingIndex::crossings_with(), as the junction-sliver collapses
   /// do); null while the guard keeps no index (then check the trial whole).

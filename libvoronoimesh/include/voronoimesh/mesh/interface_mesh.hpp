@@ -131,6 +131,10 @@ public:
   /// @param nodes     the nodes to place
   /// @param positions their new positions, one per entry of `nodes`
   void place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions);
+  /// The faces with a corner at one of `nodes`, each once, in ascending order.
+  /// @param nodes node ids, in [0, num_nodes())
+  /// @return OpenMesh face indices
+  std::vector<int32_t> faces_at(std::span<const int32_t> nodes) const;
   /// The OpenMesh mesh, for topology changes (flips). Call faces_changed() or
   /// topology_changed() afterwards.
   OMesh& omesh_for_topology() { return *mesh_; }
