@@ -18,16 +18,20 @@ split it into k angles summing to t, and the worst of them has quality q
 (4 sqrt(3) area / sum of squared edges) of at most that of the isosceles
 triangle with apex t / k: 2 sqrt(3) sin a / (4 - 2 cos a) for apex a. The
 best k gives the corner's bound (one triangle below 60 degrees, where the
-bound is about t in degrees / 30 for small t), and the tightest corner inside
-the domain bounds the mesh's min q from above: below about 10 degrees, q >=
-0.3 is out of reach without moving junctions off the exact ones (which a mesh
-from sampled phase functions does by O(h) anyway, so it can land above the
-bound).
+bound is about t in degrees / 30 for small t), and the tightest corner
+bounds the mesh's min q from above: below about 10 degrees, q >= 0.3 is out
+of reach without moving junctions off the exact ones (which a mesh from
+sampled phase functions does by O(h) anyway, so it can land above the bound).
+The box makes corners too, which a mesh of the box has nodes at: where a
+triple curve ends on a box face, each of its surfaces turns between the curve
+and the face (on 3 of bench/junction_scenes.sh's 12 seed scenes the tightest
+corner is such a one); where a surface meets a box edge, between the two faces.
 
 Quadruple points: of seeds, the circumcentres of four seeds with no seed
 nearer; of other phases, where Newton's method on the four phases' equalities
 ends, started from a lattice of points in the domain, with every other phase
-lower there. Prints, per scene, the smallest corner angle, where it is and
+lower there. Points on the box likewise, with one or two coordinates held on
+a face or edge. Prints, per scene, the smallest corner angle, where it is and
 the bound on min q. Brute force over every four phases: seconds for the tens
 of cells of bench/junction_scenes.sh, too slow for grain maps of hundreds.
 """
@@ -182,14 +186,138 @@ def corners_at(phases, quad, x):
         yield math.acos(max(-1.0, min(1.0, dot(direction[e], direction[f])))), sorted(set(e) & set(f))
 
 
-def tightest_corner(phases, lo, hi):
-    """(angle, the four phases, the face's two phases, the point) of the corner inside [lo, hi] with the
-    lowest bound (best_quality_at_corner())."""
+def unit(v):
+    """v / |v|, or None for a (nearly) zero vector."""
+    length = math.sqrt(dot(v, v))
+    return [c / length for c in v] if length > 1e-14 else None
+
+
+def on_top(phases, ids, x):
+    """Whether no other phase than `ids` is above their (common) value at x."""
+    top = phases[ids[0]](x)
+    return all(phases[k](x) <= top + 1e-12 * max(1.0, abs(top)) for k in range(len(phases)) if k not in ids)
+
+
+def solve_small(rows, rhs):
+    """The solution of one or two linear equations in as many unknowns, or None if they are (nearly) singular."""
+    if len(rows) == 1:
+        return [rhs[0] / rows[0][0]] if abs(rows[0][0]) >= 1e-14 else None
+    d = rows[0][0] * rows[1][1] - rows[0][1] * rows[1][0]
+    if abs(d) < 1e-14:
+        return None
+    return [(rhs[0] * rows[1][1] - rows[0][1] * rhs[1]) / d, (rows[0][0] * rhs[1] - rhs[0] * rows[1][0]) / d]
+
+
+def solve_on(phases, ids, x0, free):
+    """x0 moved along the axes `free` (one or two) until the phases `ids` (two or three) are equal there:
+    for seeds by solving the linear equations of equal squared distances, else by Newton's method; None
+    if it fails."""
+    x = list(x0)
+    a = phases[ids[0]]
+    if all(phases[q].kind == "seeds" for q in ids):
+        # Equally far from seeds c_a and c_q: 2 (c_q - c_a) . x = |c_q|^2 - |c_a|^2, linear in x.
+        rows, rhs = [], []
+        for q in ids[1:]:
+            d = [2 * (phases[q].centre[i] - a.centre[i]) for i in range(3)]
+            rows.append([d[i] for i in free])
+            rhs.append(dot(phases[q].centre, phases[q].centre) - dot(a.centre, a.centre) -
+                       sum(d[i] * x[i] for i in range(3) if i not in free))
+        solution = solve_small(rows, rhs)
+        if solution is None:
+            return None
+        for i, v in zip(free, solution):
+            x[i] = v
+        return x
+    for _ in range(NEWTON_STEPS):
+        rows = [[phases[q].gradient(x)[i] - a.gradient(x)[i] for i in free] for q in ids[1:]]
+        step = solve_small(rows, [phases[q](x) - a(x) for q in ids[1:]])
+        if step is None:
+            return None
+        for i, s in zip(free, step):
+            x[i] -= s
+        if sum(v * v for v in step) < NEWTON_TOLERANCE ** 2:
+            break
+    if max(abs(phases[q](x) - a(x)) for q in ids[1:]) > 1e-9:
+        return None
+    return x
+
+
+def box_points(phases, ids, lo, hi):
+    """(the box's fixed axes and their inward normals, the point) of each point of the box's boundary where
+    the phases `ids` meet and no other is above them: three phases (a triple curve's end) on a box face,
+    two (a surface's edge) on a box edge."""
+    fixed_count = 4 - len(ids)  # a face fixes one axis, an edge two
+    for fixed in itertools.combinations(range(3), fixed_count):
+        free = [i for i in range(3) if i not in fixed]
+        for sides in itertools.product((0, 1), repeat=fixed_count):
+            found = []
+            # Seeds meet at one point of a face or edge at most: one start finds it.
+            starts = 1 if all(phases[i].kind == "seeds" for i in ids) else NEWTON_STARTS
+            grid = [[lo[i] + (k + 0.5) * (hi[i] - lo[i]) / starts for k in range(starts)] for i in free]
+            for start in itertools.product(*grid):
+                x0 = [0.0] * 3
+                for i, side in zip(fixed, sides):
+                    x0[i] = (lo, hi)[side][i]
+                for i, v in zip(free, start):
+                    x0[i] = v
+                x = solve_on(phases, ids, x0, free)
+                if x is None or not all(lo[i] <= x[i] <= hi[i] for i in free) or not on_top(phases, ids, x):
+                    continue
+                if all(dot(sub(x, y), sub(x, y)) > 1e-18 for y in found):
+                    found.append(x)
+                    inward = [[(1.0 if side == 0 else -1.0) * (i == axis) for i in range(3)]
+                              for axis, side in zip(fixed, sides)]
+                    yield inward, x
+
+
+def box_corners_at(phases, ids, inward, x):
+    """(angle, the face's two phases) of each surface corner at a point x of the box's boundary where the
+    phases `ids` meet (box_points()): where a triple curve ends on a box face, each of its three surfaces
+    turns between the curve (into the box) and the face; where a surface meets a box edge, between the
+    two faces."""
+    g = {i: phases[i].gradient(x) for i in ids}
+    for i, j in itertools.combinations(ids, 2):
+        normal = sub(g[j], g[i])
+        if len(ids) == 3:
+            k = next(q for q in ids if q not in (i, j))
+            curve = unit(cross(sub(g[j], g[i]), sub(g[k], g[i])))
+            along_box = unit(cross(normal, inward[0]))
+            if curve is None or along_box is None:
+                continue
+            if dot(curve, inward[0]) < 0:
+                curve = [-v for v in curve]
+            if dot(sub(g[k], g[i]), along_box) > 0:  # the side where k is below i and j
+                along_box = [-v for v in along_box]
+            rays = (curve, along_box)
+        else:
+            first, second = unit(cross(normal, inward[0])), unit(cross(normal, inward[1]))
+            if first is None or second is None:
+                continue
+            if dot(first, inward[1]) < 0:
+                first = [-v for v in first]
+            if dot(second, inward[0]) < 0:
+                second = [-v for v in second]
+            rays = (first, second)
+        yield math.acos(max(-1.0, min(1.0, dot(*rays)))), [i, j]
+
+
+def tightest_corner(phases, lo, hi, at_box=False):
+    """(angle, the phases meeting at the corner, the face's two phases, the point) of the corner with the
+    lowest bound (best_quality_at_corner()): at the quadruple points inside [lo, hi] (four phases); with
+    `at_box`, also where a triple curve ends on the box (three) and where a surface meets a box edge (two),
+    which a mesh of the box has as corners too."""
     best, bound = (math.inf, None, None, None), math.inf
     for quad, x in quadruple_points(phases, lo, hi):
         for angle, face in corners_at(phases, quad, x):
             if best_quality_at_corner(angle) < bound:
                 best, bound = (angle, quad, face, x), best_quality_at_corner(angle)
+    if at_box:
+        for count in (3, 2):
+            for ids in itertools.combinations(range(len(phases)), count):
+                for inward, x in box_points(phases, ids, lo, hi):
+                    for angle, face in box_corners_at(phases, ids, inward, x):
+                        if best_quality_at_corner(angle) < bound:
+                            best, bound = (angle, ids, face, x), best_quality_at_corner(angle)
     return best
 
 
@@ -286,12 +414,14 @@ def main():
                 report_point(path, phases, ids, names, lo, hi)
             continue
         phases, lo, hi = read_scene(path)
-        angle, quad, face, vertex = tightest_corner(phases, lo, hi)
+        angle, quad, face, vertex = tightest_corner(phases, lo, hi, at_box=True)
         if quad is None:
-            print(f"{path}: no quadruple point inside the domain")
+            print(f"{path}: no corner: no quadruple point inside the domain, no junction at the box")
             continue
+        where = {4: "at the point of phases", 3: "where the curve of phases ends on the box,",
+                 2: "where it meets a box edge, phases"}[len(quad)]
         print(f"{path}: tightest corner {math.degrees(angle):.1f} deg (face of phases {face[0]} and {face[1]} "
-              f"at the point of phases {', '.join(map(str, quad))}, "
+              f"{where} {', '.join(map(str, quad))}, "
               f"({', '.join(f'{v:.3f}' for v in vertex)})): min q <= {best_quality_at_corner(angle):.3f}")
 
 

@@ -59,6 +59,32 @@ angle, quad, face, vertex = bound.tightest_corner(balls, [0, 0, 0], [1, 1, 1])
 check(quad == (1, 2, 3, 4) and max(abs(v - c) for v in vertex) < 1e-9, f"balls: vertex {vertex} of {quad}")
 check(abs(math.degrees(angle) - math.degrees(math.acos(-1 / 3))) < 1e-6, f"balls: corner {math.degrees(angle)}")
 
+# Corners at the box (at_box): a surface that cuts the box turns where it meets a box edge, and
+# the surfaces of a triple curve turn where it ends on a box face. Two seeds mirrored in the plane
+# through the box's centre normal to (1, 1, 1) cut it in a regular hexagon (corners of 120
+# degrees); in the plane x + y + z = 0.3 they cut off a corner, an equilateral triangle (60).
+def mirrored(point, normal, d):
+    n = [v / math.sqrt(3) for v in normal]
+    return [bound.Phase({"kind": "seeds", "points": [[point[i] + s * d * n[i] for i in range(3)]]}) for s in (-1, 1)]
+
+
+angle, ids, face, vertex = bound.tightest_corner(mirrored([0.5] * 3, [1, 1, 1], 0.1), [0, 0, 0], [1, 1, 1])
+check(ids is None, "two seeds: a corner without at_box")
+angle, ids, face, vertex = bound.tightest_corner(mirrored([0.5] * 3, [1, 1, 1], 0.1), [0, 0, 0], [1, 1, 1], True)
+check(ids == (0, 1) and abs(math.degrees(angle) - 120) < 1e-9, f"hexagon: corner {math.degrees(angle)} of {ids}")
+angle, ids, face, vertex = bound.tightest_corner(mirrored([0.1] * 3, [1, 1, 1], 0.05), [0, 0, 0], [1, 1, 1], True)
+check(ids == (0, 1) and abs(math.degrees(angle) - 60) < 1e-9, f"cut-off corner: corner {math.degrees(angle)}")
+# Three seeds round a vertical axis: their triple curve meets the bottom and top faces at right
+# angles, and every surface meets the box's edges at right angles too.
+three = [bound.Phase({"kind": "seeds", "points": [[0.5 + 0.2 * math.cos(math.radians(t)),
+                                                   0.5 + 0.2 * math.sin(math.radians(t)), 0.5]]})
+         for t in (90, 210, 330)]
+angle, ids, face, vertex = bound.tightest_corner(three, [0, 0, 0], [1, 1, 1], True)
+check(abs(math.degrees(angle) - 90) < 1e-9, f"three seeds: corner {math.degrees(angle)} of {ids} at {vertex}")
+ends = [x for inward, x in bound.box_points(three, (0, 1, 2), [0, 0, 0], [1, 1, 1])]
+check(sorted(round(x[2], 12) for x in ends) == [0, 1] and all(abs(x[0] - 0.5) + abs(x[1] - 0.5) < 1e-12 for x in ends),
+      f"three seeds: the curve's ends {ends}")
+
 # --at on a labelled point cloud: the same four seeds, labelled 7, 3, 9 and 4, and a fifth
 # far away; the corners at their point are the tetrahedron's.
 with tempfile.TemporaryDirectory() as folder:
