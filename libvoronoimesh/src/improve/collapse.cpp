@@ -263,7 +263,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     for (size_t i : from) moved_to.push_back(slivers[i].to);
     if (std::none_of(moved_to.begin(), moved_to.end(), [](const Vec3& to) { return to.allFinite(); })) moved_to.clear();
     const detail::MergeChecks checks{.guard_crossings = params.guard_crossings, .refuse_surface_folds = true,
-                                     .peers = peers, .index = index};
+                                     .kept = params.kept, .peers = peers, .index = index};
     const size_t trial_done = merge_passing(trial, chosen, blame, checks, node_ids, trial_kept, moved_to, &made);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order

@@ -10,6 +10,7 @@
 #include "core/unset_vector.hpp"
 #include "improve/field_orientation.hpp"
 #include "improve/flip_log.hpp"
+#include "improve/kept_points.hpp"
 #include "improve/part_agreement.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -219,6 +220,13 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
           !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
                                      *params.field))
         culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
+  // A flip sweeps its surface across its quad's tetrahedron: none may carry a
+  // kept point (a voxel-faithful volume's thin structures) out of its phase.
+  if (params.field && params.field->keeps_points())
+    for (size_t f = 0; f < last_flip.size(); ++f)
+      if (test[f] && last_flip[f] >= 0 &&
+          detail::flip_loses_kept_point(mesh, int32_t(f), log.quad(size_t(last_flip[f])), *params.field))
+        culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
   return culprits;
 }
 
@@ -327,7 +335,8 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
 FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params) {
   FlipStats stats = flip_all_rounds(mesh, params, nullptr);
   stats.collapses = collapse_junction_slivers(
-      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard});
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard,
+                           params.field});
   return stats;
 }
 
@@ -338,7 +347,8 @@ FlipStats flip_edges(InterfaceMesh& mesh, const FlipParams& params, PartAgreemen
   FlipStats stats = flip_all_rounds(mesh, params, &parts.flip_peers());
   CollapseKept kept;
   stats.collapses = collapse_junction_slivers(
-      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard},
+      mesh, CollapseParams{params.collapse_below, CollapseParams{}.max_collapses, params.guard_crossings, params.guard,
+                           params.field},
       parts.collapse_peers(), parts.node_ids(), parts.triangle_ids(), kept);
   if (stats.collapses) parts.renumbered(kept);
   return stats;

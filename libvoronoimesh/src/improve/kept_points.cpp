@@ -27,6 +27,17 @@ bool within(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
   return (b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 && (a - c).cross(p - c).dot(n) >= 0;
 }
 
+/// True when p lies strictly inside tetrahedron (a, b, c, d): on each face's
+/// side of its opposite corner.
+bool inside_tetrahedron(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& p) {
+  const std::array<std::array<const Vec3*, 4>, 4> faces{{{&a, &b, &c, &d}, {&a, &b, &d, &c}, {&a, &c, &d, &b},
+                                                         {&b, &c, &d, &a}}};
+  return std::all_of(faces.begin(), faces.end(), [&](const auto& f) {
+    const double corner = side(*f[0], *f[1], *f[2], *f[3]), point = side(*f[0], *f[1], *f[2], p);
+    return (corner > 0 && point > 0) || (corner < 0 && point < 0);
+  });
+}
+
 /// The solid angle of triangle (a, b, c) seen from p, signed: positive where p
 /// lies behind it (against its normal), as from inside a closed surface whose
 /// normals point out (Van Oosterom and Strackee's formula).
@@ -118,6 +129,31 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
   for (size_t i = 0; i < targets.size(); ++i)
     if (loses[i]) out.push_back(targets[i]);
   return out;
+}
+
+bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::array<int32_t, 4>& quad,
+                           const PhaseField& field) {
+  const auto& pos = mesh.positions();
+  const auto& tri = mesh.triangles()[size_t(face)];
+  // The quad's corner off this face: the tetrahedron the flip swept lies on
+  // its side of the face.
+  const auto off = std::find_if(quad.begin(), quad.end(),
+                                [&](int32_t n) { return std::find(tri.begin(), tri.end(), n) == tri.end(); });
+  if (off == quad.end()) return false;
+  const Vec3 &a = pos[size_t(tri[0])], &b = pos[size_t(tri[1])], &c = pos[size_t(tri[2])], &d = pos[size_t(*off)];
+  const double off_side = side(a, b, c, d);
+  if (off_side == 0) return false;
+  // The face's normal points into the pair's second phase. A point inside the
+  // tetrahedron lies on the corner's side of the new surface, and lay on the
+  // other side of the old one (the two close up around it).
+  const PhasePair pair = mesh.pair(OMesh::FaceHandle(int(face)));
+  const int32_t was_in = off_side > 0 ? pair[0] : pair[1];
+  thread_local std::vector<Vec3> points;
+  points.clear();
+  field.kept_points(a.cwiseMin(b).cwiseMin(c).cwiseMin(d), a.cwiseMax(b).cwiseMax(c).cwiseMax(d), points);
+  return std::any_of(points.begin(), points.end(), [&](const Vec3& p) {
+    return inside_tetrahedron(a, b, c, d, p) && field.kept_phase(p) == was_in;
+  });
 }
 
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,

@@ -9,6 +9,7 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,6 +27,19 @@ namespace vm::detail {
 /// @return the triangle ids
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
                                                   std::span<const uint8_t> involved, const PhaseField& field);
+
+/// Whether the flip that made face `face` of `mesh` took a kept point out of
+/// its phase: a flip sweeps its surface across the tetrahedron of its quad, so
+/// a kept point inside it changes sides, and one of the phase it leaves was in
+/// its phase before and is not now. (Flips made one after another are judged
+/// one by one: a point one flip takes out and the next brings back counts.)
+/// @param mesh  the mesh after the flip (the face as the flip made it)
+/// @param face  a face the flip made
+/// @param quad  the flip's quad: its edge's two nodes, then the two opposite
+/// @param field the phase functions, which give the kept points
+/// @return true if the flip loses a kept point
+bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::array<int32_t, 4>& quad,
+                           const PhaseField& field);
 
 /// The merge targets whose merge took a kept point out of its phase: node
 /// merges (improve/node_merge.hpp) replace the triangles at a target and the

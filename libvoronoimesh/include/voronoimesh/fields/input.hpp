@@ -54,7 +54,7 @@ struct InputOptions {
   /// (Scene::needs_every_grid_node) where the bcc lattice would lose more than
   /// 1% of a label. Keeps labels a voxel or two thin that the default loses,
   /// at a cost: on CGAL's liver (cube6 for its 2-voxel label) about 5x the time
-  /// and min q 0.176 instead of 0.695, with folds along the rims of its
+  /// and min q 0.165 instead of 0.695, with folds along the rims of its
   /// one-voxel structures (docs/inputs.md), hence off by default.
   bool voxel_faithful = false;
   double band = 3.0;             ///< band half-width in voxels (signed distance), in [1, 64]

@@ -33,6 +33,9 @@ struct CollapseParams {
   /// A guard kept across the run (improve/guard.hpp), told how the rebuilt
   /// mesh renumbers triangles and nodes so that it need not start over; null: none.
   CrossingGuard* guard = nullptr;
+  /// Null, or phase functions whose kept points (PhaseField::kept_points(): a
+  /// voxel-faithful volume's thin structures) no collapse may take out of their phase.
+  const PhaseField* kept = nullptr;
 };
 
 /// Collapses, for each such triangle, its shortest edge (b -> a) whose node b has
