@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 
@@ -352,21 +353,29 @@ std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::s
 
 const std::vector<int32_t>& CrossingIndex::find_stale(std::span<const Vec3> points,
                                                       std::span<const Triangle> triangles,
-                                                      std::span<const Triangle> corner_fans, bool& anew) {
+                                                      std::span<const Triangle> corner_fans, bool& anew,
+                                                      std::span<const int32_t> only) {
   const size_t n = triangles.size();
-  resize_to_overwrite(boxes_, n);
-  detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
+  if (only.empty()) {
+    resize_to_overwrite(boxes_, n);
+    detail::parallel_for_each_index(n, [&](size_t t) { boxes_[t] = triangle_bounds(points, triangles[t]); });
+  } else {
+    detail::parallel_for_each_index(only.size(), [&](size_t i) {
+      const auto t = size_t(only[i]);
+      boxes_[t] = triangle_bounds(points, triangles[t]);
+    });
+  }
   stale_.clear();
   anew = filed_.empty() || slot_of_.size() != n || n == 0;
   if (anew) return stale_;
-  detail::indices_where(
-      n,
-      [&](size_t t) {
-        const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
-        const Filing& f = filed_[size_t(slot_of_[t])];
-        return !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
-      },
-      stale_);
+  auto is_stale = [&](size_t t) {
+    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
+    const Filing& f = filed_[size_t(slot_of_[t])];
+    return !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
+  };
+  if (only.empty()) detail::indices_where(n, is_stale, stale_);
+  else
+    std::copy_if(only.begin(), only.end(), std::back_inserter(stale_), [&](int32_t t) { return is_stale(size_t(t)); });
   for (size_t i = 0; i < stale_.size() && !anew; ++i)
     anew = !fits_grid(filing_for(boxes_[size_t(stale_[i])], triangles[size_t(stale_[i])], {}).box);
   return stale_;
@@ -433,21 +442,10 @@ std::vector<BoxPair> CrossingIndex::crossings_after_changes(std::span<const Vec3
   refiled_ = 0;
   rebuilt_ = false;
   // Only the changed triangles' boxes are new; the others' are the last call's.
-  detail::parallel_for_each_index(changed.size(), [&](size_t i) {
-    const auto t = size_t(changed[i]);
-    boxes_[t] = triangle_bounds(points, triangles[t]);
-  });
-  stale_.clear();
-  for (int32_t t : changed) {
-    const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)];
-    const Filing& f = filed_[size_t(slot_of_[size_t(t)])];
-    if (!same(f.nodes, triangles[size_t(t)]) || !same(f.fans, fans) || !contains(f.box, boxes_[size_t(t)]))
-      stale_.push_back(t);
-  }
-  for (int32_t t : stale_)
-    if (!fits_grid(filing_for(boxes_[size_t(t)], triangles[size_t(t)], {}).box))
-      return crossings(points, triangles, involved, corner_fans);
-  if (!stale_.empty()) refile(stale_, triangles, corner_fans), refiled_ = stale_.size();
+  bool anew = false;
+  const std::vector<int32_t>& stale = find_stale(points, triangles, corner_fans, anew, changed);
+  if (anew) return crossings(points, triangles, involved, corner_fans); // a box beyond the grid
+  if (!stale.empty()) refile(stale, triangles, corner_fans), refiled_ = stale.size();
   return search(points, triangles, involved, corner_fans, changed);
 }
 

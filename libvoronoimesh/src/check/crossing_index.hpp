@@ -180,8 +180,11 @@ private:
   /// Sets boxes_ for the mesh now and returns the triangles whose filing is
   /// stale (in stale_, valid until the next call); `anew` when the index cannot
   /// be mended (none kept, another triangle count, or a stale box beyond the grid).
+  /// With `only`, just those triangles can have changed since the last call
+  /// (crossings_after_changes()): only their boxes are set and judged.
   const std::vector<int32_t>& find_stale(std::span<const Vec3> points, std::span<const Triangle> triangles,
-                                         std::span<const Triangle> corner_fans, bool& anew);
+                                         std::span<const Triangle> corner_fans, bool& anew,
+                                         std::span<const int32_t> only = {});
 
   double cell_size_ = 0;                   ///< level 0; level l has cells 2^l times as large
   std::vector<double> inverse_cell_size_;  ///< by level

@@ -195,7 +195,8 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
 /// crossings of the faces flagged in `test` with any triangle: for each face of
 /// a crossing pair, the last flip that made it and stays (`undone` flags those
 /// that do not). With a field, also that flip for each tested junction face that
-/// faces against its phase pair. A face no staying flip made is as old as the
+/// faces against its phase pair, and for each tested face whose flip took a kept
+/// point out of its phase. A face no staying flip made is as old as the
 /// call, and so is a crossing of two such faces. `repair`: the faces in `test`
 /// are the only ones changed since the guard's last check (in one process).
 std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const detail::FlipLog& log,
@@ -214,19 +215,21 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
   for (const auto& pair : repair && !peers ? guard.crossings_of_changed(mesh, test) : guard.crossings(mesh, test))
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log.edge_nodes(size_t(last_flip[size_t(f)])));
-  if (params.field)
-    for (size_t f = 0; f < last_flip.size(); ++f)
-      if (test[f] && last_flip[f] >= 0 && detail::touches_junction(mesh, triangles[f]) &&
-          !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
-                                     *params.field))
-        culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
   // A flip sweeps its surface across its quad's tetrahedron: none may carry a
-  // kept point (a voxel-faithful volume's thin structures) out of its phase.
-  if (params.field && params.field->keeps_points())
-    for (size_t f = 0; f < last_flip.size(); ++f)
-      if (test[f] && last_flip[f] >= 0 &&
-          detail::flip_loses_kept_point(mesh, int32_t(f), log.quad(size_t(last_flip[f])), *params.field))
+  // kept point (a voxel-faithful volume's thin structures) out of its phase
+  // (asked only of fields that keep points).
+  if (params.field) {
+    const bool keeps_points = params.field->keeps_points();
+    for (size_t f = 0; f < last_flip.size(); ++f) {
+      if (!test[f] || last_flip[f] < 0) continue;
+      const bool against = detail::touches_junction(mesh, triangles[f]) &&
+                           !detail::agrees_with_field(mesh.positions(), triangles[f],
+                                                      mesh.pair(OMesh::FaceHandle(int(f))), *params.field);
+      if (against ||
+          (keeps_points && detail::flip_loses_kept_point(mesh, int32_t(f), log.quad(size_t(last_flip[f])), *params.field)))
         culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
+    }
+  }
   return culprits;
 }
 

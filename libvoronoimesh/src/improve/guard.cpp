@@ -152,14 +152,15 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     // in the first round, as before the moves): one that turned then had its
     // nodes put back, so it is involved now. Only the involved ones are asked
     // of the field again (on 60 grains that halved a commit's second round).
-    std::vector<uint8_t> spoilt(involved_list.size()), turned(involved_list.size());
+    // Both make the triangle a culprit (spoilt, or turned against its pair).
+    std::vector<uint8_t> culprit(involved_list.size());
     detail::parallel_for_each_index(involved_list.size(), [&](size_t i) {
       const auto t = size_t(involved_list[i]);
       const auto& tri = triangles[t];
       const Vec3 &a = points[size_t(tri[0])], &b = points[size_t(tri[1])], &c = points[size_t(tri[2])];
-      spoilt[i] = normal(points, tri).dot(normal(before, tri)) <= 0 || has_zero_area(a, b, c);
       const int32_t w = field ? watch_slot[t] : -1;
-      turned[i] = w >= 0 && agreed[size_t(w)] && !agrees(t);
+      culprit[i] = normal(points, tri).dot(normal(before, tri)) <= 0 || has_zero_area(a, b, c) ||
+                   (w >= 0 && agreed[size_t(w)] && !agrees(t));
     });
     ++report.rounds;
     std::vector<int32_t> culprits, movers;
@@ -181,9 +182,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
           if (moved[size_t(n)] && moved_by(n) == farthest) movers.push_back(n);
     }
     for (size_t i = 0; i < involved_list.size(); ++i)
-      if (turned[i]) culprits.push_back(involved_list[i]);
-    for (size_t i = 0; i < involved_list.size(); ++i)
-      if (spoilt[i]) culprits.push_back(involved_list[i]);
+      if (culprit[i]) culprits.push_back(involved_list[i]);
     if (field && field->keeps_points())
       for (int32_t t : detail::triangles_losing_kept_points(mesh, before, involved, *field)) culprits.push_back(t);
     if (report.rounds == 1) std::fill(changed.begin(), changed.end(), 0);

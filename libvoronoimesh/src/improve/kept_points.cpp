@@ -27,6 +27,15 @@ bool within(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
   return (b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 && (a - c).cross(p - c).dot(n) >= 0;
 }
 
+/// The field's kept points in the box [lo, hi], in this thread's buffer (valid
+/// until the thread asks again): the checks ask once per triangle or target.
+const std::vector<Vec3>& kept_points_in(const PhaseField& field, const Vec3& lo, const Vec3& hi) {
+  thread_local std::vector<Vec3> points;
+  points.clear();
+  field.kept_points(lo, hi, points);
+  return points;
+}
+
 /// True when p lies strictly inside tetrahedron (a, b, c, d): on each face's
 /// side of its opposite corner.
 bool inside_tetrahedron(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& p) {
@@ -101,9 +110,7 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
       for (int32_t v : before.triangles[size_t(t)]) lo = lo.cwiseMin(before.points[size_t(v)]), hi = hi.cwiseMax(before.points[size_t(v)]);
     for (int32_t t : new_triangles)
       for (int32_t v : trial.triangles[size_t(t)]) lo = lo.cwiseMin(trial.points[size_t(v)]), hi = hi.cwiseMax(trial.points[size_t(v)]);
-    thread_local std::vector<Vec3> points;
-    points.clear();
-    field.kept_points(lo, hi, points);
+    const std::vector<Vec3>& points = kept_points_in(field, lo, hi);
     // Winding number of the phase's boundary there, normals out of the phase.
     auto winding = [](const NodeMesh& m, std::span<const int32_t> triangles, int32_t phase, const Vec3& p) {
       double sum = 0;
@@ -148,9 +155,8 @@ bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::a
   // other side of the old one (the two close up around it).
   const PhasePair pair = mesh.pair(OMesh::FaceHandle(int(face)));
   const int32_t was_in = off_side > 0 ? pair[0] : pair[1];
-  thread_local std::vector<Vec3> points;
-  points.clear();
-  field.kept_points(a.cwiseMin(b).cwiseMin(c).cwiseMin(d), a.cwiseMax(b).cwiseMax(c).cwiseMax(d), points);
+  const std::vector<Vec3>& points =
+      kept_points_in(field, a.cwiseMin(b).cwiseMin(c).cwiseMin(d), a.cwiseMax(b).cwiseMax(c).cwiseMax(d));
   return std::any_of(points.begin(), points.end(), [&](const Vec3& p) {
     return inside_tetrahedron(a, b, c, d, p) && field.kept_phase(p) == was_in;
   });
@@ -166,10 +172,9 @@ std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std
     const auto& tri = triangles[t];
     const Vec3 &a0 = before[size_t(tri[0])], &b0 = before[size_t(tri[1])], &c0 = before[size_t(tri[2])];
     const Vec3 &a1 = now[size_t(tri[0])], &b1 = now[size_t(tri[1])], &c1 = now[size_t(tri[2])];
-    thread_local std::vector<Vec3> points;
-    points.clear();
-    field.kept_points(a0.cwiseMin(b0).cwiseMin(c0).cwiseMin(a1).cwiseMin(b1).cwiseMin(c1),
-                      a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1), points);
+    const std::vector<Vec3>& points =
+        kept_points_in(field, a0.cwiseMin(b0).cwiseMin(c0).cwiseMin(a1).cwiseMin(b1).cwiseMin(c1),
+                       a0.cwiseMax(b0).cwiseMax(c0).cwiseMax(a1).cwiseMax(b1).cwiseMax(c1));
     const PhasePair pair = mesh.pair(OMesh::FaceHandle(int(t)));
     for (const Vec3& p : points) {
       // Geometry first: the phase is looked up only for a point the move took across.
