@@ -6,6 +6,7 @@
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/improve/flip.hpp"
 #include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/project.hpp"
@@ -13,6 +14,9 @@
 #include "fixtures.hpp"
 
 #include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
 
 namespace {
 
@@ -253,6 +257,82 @@ TEST(Guard, the_default_pipeline_never_crosses_where_the_unguarded_one_does) {
       EXPECT_GT(worst, 0u); // the scene is hard enough to test the guard
     }
   }
+}
+
+// The flip pass's first check may cost time in its flips alone only if the
+// guard looked at the mesh as the flips found it: every change of positions
+// or triangles gives the mesh a version the guard has not seen.
+TEST(Guard, knows_whether_it_saw_the_mesh_as_it_is) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  CrossingGuard guard;
+  EXPECT_FALSE(guard.checked_at(mesh.version())); // it saw no mesh yet
+  const std::vector<uint8_t> all(mesh.num_triangles(), 1);
+  guard.crossings(mesh, all);
+  const uint64_t seen = mesh.version();
+  EXPECT_TRUE(guard.checked_at(seen));
+  const InterfaceMesh copy = mesh; // the same mesh: the same version
+  EXPECT_EQ(copy.version(), seen);
+  EXPECT_NE(InterfaceMesh::from_node_mesh(mesh.to_node_mesh()).version(), seen); // built anew
+  auto changes_version = [&](const char* what, auto&& change) {
+    SCOPED_TRACE(what);
+    const uint64_t before = mesh.version();
+    change();
+    EXPECT_NE(mesh.version(), before);
+    EXPECT_FALSE(guard.checked_at(mesh.version()));
+  };
+  changes_version("no move at all", [&] { mesh.move_nodes(std::vector<Vec3>(mesh.num_nodes(), Vec3::Zero())); });
+  EXPECT_TRUE(guard.checked_at(seen)); // what it saw is still what it saw
+  changes_version("a node placed", [&] {
+    const int32_t n = 0;
+    const Vec3 p = mesh.positions()[0];
+    mesh.place_nodes(std::span(&n, 1), std::span(&p, 1));
+  });
+  changes_version("the mesh handed out for flips", [&] { mesh.omesh_for_topology(); });
+  changes_version("faces changed", [&] { mesh.faces_changed(std::vector<int32_t>{0}); });
+  changes_version("topology changed", [&] { mesh.topology_changed(); });
+  changes_version("an edit", [&] {
+    std::vector<int32_t> same_triangles(mesh.num_triangles()), same_nodes(mesh.num_nodes());
+    std::iota(same_triangles.begin(), same_triangles.end(), 0);
+    std::iota(same_nodes.begin(), same_nodes.end(), 0);
+    mesh.apply_edit(mesh.to_node_mesh(), same_triangles, same_nodes);
+  });
+  guard.crossings(mesh, all);
+  EXPECT_TRUE(guard.checked_at(mesh.version()));
+  std::vector<int32_t> same_triangles(mesh.num_triangles()), same_nodes(mesh.num_nodes());
+  std::iota(same_triangles.begin(), same_triangles.end(), 0);
+  std::iota(same_nodes.begin(), same_nodes.end(), 0);
+  guard.renumbered(mesh, same_triangles, same_nodes); // its index files the renumbered at its next check
+  EXPECT_FALSE(guard.checked_at(mesh.version()));
+}
+
+// A guard that checked the mesh before the flips checks only the flipped faces
+// first: the flip pass then keeps and undoes the same flips as with a guard
+// that checks the whole mesh, on a mesh rough enough for flips to cross.
+TEST(Guard, flips_checked_from_a_seen_mesh_are_those_a_whole_check_keeps) {
+  InterfaceMesh rough = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Vec3> delta(rough.num_nodes());
+  for (Vec3& d : delta) d = 0.45 / 16 * Vec3(u(rng), u(rng), u(rng));
+  rough.move_nodes(delta);
+  FlipParams params;
+  params.collapse_below = 0;
+  CrossingGuard seen;
+  const std::vector<uint8_t> all(rough.num_triangles(), 1);
+  for (int call = 0; call < 3; ++call) seen.crossings(rough, all); // until it keeps an index
+  ASSERT_NE(seen.index_for(rough), nullptr);
+  ASSERT_TRUE(seen.checked_at(rough.version()));
+  auto flipped = [&](CrossingGuard* guard, bool guarded) {
+    InterfaceMesh mesh = rough;
+    FlipParams p = params;
+    p.guard = guard;
+    p.guard_crossings = guarded;
+    flip_edges(mesh, p);
+    return mesh.to_node_mesh().triangles;
+  };
+  const auto from_seen = flipped(&seen, true), whole = flipped(nullptr, true), unguarded = flipped(nullptr, false);
+  EXPECT_EQ(from_seen, whole);
+  EXPECT_NE(whole, unguarded); // the guard had flips to undo
 }
 
 } // namespace

@@ -197,12 +197,12 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
 /// that do not). With a field, also that flip for each tested junction face that
 /// faces against its phase pair, and for each tested face whose flip took a kept
 /// point out of its phase. A face no staying flip made is as old as the
-/// call, and so is a crossing of two such faces. `repair`: the faces in `test`
+/// call, and so is a crossing of two such faces. `only_test_changed`: the faces in `test`
 /// are the only ones changed since the guard's last check (in one process).
 std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const detail::FlipLog& log,
                                                 const std::vector<uint8_t>& undone, const std::vector<uint8_t>& test,
                                                 const FlipParams& params, CrossingGuard& guard,
-                                                FlipPeers* peers, bool repair) {
+                                                FlipPeers* peers, bool only_test_changed) {
   std::vector<int32_t> last_flip(mesh.num_triangles(), -1);
   for (size_t i = 0; i < log.size(); ++i)
     if (!undone[i])
@@ -212,7 +212,8 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
     for (size_t f = 0; f < last_flip.size(); ++f)
       if (last_flip[f] >= 0 && !peers->answers_for(triangles[f])) last_flip[f] = -1;
   std::vector<std::array<int32_t, 2>> culprits;
-  for (const auto& pair : repair && !peers ? guard.crossings_of_changed(mesh, test) : guard.crossings(mesh, test))
+  for (const auto& pair :
+       only_test_changed && !peers ? guard.crossings_of_changed(mesh, test) : guard.crossings(mesh, test))
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log.edge_nodes(size_t(last_flip[size_t(f)])));
   // A flip sweeps its surface across its quad's tetrahedron: none may carry a
@@ -284,6 +285,7 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   std::iota(every.begin(), every.end(), 0);
   std::vector<uint8_t> banned(edge_count, 0);
   detail::FlipLog log;
+  const uint64_t unflipped = mesh.version();
   FlipStats stats = flip_rounds(mesh, params, std::move(every), banned, log, peers);
   if (!params.guard_crossings) return stats;
   // A flip moves no node but can still push the new diagonal through a
@@ -297,13 +299,18 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   // of the pass on grain maps.)
   CrossingGuard own_guard;
   CrossingGuard& guard = params.guard ? *params.guard : own_guard;
+  // Where the guard last checked the mesh as the flips found it (the commit of
+  // the moves before them), the flipped faces are all that changed since: even
+  // the first check costs time in them, not in the mesh.
+  const bool only_flips_since_check = guard.checked_at(unflipped);
   std::vector<uint8_t> undone(log.size(), 0);
   std::vector<uint8_t> test(mesh.num_triangles(), 0);
   for (int32_t f : log.faces()) test[size_t(f)] = 1;
   for (int repairs = 0;; ++repairs) {
     std::vector<std::array<int32_t, 2>> culprits =
         log.empty() ? std::vector<std::array<int32_t, 2>>{}
-                    : culprits_of(mesh, log, undone, test, params, guard, peers, repairs > 0);
+                    : culprits_of(mesh, log, undone, test, params, guard, peers,
+                                  repairs > 0 || only_flips_since_check);
     if (peers ? !peers->agree_on_culprits(culprits) : culprits.empty()) break;
     if (repairs == kMaxFlipRepairs) { // as crossed as ever: this call flips nothing
       std::vector<uint8_t> rest(log.size());

@@ -30,22 +30,30 @@ CrossingGuard& CrossingGuard::operator=(CrossingGuard&&) noexcept = default;
 std::vector<std::array<int32_t, 2>> CrossingGuard::crossings(const InterfaceMesh& mesh,
                                                              std::span<const uint8_t> involved) {
   if (!index_) index_ = std::make_unique<detail::CrossingIndex>();
-  return index_->crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+  auto found = index_->crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+  checked_version_ = mesh.version();
+  return found;
 }
 
 std::vector<std::array<int32_t, 2>> CrossingGuard::crossings_of_changed(const InterfaceMesh& mesh,
                                                                         std::span<const uint8_t> involved) {
   if (!index_) index_ = std::make_unique<detail::CrossingIndex>();
-  return index_->crossings_after_changes(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+  auto found =
+      index_->crossings_after_changes(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
+  checked_version_ = mesh.version();
+  return found;
 }
 
 const detail::CrossingIndex* CrossingGuard::index_for(const InterfaceMesh& mesh) {
-  return index_ && index_->refresh(mesh.positions(), mesh.triangles(), mesh.triangle_copies()) ? index_.get() : nullptr;
+  if (!index_ || !index_->refresh(mesh.positions(), mesh.triangles(), mesh.triangle_copies())) return nullptr;
+  checked_version_ = mesh.version();
+  return index_.get();
 }
 
 void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face,
                                std::span<const int32_t> old_node) {
   if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());
+  checked_version_ = 0; // the index files what the renumbering changed at its next check
   if (excepted_.empty()) return;
   std::unordered_map<int32_t, FloorException> kept;
   for (size_t n = 0; n < old_node.size(); ++n)

@@ -13,6 +13,7 @@
 #include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 
 namespace vm {
@@ -26,6 +27,11 @@ PhasePair InterfaceMesh::pair(OMesh::FaceHandle f) const {
   return {int32_t(p[0]), int32_t(p[1])};
 }
 
+uint64_t InterfaceMesh::next_version() {
+  static std::atomic<uint64_t> last{0}; // 0 is no version: a guard that checked nothing holds it
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
 InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
   InterfaceMesh im;
   im.build(m);
@@ -33,6 +39,7 @@ InterfaceMesh InterfaceMesh::from_node_mesh(const NodeMesh& m) {
 }
 
 void InterfaceMesh::build(const NodeMesh& m) {
+  version_ = next_version();
   detail::check_node_mesh(m);
   const auto& tris = m.triangles;
   const size_t num_nodes = m.points.size();
@@ -153,6 +160,7 @@ void InterfaceMesh::build_adjacency() {
 }
 
 void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
+  version_ = next_version();
   std::vector<int32_t> faces(changed.begin(), changed.end());
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
@@ -201,6 +209,7 @@ void InterfaceMesh::mirror_position(size_t n) {
 }
 
 void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
+  version_ = next_version();
   detail::parallel_for_each_index(pos_.size(), [&](size_t n) {
     pos_[n] += delta[n];
     mirror_position(n);
@@ -209,6 +218,7 @@ void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {
 }
 
 void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const Vec3> positions) {
+  version_ = next_version();
   detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
     const auto n = size_t(nodes[i]);
     pos_[n] = positions[i];

@@ -45,7 +45,9 @@ using AgreeOnUndone = std::function<bool(std::vector<int32_t>& undone)>;
 /// a pipeline makes each check cost about a scan of the mesh's boxes plus the
 /// exact tests of what moved, where a fresh one sorts the whole mesh first. It
 /// learns the mesh from each call anew (any moves, flips or renumbering in
-/// between are seen), so it needs no notice of changes.
+/// between are seen), so it needs no notice of changes; it remembers the
+/// version of the mesh it last looked at (checked_at()), so that a caller that
+/// knows what it changed since may ask about that alone.
 class CrossingGuard {
 public:
   CrossingGuard();  ///< a guard that has seen no mesh yet
@@ -119,6 +121,12 @@ public:
   std::vector<std::array<int32_t, 2>> crossings_of_changed(const InterfaceMesh& mesh,
                                                            std::span<const uint8_t> involved);
 
+  /// Whether the guard's last look at a mesh (a check, index_for()) saw it at
+  /// `version` (InterfaceMesh::version()): then, if only some faces changed
+  /// since, crossings_of_changed() told of those answers for the whole mesh
+  /// (the flip pass's first check after its flips).
+  /// @param version a mesh's version() before the changes
+  bool checked_at(uint64_t version) const { return version != 0 && version == checked_version_; }
   /// The guard's index, up to date with `mesh`, for checking a trial of edits
   /// to it (CrossingIndex::crossings_with(), as the junction-sliver collapses
   /// do); null while the guard keeps no index (then check the trial whole).
@@ -154,6 +162,7 @@ private:
     Vec3 from, to;
   };
   std::unique_ptr<detail::CrossingIndex> index_;
+  uint64_t checked_version_ = 0; ///< the version() of the mesh at the guard's last look at one (checked_at())
   std::unordered_map<int32_t, FloorException> excepted_; ///< by node
 };
 

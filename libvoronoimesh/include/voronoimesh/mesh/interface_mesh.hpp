@@ -112,6 +112,12 @@ public:
 
   /// Node positions (authoritative; OpenMesh points mirror them).
   const std::vector<Vec3>& positions() const { return pos_; }
+  /// A number that every change of the positions or the triangles replaces
+  /// (moves, placed nodes, a build or an edit, the OpenMesh mesh handed out for
+  /// topology changes), never the same for two states in one process (a copy
+  /// keeps it): what a check found at version v still holds while version() is v
+  /// (CrossingGuard::checked_at()).
+  uint64_t version() const { return version_; }
   /// triangle_quality() of every face (by OpenMesh face index), as of the
   /// positions now and the faces as triangles() has them. The guard's commit,
   /// the flip pass and the pipeline's stopping rule each ask it every
@@ -137,9 +143,15 @@ public:
   std::vector<int32_t> faces_at(std::span<const int32_t> nodes) const;
   /// The OpenMesh mesh, for topology changes (flips). Call faces_changed() or
   /// topology_changed() afterwards.
-  OMesh& omesh_for_topology() { return *mesh_; }
+  OMesh& omesh_for_topology() {
+    version_ = next_version();
+    return *mesh_;
+  }
   /// Rebuilds the node adjacency and triangles() after topology changes.
-  void topology_changed() { build_adjacency(); }
+  void topology_changed() {
+    version_ = next_version();
+    build_adjacency();
+  }
   /// After local topology changes (flips) that changed only `faces`: updates
   /// triangles(), triangle_copies() and the adjacency of the nodes those faces
   /// had or have, where topology_changed() rebuilds them all.
@@ -190,6 +202,7 @@ public:
   bool has_phase(int32_t n, int32_t p) const;
 
 private:
+  static uint64_t next_version(); ///< a version() no mesh of this process had
   /// The nodes, the OpenMesh vertices (copy_off_ set) and faces of `m`: face t
   /// is triangle t, with the vertex of each corner (3t + k) and the glued
   /// partner of each halfedge as given; through add_face() one by one when
@@ -231,6 +244,7 @@ private:
   /// Linked by add_face() one by one (link()): apply_edit() then builds
   /// anew, as the flag of the edited mesh depends on all of it.
   bool face_by_face_ = false;
+  uint64_t version_ = next_version();
 };
 
 template <class F> void InterfaceMesh::for_each_triangle_at(int32_t n, F&& f) const {
