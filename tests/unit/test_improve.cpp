@@ -202,10 +202,13 @@ TEST(Improve, fifty_iterations_leave_the_worst_triangle_no_worse_than_twenty) {
 // worst triangle worse than it began; the floor pass, last in the remeshing
 // pipelines, takes such moves back then. Thirty cells at grid 64 lost the worst
 // triangle in two iterations without it (0.393 at the end), in none with it
-// (0.487). The remesh pass and collapses may still lower it (they change
-// triangles, not moves); here they do not.
+// (0.487). The remesh pass (iterations 1-3) may still lower it: it changes
+// triangles, not moves (here 0.407 -> 0.406 in iteration 3, since the default
+// takes the least-squares step at quadruple points), so only the iterations
+// after it count.
 TEST(Improve, the_floor_pass_keeps_the_worst_triangle_from_getting_worse) {
   const Scene scene = example("voronoi30.json", 64);
+  constexpr int kRemeshLast = 3; // the remesh pass's default `last`
   const std::string with_floor = kScenePipeline;
   ASSERT_TRUE(with_floor.ends_with(",floor"));
   const std::string without_floor = with_floor.substr(0, with_floor.size() - 6);
@@ -216,7 +219,7 @@ TEST(Improve, the_floor_pass_keeps_the_worst_triangle_from_getting_worse) {
     int drops = 0;
     double previous = 0;
     run.observer = [&](const IterationReport& r, const InterfaceMesh&) {
-      if (r.iteration > 0 && r.min_quality < previous) ++drops;
+      if (r.iteration > kRemeshLast && r.min_quality < previous) ++drops;
       previous = r.min_quality;
     };
     Pipeline::parse(spec, builtin_registry()).run(mesh, scene.field.get(), run);

@@ -140,11 +140,12 @@ TEST(Improve, a_chain_of_small_faces_between_curves_of_one_vertex_merges_into_it
 // place (their first nodes inside the point's fourth cell), and the crossing
 // guard held it there: projection would have had to pass it through them. From
 // the second iteration the remesh pass merges such curve nodes into their point,
-// which goes where its four cells meet (min q 0.198 without that).
+// which goes where its four cells meet (min q 0.198 without that; 0.263 since
+// the default takes the least-squares step at quadruple points, 0.464 with it).
 TEST(Improve, curve_nodes_past_their_quadruple_point_merge_into_it) {
-  EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds25_4"), 0.33);
+  EXPECT_GT(seeds_min_quality(kScenePipeline, "seeds25_4"), 0.4);
   const std::string pipeline = std::string(kScenePipeline).replace(0, 13, "remesh:size=1:merge_overshoots=0");
-  EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds25_4"), 0.25);
+  EXPECT_LT(seeds_min_quality(pipeline.c_str(), "seeds25_4"), 0.3);
 }
 
 } // namespace

@@ -23,9 +23,11 @@ struct ProjectParams {
   /// along a direction that every pair's gradient difference nearly misses (a
   /// quadruple point whose four phases' gradients nearly share a plane: on
   /// random Voronoi scenes some end 0.5 h off their point after 60 iterations);
-  /// the least-squares step takes any direction at Newton's rate. It trades the
-  /// worst triangle for accuracy: exact junctions show the exact corners' small
-  /// angles (docs/algorithm.md, "Why the seed scenes miss min q 0.3").
+  /// the least-squares step takes any direction at Newton's rate. Exact
+  /// junctions show the exact corners' small angles (docs/algorithm.md, "Why the
+  /// seed scenes miss min q 0.3"): from 3 (curve nodes too) it lowers the worst
+  /// triangle; from 4 it raises it on average, and the scene default
+  /// (kScenePipeline, improve/pipeline.hpp) takes it. 0 here: the paper's eq. 4.
   int least_squares_from = 0;
   /// A node's step is cut to this many times the mean length of its edges (0:
   /// uncut, the paper's). Eq. 4 is a Newton step, good where the node is within
