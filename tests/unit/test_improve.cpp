@@ -9,6 +9,7 @@
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/clamp.hpp"
 #include "voronoimesh/improve/flip.hpp"
+#include "voronoimesh/improve/offsets.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/project.hpp"
 #include "voronoimesh/mesh/junctions.hpp"
@@ -173,6 +174,36 @@ TEST(Improve, triple_curve_nodes_converge_onto_their_curves) {
                 worst60);
     EXPECT_LE(rms60, rms20);
     EXPECT_LT(worst60, worst);
+  }
+}
+
+// Quadruple points reach their closed-form place. Four random balls (the
+// fourth of bench/junction_scenes.sh's): eq. 4's mean of the pairs' steps left
+// the point of the outside, ball0, ball2 and ball3 0.59 h off after 20 iterations
+// and after 60, though the balls meet at 87-131 degrees there; the scenes'
+// default takes the least-squares step at points and puts every point there.
+TEST(Improve, quadruple_points_reach_their_place_under_the_scene_default) {
+  const Scene scene = parse_scene(R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 48, "phases": [
+    {"name": "outside", "kind": "constant", "value": 0},
+    {"name": "ball0", "kind": "sphere", "center": [0.6916, 0.4825, 0.5875], "radius": 0.2602},
+    {"name": "ball1", "kind": "sphere", "center": [0.386, 0.3312, 0.5411], "radius": 0.1683},
+    {"name": "ball2", "kind": "sphere", "center": [0.4529, 0.6559, 0.6489], "radius": 0.1678},
+    {"name": "ball3", "kind": "sphere", "center": [0.3329, 0.389, 0.6312], "radius": 0.1537}]})",
+                                  "four balls");
+  const double h = scene.grid.h();
+  const std::string least_squares = "project:least_squares_from=4", default_spec = kScenePipeline;
+  const std::string eq4 =
+      std::string(default_spec).replace(default_spec.find(least_squares), least_squares.size(), "project");
+  ASSERT_NE(default_spec.find(least_squares), std::string::npos);
+  for (const std::string& spec : {eq4, default_spec}) {
+    SCOPED_TRACE(spec);
+    InterfaceMesh mesh = initial_mesh(scene);
+    Pipeline::parse(spec, builtin_registry()).run(mesh, scene.field.get(), iterations(20));
+    const NodeOffsets points = interface_offsets(mesh.to_node_mesh(), *scene.field)[2];
+    std::printf("%s: %zu points, farthest %.3g h off\n", spec.c_str(), points.nodes, points.max / h);
+    ASSERT_EQ(points.nodes, 4u);
+    if (spec == eq4) EXPECT_GT(points.max / h, 0.3); // where eq. 4 stalls
+    else EXPECT_LT(points.max / h, 0.01);
   }
 }
 
