@@ -273,6 +273,12 @@ TEST(Guard, knows_whether_it_saw_the_mesh_as_it_is) {
   const InterfaceMesh copy = mesh; // the same mesh: the same version
   EXPECT_EQ(copy.version(), seen);
   EXPECT_NE(InterfaceMesh::from_node_mesh(mesh.to_node_mesh()).version(), seen); // built anew
+  // Each triangle and node of the mesh as itself: an edit or renumbering that keeps everything.
+  auto identity = [](size_t n) {
+    std::vector<int32_t> ids(n);
+    std::iota(ids.begin(), ids.end(), 0);
+    return ids;
+  };
   auto changes_version = [&](const char* what, auto&& change) {
     SCOPED_TRACE(what);
     const uint64_t before = mesh.version();
@@ -291,17 +297,12 @@ TEST(Guard, knows_whether_it_saw_the_mesh_as_it_is) {
   changes_version("faces changed", [&] { mesh.faces_changed(std::vector<int32_t>{0}); });
   changes_version("topology changed", [&] { mesh.topology_changed(); });
   changes_version("an edit", [&] {
-    std::vector<int32_t> same_triangles(mesh.num_triangles()), same_nodes(mesh.num_nodes());
-    std::iota(same_triangles.begin(), same_triangles.end(), 0);
-    std::iota(same_nodes.begin(), same_nodes.end(), 0);
-    mesh.apply_edit(mesh.to_node_mesh(), same_triangles, same_nodes);
+    mesh.apply_edit(mesh.to_node_mesh(), identity(mesh.num_triangles()), identity(mesh.num_nodes()));
   });
   guard.crossings(mesh, all);
   EXPECT_TRUE(guard.checked_at(mesh.version()));
-  std::vector<int32_t> same_triangles(mesh.num_triangles()), same_nodes(mesh.num_nodes());
-  std::iota(same_triangles.begin(), same_triangles.end(), 0);
-  std::iota(same_nodes.begin(), same_nodes.end(), 0);
-  guard.renumbered(mesh, same_triangles, same_nodes); // its index files the renumbered at its next check
+  // Its index files the renumbered at its next check.
+  guard.renumbered(mesh, identity(mesh.num_triangles()), identity(mesh.num_nodes()));
   EXPECT_FALSE(guard.checked_at(mesh.version()));
 }
 
