@@ -192,7 +192,7 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     for (size_t i = 0; i < involved_list.size(); ++i)
       if (culprit[i]) culprits.push_back(involved_list[i]);
     if (field && field->keeps_points())
-      for (int32_t t : detail::triangles_losing_kept_points(mesh, before, involved, *field)) culprits.push_back(t);
+      for (int32_t t : detail::triangles_losing_kept_points(mesh, before, involved_list, *field)) culprits.push_back(t);
     if (report.rounds == 1) std::fill(changed.begin(), changed.end(), 0);
     else
       for (int32_t n : undo) changed[size_t(n)] = 0;

@@ -163,12 +163,12 @@ bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::a
 }
 
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
-                                                  std::span<const uint8_t> involved, const PhaseField& field) {
+                                                  std::span<const int32_t> moved, const PhaseField& field) {
   const auto& triangles = mesh.triangles();
   const auto& now = mesh.positions();
-  std::vector<uint8_t> loses(triangles.size(), 0);
-  detail::parallel_for_each_index(triangles.size(), [&](size_t t) {
-    if (!involved[t]) return;
+  std::vector<uint8_t> loses(moved.size(), 0);
+  detail::parallel_for_each_index(moved.size(), [&](size_t i) {
+    const auto t = size_t(moved[i]);
     const auto& tri = triangles[t];
     const Vec3 &a0 = before[size_t(tri[0])], &b0 = before[size_t(tri[1])], &c0 = before[size_t(tri[2])];
     const Vec3 &a1 = now[size_t(tri[0])], &b1 = now[size_t(tri[1])], &c1 = now[size_t(tri[2])];
@@ -184,14 +184,14 @@ std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std
       // The normal points into the pair's second phase: a point of it that lay
       // above the triangle, or one of the first phase that lay below, went out.
       if ((phase == pair[1] && was > 0) || (phase == pair[0] && was < 0)) {
-        loses[t] = 1;
+        loses[i] = 1;
         break;
       }
     }
   });
   std::vector<int32_t> out;
-  for (size_t t = 0; t < loses.size(); ++t)
-    if (loses[t]) out.push_back(int32_t(t));
+  for (size_t i = 0; i < loses.size(); ++i)
+    if (loses[i]) out.push_back(moved[i]);
   return out;
 }
 

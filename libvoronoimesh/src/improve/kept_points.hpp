@@ -16,17 +16,19 @@
 
 namespace vm::detail {
 
-/// The triangles flagged in `involved` whose move, from `before` to the mesh's
+/// The triangles of `moved` whose move, from `before` to the mesh's
 /// positions now, left a kept point of one of its two phases on the other
 /// side: the point lay on its phase's side and within the triangle (seen along
-/// its normal) before or after, and now lies on the far side. Ascending.
+/// its normal) before or after, and now lies on the far side. In the order of
+/// `moved`; the call costs time in those triangles, not in the mesh (the guard's
+/// later rounds list only those at the nodes they put back).
 /// @param mesh     the mesh, its nodes moved
 /// @param before   every node's position before the move
-/// @param involved one flag per triangle: those that moved
+/// @param moved    the triangles that moved, ascending
 /// @param field    the phase functions, which give the kept points
 /// @return the triangle ids
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
-                                                  std::span<const uint8_t> involved, const PhaseField& field);
+                                                  std::span<const int32_t> moved, const PhaseField& field);
 
 /// Whether the flip that made face `face` of `mesh` took a kept point out of
 /// its phase: a flip sweeps its surface across the tetrahedron of its quad, so
