@@ -19,7 +19,9 @@ namespace vm::detail {
 /// The triangles of `moved` whose move, from `before` to the mesh's
 /// positions now, left a kept point of one of its two phases on the other
 /// side: the point lay on its phase's side and within the triangle (seen along
-/// its normal) before or after, and now lies on the far side. In the order of
+/// its normal) before or after, and now lies on the far side; or brought one
+/// nearer to it than 0.2% of its longest edge (a point on a surface is
+/// in either phase by round-off), where it was not as near before. In the order of
 /// `moved`; the call costs time in those triangles, not in the mesh (the guard's
 /// later rounds list only those at the nodes they put back).
 /// @param mesh     the mesh, its nodes moved
@@ -33,7 +35,9 @@ std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std
 /// Whether the flip that made face `face` of `mesh` took a kept point out of
 /// its phase: a flip sweeps its surface across the tetrahedron of its quad, so
 /// a kept point inside it changes sides, and one of the phase it leaves was in
-/// its phase before and is not now. (Flips made one after another are judged
+/// its phase before and is not now; so does one of the face's phases that the
+/// face comes nearer to than 0.2% of its longest edge, where neither old
+/// face of the quad was as near. (Flips made one after another are judged
 /// one by one: a point one flip takes out and the next brings back counts.)
 /// @param mesh  the mesh after the flip (the face as the flip made it)
 /// @param face  a face the flip made
@@ -49,7 +53,9 @@ bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::a
 /// the old and the new triangles of a phase's boundary there close up; a kept
 /// point lies between them, and was swept, where their winding numbers (sums
 /// of solid angles, normals out of the phase) differ by one. Only a point that
-/// was in its phase and no longer is counts (remesh collapses took the centres
+/// was in its phase and no longer is counts, or one that a new triangle of its
+/// phase comes nearer to than 0.2% of the triangle's longest edge, where
+/// no old one was as near (remesh collapses took the centres
 /// of a one-voxel sheet of flat voxels out of it: 14% of them).
 /// @param before the mesh the trial was merged from
 /// @param trial  the merged mesh (the same node ids; merged nodes left unused)
