@@ -57,8 +57,9 @@ struct RemeshParams {
   /// A collapse may leave no triangle below the smaller of this and the worst
   /// quality among the triangles it replaces.
   double min_quality = 0.3;
-  /// Rounds of collapses per call; each claims the rings around its collapses,
-  /// so one round reaches only part of the short edges.
+  /// Rounds of collapses per call, at most; each claims the rings around its
+  /// collapses, so one round reaches only part of the short edges. A round that
+  /// collapses fewer than 1% of the nodes is the call's last.
   int collapse_rounds = 4;
   /// No split round starts once the mesh has this many triangles (0: no limit):
   /// a target far below the mesh's edges (a closed box whose interfaces are a
