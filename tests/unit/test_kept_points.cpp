@@ -4,8 +4,6 @@
 
 #include "improve/kept_points.hpp"
 
-#include "fixtures.hpp"
-
 #include <gtest/gtest.h>
 
 namespace {
@@ -34,23 +32,28 @@ private:
   int32_t phase_;
 };
 
-// Seen as the flip that made face (a, b, c) of the tetrahedron's surface with
-// its fourth corner d off the face, the flip swept the solid tetrahedron: a
-// point inside it is now inside the surface (phase 1) and was outside (phase
-// 0) before. So the flip loses a kept point of phase 0 there, and none of
-// phase 1 (it brought that one in), nor any point outside the tetrahedron.
-TEST(KeptPoints, a_flip_loses_a_point_of_the_phase_its_tetrahedron_left) {
-  const InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::tetrahedron());
-  const Vec3 inside = Vec3(0.2, 0.25, 0.3), outside = Vec3(0.6, 0.6, 0.6);
-  for (int32_t face = 0; face < int32_t(mesh.num_triangles()); ++face) {
-    const auto& tri = mesh.triangles()[size_t(face)];
-    int32_t off = 0;
-    while (std::find(tri.begin(), tri.end(), off) != tri.end()) ++off;
-    const std::array<int32_t, 4> quad{tri[0], tri[1], tri[2], off};
-    EXPECT_TRUE(detail::flip_loses_kept_point(mesh, face, quad, OneKeptPoint(inside, 0))) << "face " << face;
-    EXPECT_FALSE(detail::flip_loses_kept_point(mesh, face, quad, OneKeptPoint(inside, 1))) << "face " << face;
-    EXPECT_FALSE(detail::flip_loses_kept_point(mesh, face, quad, OneKeptPoint(outside, 0))) << "face " << face;
-  }
+// Triangles (i, j, k) and (i, l, j) of a surface folded along i-j; the flip
+// makes (i, l, k) and (l, j, k), sweeping the surface across the solid
+// tetrahedron (i, j, k, l). The normal of (i, j, k) is +z, into phase 1, and l
+// lies above it: a point inside the tetrahedron is in phase 1 before the flip
+// and in phase 0 after. So the flip loses a kept point of phase 1 there, and
+// none of phase 0 (it brings that one in), nor any point outside it; and one
+// of either phase on a new triangle, where no old one passes (a point on a
+// surface is in either phase by round-off).
+TEST(KeptPoints, a_flip_loses_a_point_of_the_phase_its_tetrahedron_leaves) {
+  const std::vector<Vec3> positions{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0.5}};
+  const std::array<int32_t, 4> quad{0, 1, 2, 3};
+  const PhasePair pair{0, 1};
+  const Vec3 inside = 0.25 * (positions[0] + positions[1] + positions[2] + positions[3]), outside(5, 5, 5);
+  EXPECT_TRUE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(inside, 1)));
+  EXPECT_FALSE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(inside, 0)));
+  EXPECT_FALSE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(outside, 1)));
+  const Vec3 on_new_triangle = (positions[0] + positions[3] + positions[2]) / 3;
+  EXPECT_TRUE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(on_new_triangle, 0)));
+  EXPECT_TRUE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(on_new_triangle, 1)));
+  // On an old triangle too: it was as near before.
+  const Vec3 on_old_triangle = (positions[0] + positions[1] + positions[2]) / 3;
+  EXPECT_FALSE(detail::flip_loses_kept_point(positions, quad, pair, OneKeptPoint(on_old_triangle, 0)));
 }
 
 } // namespace

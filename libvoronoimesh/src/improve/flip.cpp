@@ -113,6 +113,11 @@ double flip_gain(const InterfaceMesh& mesh, const FaceQuality& quality, OMesh::E
   // of a closed domain's outside surface: flipping it would cut the box corner.
   const uint8_t common = mesh.box_faces()[size_t(nodes[0])] & mesh.box_faces()[size_t(nodes[1])];
   if (((common & 3) != 0) + ((common & 12) != 0) + ((common & 48) != 0) >= 2) return -1;
+  // Nor may it sweep a kept point (a voxel-faithful volume's thin structures)
+  // out of its phase (asked only of fields that keep points).
+  if (p.field && p.field->keeps_points() &&
+      detail::flip_loses_kept_point(pos, nodes, mesh.pair(om.face_handle(h0)), *p.field))
+    return -1;
   return ear ? 1 + (after - before) : after - before;
 }
 
@@ -195,8 +200,8 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
 /// crossings of the faces flagged in `test` with any triangle: for each face of
 /// a crossing pair, the last flip that made it and stays (`undone` flags those
 /// that do not). With a field, also that flip for each tested junction face that
-/// faces against its phase pair, and for each tested face whose flip took a kept
-/// point out of its phase. A face no staying flip made is as old as the
+/// faces against its phase pair (a flip that would take a kept point out of its
+/// phase is never made: flip_gain()). A face no staying flip made is as old as the
 /// call, and so is a crossing of two such faces. `only_test_changed`: the faces in `test`
 /// are the only ones changed since the guard's last check (in one process).
 std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const detail::FlipLog& log,
@@ -216,21 +221,14 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
        only_test_changed && !peers ? guard.crossings_of_changed(mesh, test) : guard.crossings(mesh, test))
     for (int32_t f : pair)
       if (last_flip[size_t(f)] >= 0) culprits.push_back(log.edge_nodes(size_t(last_flip[size_t(f)])));
-  // A flip sweeps its surface across its quad's tetrahedron: none may carry a
-  // kept point (a voxel-faithful volume's thin structures) out of its phase
-  // (asked only of fields that keep points).
-  if (params.field) {
-    const bool keeps_points = params.field->keeps_points();
+  if (params.field)
     for (size_t f = 0; f < last_flip.size(); ++f) {
       if (!test[f] || last_flip[f] < 0) continue;
-      const bool against = detail::touches_junction(mesh, triangles[f]) &&
-                           !detail::agrees_with_field(mesh.positions(), triangles[f],
-                                                      mesh.pair(OMesh::FaceHandle(int(f))), *params.field);
-      if (against ||
-          (keeps_points && detail::flip_loses_kept_point(mesh, int32_t(f), log.quad(size_t(last_flip[f])), *params.field)))
+      if (detail::touches_junction(mesh, triangles[f]) &&
+          !detail::agrees_with_field(mesh.positions(), triangles[f], mesh.pair(OMesh::FaceHandle(int(f))),
+                                     *params.field))
         culprits.push_back(log.edge_nodes(size_t(last_flip[f])));
     }
-  }
   return culprits;
 }
 

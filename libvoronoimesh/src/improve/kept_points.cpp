@@ -197,30 +197,22 @@ std::vector<int32_t> merges_losing_kept_points(const NodeMesh& before, const Nod
   return out;
 }
 
-bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::array<int32_t, 4>& quad,
-                           const PhaseField& field) {
-  const auto& pos = mesh.positions();
-  const auto& tri = mesh.triangles()[size_t(face)];
-  // The quad's corner off this face: the tetrahedron the flip swept lies on
-  // its side of the face.
-  const auto off = std::find_if(quad.begin(), quad.end(),
-                                [&](int32_t n) { return std::find(tri.begin(), tri.end(), n) == tri.end(); });
-  if (off == quad.end()) return false;
-  const Vec3 &a = pos[size_t(tri[0])], &b = pos[size_t(tri[1])], &c = pos[size_t(tri[2])], &d = pos[size_t(*off)];
-  const double off_side = side(a, b, c, d);
-  if (off_side == 0) return false;
-  // The face's normal points into the pair's second phase. A point inside the
-  // tetrahedron lies on the corner's side of the new surface, and lay on the
-  // other side of the old one (the two close up around it).
-  const PhasePair pair = mesh.pair(OMesh::FaceHandle(int(face)));
-  const int32_t was_in = off_side > 0 ? pair[0] : pair[1];
-  const auto [lo, hi] = with_margin(a.cwiseMin(b).cwiseMin(c).cwiseMin(d), a.cwiseMax(b).cwiseMax(c).cwiseMax(d));
+bool flip_loses_kept_point(std::span<const Vec3> positions, const std::array<int32_t, 4>& quad,
+                           const PhasePair& pair, const PhaseField& field) {
+  const Vec3 &i = positions[size_t(quad[0])], &j = positions[size_t(quad[1])], &k = positions[size_t(quad[2])],
+             &l = positions[size_t(quad[3])];
+  // The face (i, j, k)'s normal points into the pair's second phase. A point
+  // inside the tetrahedron lies on l's side of it, and the new triangles close
+  // the tetrahedron on the other side: the flip takes the point into the other phase.
+  const double l_side = side(i, j, k, l);
+  const int32_t was_in = l_side > 0 ? pair[1] : pair[0];
+  const auto [lo, hi] = with_margin(i.cwiseMin(j).cwiseMin(k).cwiseMin(l), i.cwiseMax(j).cwiseMax(k).cwiseMax(l));
   const std::vector<Vec3>& points = kept_points_in(field, lo, hi);
-  // The old faces: the quad's edge with each opposite corner.
-  const Vec3 &i = pos[size_t(quad[0])], &j = pos[size_t(quad[1])], &k = pos[size_t(quad[2])], &l = pos[size_t(quad[3])];
   return std::any_of(points.begin(), points.end(), [&](const Vec3& p) {
-    if (inside_tetrahedron(a, b, c, d, p) && field.kept_phase(p) == was_in) return true;
-    if (!near_triangle(a, b, c, p) || near_triangle(i, j, k, p) || near_triangle(i, j, l, p)) return false;
+    if (l_side != 0 && inside_tetrahedron(i, j, k, l, p) && field.kept_phase(p) == was_in) return true;
+    const bool comes_near = (near_triangle(i, l, k, p) || near_triangle(l, j, k, p)) && !near_triangle(i, j, k, p) &&
+                            !near_triangle(i, l, j, p);
+    if (!comes_near) return false;
     const int32_t phase = field.kept_phase(p);
     return phase == pair[0] || phase == pair[1];
   });

@@ -32,20 +32,21 @@ namespace vm::detail {
 std::vector<int32_t> triangles_losing_kept_points(const InterfaceMesh& mesh, std::span<const Vec3> before,
                                                   std::span<const int32_t> moved, const PhaseField& field);
 
-/// Whether the flip that made face `face` of `mesh` took a kept point out of
-/// its phase: a flip sweeps its surface across the tetrahedron of its quad, so
-/// a kept point inside it changes sides, and one of the phase it leaves was in
-/// its phase before and is not now; so does one of the face's phases that the
-/// face comes nearer to than 0.2% of its longest edge, where neither old
-/// face of the quad was as near. (Flips made one after another are judged
-/// one by one: a point one flip takes out and the next brings back counts.)
-/// @param mesh  the mesh after the flip (the face as the flip made it)
-/// @param face  a face the flip made
-/// @param quad  the flip's quad: its edge's two nodes, then the two opposite
-/// @param field the phase functions, which give the kept points
-/// @return true if the flip loses a kept point
-bool flip_loses_kept_point(const InterfaceMesh& mesh, int32_t face, const std::array<int32_t, 4>& quad,
-                           const PhaseField& field);
+/// Whether flipping the edge (i, j) of triangles (i, j, k) and (i, l, j) of a
+/// surface into (i, l, k) and (l, j, k) would take a kept point out of its
+/// phase: a flip sweeps its surface across the tetrahedron of its quad, so a
+/// kept point inside it changes sides, and one of the phase it leaves would be
+/// lost; so would one of the pair's phases that a new triangle comes nearer to
+/// than 0.2% of its longest edge, where neither old one was as near. Asked
+/// before each flip (flip_gain()): judged after the flips, a flip whose two
+/// faces later flips had changed again went unjudged.
+/// @param positions the nodes' positions
+/// @param quad      {i, j, k, l}: the edge's nodes, then the corner of (i, j, k) and of (i, l, j)
+/// @param pair      the surface's phase pair; the normal of (i, j, k), (j - i) x (k - i), points into pair[1]
+/// @param field     the phase functions, which give the kept points
+/// @return true if the flip would lose a kept point
+bool flip_loses_kept_point(std::span<const Vec3> positions, const std::array<int32_t, 4>& quad,
+                           const PhasePair& pair, const PhaseField& field);
 
 /// The merge targets whose merge took a kept point out of its phase: node
 /// merges (improve/node_merge.hpp) replace the triangles at a target and the
