@@ -14,6 +14,9 @@ namespace {
 /// reaches) the last must come.
 constexpr int kNewtonSteps = 30;
 constexpr double kConverged = 1e-6;
+/// Two points closer than this share of a target edge length are at one place
+/// (off_other_points()).
+constexpr double kOnePlace = 0.1;
 
 } // namespace
 
@@ -40,6 +43,30 @@ std::vector<PointMerge> keep_apart(const NodeRings& mesh, std::vector<PointMerge
   }
   std::sort(kept.begin(), kept.end(), [](const PointMerge& x, const PointMerge& y) { return x.keep < y.keep; });
   return kept;
+}
+
+std::vector<PointMerge> off_other_points(const NodeRings& mesh, std::vector<PointMerge> merges,
+                                         std::span<const double> target) {
+  if (merges.empty()) return merges;
+  std::vector<int32_t> points; // nodes of four phases or more
+  for (size_t n = 0; n < mesh.num_nodes(); ++n)
+    if (phase_count(mesh.phases()[n]) >= 4) points.push_back(int32_t(n));
+  auto shares_four = [&](const PhaseSet& a, const PhaseSet& b) {
+    int shared = 0;
+    for (int16_t p : a) shared += p >= 0 && std::find(b.begin(), b.end(), p) != b.end();
+    return shared >= 4;
+  };
+  auto onto_another = [&](const PointMerge& m) {
+    const PhaseSet& phases = mesh.phases()[size_t(m.keep)];
+    const double reach = kOnePlace * target[size_t(m.keep)];
+    return std::any_of(points.begin(), points.end(), [&](int32_t n) {
+      return n != m.keep && std::find(m.merged.begin(), m.merged.end(), n) == m.merged.end() &&
+             (mesh.positions()[size_t(n)] - m.to).squaredNorm() < reach * reach &&
+             shares_four(phases, mesh.phases()[size_t(n)]);
+    });
+  };
+  merges.erase(std::remove_if(merges.begin(), merges.end(), onto_another), merges.end());
+  return merges;
 }
 
 std::optional<Vec3> meeting_point(const PhaseField& field, const PhaseSet& phases, Vec3 x, double reach) {

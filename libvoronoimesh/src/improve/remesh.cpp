@@ -456,7 +456,8 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     auto merge = [&](const NodeRings& tables, std::vector<detail::PointMerge> merges) {
       detail::Blame blame;
       std::vector<Vec3> moved_to;
-      std::vector<std::pair<int64_t, int64_t>> chosen = choose_point_merges(tables, std::move(merges), blame, moved_to);
+      std::vector<std::pair<int64_t, int64_t>> chosen =
+          choose_point_merges(tables, detail::off_other_points(tables, std::move(merges), target), blame, moved_to);
       return !chosen.empty() && apply(chosen, blame, moved_to, true);
     };
     auto digons = [&](const NodeRings& tables) {
