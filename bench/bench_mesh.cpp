@@ -22,7 +22,6 @@
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
-#include "voronoimesh/run/huge_pages.hpp"
 
 #include <sys/resource.h>
 #include <tbb/global_control.h>
@@ -153,7 +152,6 @@ int run(const std::string& path, int grid, int threads, const Options& o) {
 } // namespace
 
 int main(int argc, char** argv) {
-  vm::restart_with_huge_pages(argv); // as voronoimesh does (run/huge_pages.hpp)
   if (argc == 2 && std::strcmp(argv[1], "--header") == 0) {
     std::string separator = "|";
     for (size_t i = 1; kHeader[i]; ++i)

@@ -15,7 +15,6 @@
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 #include "voronoimesh/run/meshing.hpp"
-#include "voronoimesh/run/huge_pages.hpp"
 
 #include <tbb/global_control.h>
 
@@ -73,7 +72,6 @@ int positive(const char* name, const char* text) {
 } // namespace
 
 int main(int argc, char** argv) {
-  vm::restart_with_huge_pages(argv); // as voronoimesh does (run/huge_pages.hpp)
   if (argc < 2 || argv[1][0] == '-') {
     std::fputs(kUsage, stderr);
     return 2;

@@ -60,22 +60,6 @@ if "$vm" smooth -q closed.ply --field "$examples/voronoi7.json" --iterations 3 -
 "$vm" create -q "$examples/voronoi30.json" --grid 40 --threads 2 -o t2.ply
 if cmp -s t1.ply t2.ply; then pass; else fail "--threads 1 and 2 give different files"; fi
 
-# Huge pages (run/huge_pages.hpp): where the kernel gives them on request, the
-# tool restarts itself once with glibc's tunable, which its environment then
-# shows; a user's own setting (0: off) is kept, and neither restarts again.
-if grep -q "\[madvise\]" /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null; then
-  env -u GLIBC_TUNABLES "$vm" mesh -q --grid 80 -o huge.ply & pid=$!
-  seen=""
-  for _ in $(seq 100); do
-    seen=$({ tr '\0' '\n' </proc/$pid/environ; } 2>/dev/null | grep '^GLIBC_TUNABLES=') && break
-    kill -0 $pid 2>/dev/null || break
-    sleep 0.05
-  done
-  wait $pid && [[ $seen == GLIBC_TUNABLES=glibc.malloc.hugetlb=1 ]] && pass || fail "huge pages: tunables '$seen'"
-fi
-if GLIBC_TUNABLES=glibc.malloc.hugetlb=0 timeout 20 "$vm" --version >/dev/null; then pass
-else fail "hugetlb=0: no restart, no loop"; fi
-
 # Bad input: one line naming the problem, a non-zero exit, no output file.
 echo '{"phases": [' >malformed.json
 echo '{"phases": [{"kind": "spere", "center": [0,0,0], "radius": 1}, {"kind": "constant", "value": 0}]}' >kind.json

@@ -6,7 +6,6 @@
 
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/core/version.hpp"
-#include "voronoimesh/run/huge_pages.hpp"
 
 #include <csignal>
 #include <cstdio>
@@ -61,7 +60,6 @@ int run_guarded(const std::function<int()>& body, bool report) {
 } // namespace vmcli
 
 int main(int argc, char** argv) {
-  vm::restart_with_huge_pages(argv); // first: it may start this process again
   CLI::App app{"voronoimesh: meshes of interconnected surfaces via the Voronoi interface.\n"
                "Every interface between N phases becomes one triangle mesh whose surfaces meet\n"
                "along triple curves and at quadruple points by sharing edges (after R. I. Saye)."};
