@@ -1,6 +1,7 @@
 #include "fixtures.hpp"
 
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -181,6 +182,34 @@ TEST(Validate, open_edges_are_allowed_only_on_the_domain_box) {
   EXPECT_TRUE(reports(r, "open boundary", "not on the domain box")) << r.summary();
   // Only the top edges: 2 on x = 1/2 and 1 on y = 1/2, each open for both its phases.
   EXPECT_EQ(r.problem_count, 6u) << r.summary();
+}
+
+/// `k` phases as wedges round the z axis of the box [-1, 1]^2 x [0, 1], meeting
+/// along it: a fin at each of k angles, from the axis out to the box, with
+/// phase j-1 below its angle and phase j above (the axis nodes hold all k).
+NodeMesh wedges_round_an_axis(int k) {
+  test::Builder b(Box{Vec3(-1, -1, 0), Vec3(1, 1, 1)});
+  for (int j = 0; j < k; ++j) {
+    const double angle = 2 * M_PI * j / k;
+    const Vec3 out(std::cos(angle), std::sin(angle), 0);
+    b.rect(Vec3::Zero(), Vec3(0, 0, 1), out / out.cwiseAbs().maxCoeff(), 2, (j + k - 1) % k, j);
+  }
+  return b.mesh;
+}
+
+// A mesh node holds at most kMaxPhasesAtNode phases (PhaseSet). A remesh merge
+// on 4,000 grains at grid 96 made a node of nine, which validation let through
+// and the patch-split mesh then refused (the run failed after 47 s); reported
+// here, the merge is refused instead.
+TEST(Validate, a_node_where_more_phases_meet_than_a_node_holds) {
+  const NodeMesh eight = wedges_round_an_axis(int(kMaxPhasesAtNode));
+  EXPECT_TRUE(validate(eight).ok()) << validate(eight).summary();
+  EXPECT_NO_THROW(InterfaceMesh::from_node_mesh(eight));
+  const NodeMesh nine = wedges_round_an_axis(int(kMaxPhasesAtNode) + 1);
+  const auto r = validate(nine);
+  EXPECT_TRUE(reports(r, "too many phases", "9 meet at node")) << r.summary();
+  EXPECT_EQ(r.problem_count, 3u) << r.summary(); // the axis's three nodes, and nothing else
+  EXPECT_THROW(InterfaceMesh::from_node_mesh(nine), TopologyError);
 }
 
 TEST(Validate, keeps_twenty_lines_and_counts_all) {

@@ -13,6 +13,9 @@ namespace vm {
 
 /// Most phases any input may have: meshes keep phase ids as int16 (PhaseSet, mesh/interface_mesh.hpp).
 inline constexpr size_t kMaxPhases = 32767;
+/// Most phases that may meet at one node of a mesh (PhaseSet holds them;
+/// validate() reports a node with more).
+inline constexpr size_t kMaxPhasesAtNode = 8;
 
 /// A point or vector in 3-space, double precision.
 using Vec3 = Eigen::Vector3d;

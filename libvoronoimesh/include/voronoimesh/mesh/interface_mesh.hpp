@@ -55,7 +55,7 @@ private:
 
 /// Sorted phase ids of a node, -1 padded. Nodes where more than 8 phases meet
 /// are refused (TopologyError).
-using PhaseSet = std::array<int16_t, 8>;
+using PhaseSet = std::array<int16_t, kMaxPhasesAtNode>;
 
 /// Number of phases in a PhaseSet.
 /// @param s the phase set
