@@ -2,6 +2,7 @@
 /// Newton steps onto surfaces, triple curves and quadruple points (eq. 4 and
 /// the least-squares step, improve/project.hpp).
 
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/project.hpp"
 #include "voronoimesh/improve/smooth.hpp"
@@ -34,6 +35,20 @@ TEST(Project, step_lands_on_a_plane_and_a_sphere_interface) {
   for (int i = 0; i < 30; ++i) z += projection_step(*s.field, z, triple);
   EXPECT_NEAR(z.z(), 0.5, 1e-9); // on the circle where the plane cuts the sphere
   EXPECT_NEAR((z - Vec3(0.5, 0.5, 0.5)).norm(), 0.25, 1e-9);
+}
+
+// A node holds at most kMaxPhasesAtNode phases; a caller asking for more gets
+// an error naming the limit, not a write past the step's scratch arrays.
+TEST(Project, more_phases_than_a_node_holds_are_refused) {
+  std::string phases;
+  for (size_t i = 0; i <= kMaxPhasesAtNode; ++i)
+    phases += (i ? "," : "") + std::string(R"({"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": )") +
+              std::to_string(0.1 + 0.01 * double(i)) + "}";
+  Scene s = parse_scene("{\"phases\": [" + phases + "]}", "inline");
+  std::array<int32_t, kMaxPhasesAtNode + 1> all;
+  for (size_t i = 0; i < all.size(); ++i) all[i] = int32_t(i);
+  EXPECT_THROW(projection_step(*s.field, Vec3(0.5, 0.5, 0.7), all), InvalidInput);
+  EXPECT_NO_THROW(projection_step(*s.field, Vec3(0.5, 0.5, 0.7), std::span(all).first(kMaxPhasesAtNode)));
 }
 
 // Four Voronoi seeds almost in one plane: their quadruple point is well defined

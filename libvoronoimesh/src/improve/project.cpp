@@ -1,8 +1,10 @@
 #include "voronoimesh/improve/project.hpp"
 
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
 #include "core/parallel.hpp"
+#include "core/text.hpp"
 #include "improve/field_checks.hpp"
 
 #include <Eigen/SVD>
@@ -45,8 +47,10 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
                      const ProjectParams& params) {
   const size_t n = phases.size();
   if (n < 2) return Vec3::Zero();
-  std::array<double, 8> phi;
-  std::array<Vec3, 8> grad;
+  if (n > kMaxPhasesAtNode)
+    throw InvalidInput(detail::cat("projection_step: ", n, " phases given, at most ", kMaxPhasesAtNode, " meet at a node"));
+  std::array<double, kMaxPhasesAtNode> phi;
+  std::array<Vec3, kMaxPhasesAtNode> grad;
   for (size_t i = 0; i < n; ++i) {
     phi[i] = field.value(phases[i], x);
     grad[i] = field.gradient(phases[i], x);
@@ -67,7 +71,7 @@ Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int
 Vec3 node_projection_step(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
                           const ProjectParams& params) {
   const PhaseSet& s = mesh.phases()[size_t(n)];
-  std::array<int32_t, 8> ids;
+  std::array<int32_t, kMaxPhasesAtNode> ids;
   const int count = phase_count(s);
   for (int i = 0; i < count; ++i) ids[size_t(i)] = s[size_t(i)];
   Vec3 p = projection_step(field, x, {ids.data(), size_t(count)}, params);

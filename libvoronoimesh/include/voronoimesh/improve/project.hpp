@@ -44,9 +44,10 @@ struct ProjectParams {
 /// pairs of `phases`, scaled by 1/(|chi| - 1). Zero for fewer than two phases.
 /// @param field  the original (unsnapped) phase functions
 /// @param x      the node's position
-/// @param phases chi, the phases meeting at the node (at most 8)
+/// @param phases chi, the phases meeting at the node (at most kMaxPhasesAtNode)
 /// @param params which pairs to skip (ProjectParams::min_gradient_gap)
 /// @return the step p(x, chi)
+/// @throws InvalidInput for more than kMaxPhasesAtNode phases
 Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
                      const ProjectParams& params = {});
 
