@@ -51,18 +51,17 @@ std::vector<PointMerge> off_other_points(const NodeRings& mesh, std::vector<Poin
   std::vector<int32_t> points; // nodes of four phases or more
   for (size_t n = 0; n < mesh.num_nodes(); ++n)
     if (phase_count(mesh.phases()[n]) >= 4) points.push_back(int32_t(n));
-  auto shares_four = [&](const PhaseSet& a, const PhaseSet& b) {
+  auto shares_four = [&](int32_t a, int32_t b) { // four of a's phases are b's
     int shared = 0;
-    for (int16_t p : a) shared += p >= 0 && std::find(b.begin(), b.end(), p) != b.end();
+    for (int16_t p : mesh.phases()[size_t(a)]) shared += p >= 0 && mesh.has_phase(b, p);
     return shared >= 4;
   };
   auto onto_another = [&](const PointMerge& m) {
-    const PhaseSet& phases = mesh.phases()[size_t(m.keep)];
     const double reach = kOnePlace * target[size_t(m.keep)];
     return std::any_of(points.begin(), points.end(), [&](int32_t n) {
       return n != m.keep && std::find(m.merged.begin(), m.merged.end(), n) == m.merged.end() &&
              (mesh.positions()[size_t(n)] - m.to).squaredNorm() < reach * reach &&
-             shares_four(phases, mesh.phases()[size_t(n)]);
+             shares_four(m.keep, n);
     });
   };
   merges.erase(std::remove_if(merges.begin(), merges.end(), onto_another), merges.end());

@@ -53,8 +53,8 @@ private:
 
 } // namespace detail
 
-/// Sorted phase ids of a node, -1 padded. Nodes where more than 8 phases meet
-/// are refused (TopologyError).
+/// Sorted phase ids of a node, -1 padded. Nodes where more than
+/// kMaxPhasesAtNode phases meet are refused (TopologyError).
 using PhaseSet = std::array<int16_t, kMaxPhasesAtNode>;
 
 /// Number of phases in a PhaseSet.
