@@ -34,8 +34,12 @@ PY
 # corner of a surface at a quadruple point; scripts/corner_bound.py).
 # "farthest node": the largest offset of a surface / triple-curve / quadruple-point
 # node from its closed-form interface, in grid spacings h (`stats --field`).
-echo "| scene | triangles | min q | mean q | min angle | exact bound | farthest node (h): surface / curve / point |"
-echo "|---|---|---|---|---|---|---|"
+# "smallest corner": the smallest corner a surface of the mesh makes at a
+# junction point (`stats`), which bounds the min angle while the mesh's
+# junctions stay where they are: a min angle equal to it is all that scene's
+# junctions, as meshed, allow.
+echo "| scene | triangles | min q | mean q | min angle | smallest corner | exact bound | farthest node (h): surface / curve / point |"
+echo "|---|---|---|---|---|---|---|---|"
 for scene in "$out"/seeds*.json "$out"/balls_*.json; do
   name=$(basename "$scene" .json)
   "$vm" mesh -q "$scene" -o "$out/$name.ply"
@@ -44,8 +48,9 @@ for scene in "$out"/seeds*.json "$out"/balls_*.json; do
 import json, sys
 s = json.load(sys.stdin)
 far = " / ".join("{:.3f}".format(s["offsets"][c]["max_h"]) for c in ("surface", "triple_curve", "quadruple_point"))
-print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {} | {} |".format(
-    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], sys.argv[2], far))' "$name" "${bound:-none}"
+print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {:.1f} | {} | {} |".format(
+    sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], s["smallest_corner_deg"],
+    sys.argv[2], far))' "$name" "${bound:-none}"
 done | tee "$out/table.md"
 python3 - "$out/table.md" <<'PY'
 import sys

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 using namespace vm;
@@ -204,7 +205,7 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_NE(text.find("surfaces               10\n"), std::string::npos) << text;
   EXPECT_NE(text.find("quadruple points       5\n"), std::string::npos) << text;
   const auto j = nlohmann::json::parse(to_json(s));
-  EXPECT_EQ(j.size(), 20u);
+  EXPECT_EQ(j.size(), 23u);
   EXPECT_EQ(j.at("folds").get<size_t>(), 0u);
   EXPECT_EQ(j.at("vertices").get<size_t>(), s.vertices);
   EXPECT_EQ(j.at("surfaces").get<size_t>(), 10u);
@@ -218,6 +219,9 @@ TEST(Stats, text_and_json_carry_every_field) {
   EXPECT_EQ(j.at("rms_edge").get<double>(), s.rms_edge);
   EXPECT_EQ(j.at("max_angle_deg").get<double>(), s.max_angle_deg);
   EXPECT_EQ(j.at("smallest_angle_bin_deg").get<int>(), MeshStats::kAngleBinDeg);
+  EXPECT_EQ(j.at("smallest_corner_deg").get<double>(), s.smallest_corner_deg);
+  EXPECT_EQ(j.at("sharp_corners").get<size_t>(), s.sharp_corners);
+  EXPECT_NE(text.find("smallest corner"), std::string::npos) << text;
   EXPECT_EQ(j.at("smallest_angles").get<std::vector<size_t>>(),
             std::vector<size_t>(s.smallest_angles.begin(), s.smallest_angles.end()));
   size_t binned = 0;
@@ -320,6 +324,67 @@ TEST(Stats, worst_triangles_count_the_box_faces_a_corner_lies_on) {
   EXPECT_EQ(at.at({0.5, 0.0, 0.0})->box_faces, 2);
   EXPECT_EQ(at.at({0.5, 0.5, 0.5})->box_faces, 0);
   EXPECT_NE(to_text(worst, m).find("triple curve of 0, 1, 2, on a box face"), std::string::npos);
+}
+
+// A surface's corner at a junction point is its fan's angles there, summed:
+// on the box T-junction every surface meets the box edges and the curve's
+// ends at right angles, in one triangle (n = 2) or several (n = 6).
+TEST(Stats, surface_corners_at_junction_points_sum_their_fans) {
+  for (int n : {2, 6}) {
+    const MeshStats s = compute_stats(test::box_t_junction(n));
+    EXPECT_NEAR(s.smallest_corner_deg, 90, 1e-9) << "n = " << n;
+    EXPECT_EQ(s.sharp_corners, 0u);
+  }
+  // A surface alone in the plane (no junction point) has no corner to report.
+  EXPECT_EQ(compute_stats(test::tetrahedron()).smallest_corner_deg, 180);
+}
+
+// In four_phase_point() every node is a junction point and every surface one
+// triangle, so each angle of each triangle is a whole corner: squashed toward
+// a flat tetrahedron, the smallest corner is the smallest angle, the sharp
+// corners are the angles below 10 degrees, and each worst triangle names the
+// corner that bounds it.
+TEST(Stats, a_triangle_filling_a_whole_corner_is_bounded_by_it) {
+  NodeMesh m = test::four_phase_point();
+  for (Vec3& p : m.points)
+    if (p.isApprox(Vec3(0, 0, 1))) p = Vec3(0, 0, 0.08);
+  size_t below_10 = 0;
+  for (const auto& t : m.triangles)
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3 u = m.points[size_t(t[(k + 1) % 3])] - m.points[size_t(t[k])],
+                 v = m.points[size_t(t[(k + 2) % 3])] - m.points[size_t(t[k])];
+      below_10 += std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / std::numbers::pi < 10;
+    }
+  const MeshStats s = compute_stats(m);
+  EXPECT_LT(s.min_angle_deg, 10);
+  EXPECT_NEAR(s.smallest_corner_deg, s.min_angle_deg, 1e-9);
+  EXPECT_GT(below_10, 0u);
+  EXPECT_EQ(s.sharp_corners, below_10);
+  const std::vector<WorstTriangle> worst = worst_triangles(m, m.triangles.size());
+  for (const WorstTriangle& w : worst) {
+    ASSERT_GE(w.corner_node, 0) << "triangle " << w.triangle;
+    EXPECT_NEAR(w.corner_deg, w.min_angle_deg, 1e-9);
+  }
+  EXPECT_NE(to_text(worst, m).find("whole corner at node " + std::to_string(worst[0].corner_node)), std::string::npos);
+  const auto j = nlohmann::json::parse(to_json(s, worst, &m));
+  EXPECT_EQ(j.at("worst_triangles")[0].at("corner_deg").get<double>(), worst[0].corner_deg);
+}
+
+// A triangle whose smallest angle shares its corner with others (or lies off
+// junction points) is not bounded by a corner: on the T-junction's right
+// isosceles triangles none is.
+TEST(Stats, a_triangle_sharing_its_corner_names_none) {
+  const NodeMesh m = test::box_t_junction(6);
+  for (const WorstTriangle& w : worst_triangles(m, m.triangles.size())) {
+    if (w.corner_node < 0) {
+      EXPECT_TRUE(std::isnan(w.corner_deg));
+      continue;
+    }
+    EXPECT_NEAR(w.corner_deg, w.min_angle_deg, 1e-9) << "triangle " << w.triangle;
+  }
+  const auto j = nlohmann::json::parse(to_json(compute_stats(m), worst_triangles(m, 1), &m));
+  const auto& first = j.at("worst_triangles")[0];
+  if (first.at("corner_node").get<int>() < 0) EXPECT_TRUE(first.at("corner_deg").is_null());
 }
 
 // interface_offsets() measures how far nodes lie from where their phases are

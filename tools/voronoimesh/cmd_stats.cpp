@@ -36,7 +36,9 @@ void add_stats_command(CLI::App& app, int& exit_code) {
   add_listing("--worst", o->worst,
               "Also list the N triangles of lowest quality, worst first: their quality, smallest angle and "
               "phases, and what meets at each corner (a surface, a triple curve or a quadruple point, of which "
-              "phases; whether on the box), to see where and why a mesh loses quality");
+              "phases; whether on the box), and whether its smallest angle is a surface's whole corner at a "
+              "junction point (which no remeshing keeping the point can beat), to see where and why a mesh "
+              "loses quality");
   add_listing("--folds", o->folds,
               "Also list the N sharpest folds, sharpest first: surface edges across which the surface turns back "
               "by more than 150 degrees (two sheets laid onto each other, which no quality figure shows), with "

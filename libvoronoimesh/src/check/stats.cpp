@@ -4,6 +4,7 @@
 
 #include "voronoimesh/check/stats.hpp"
 
+#include "check/surface_corners.hpp"
 #include "core/union_find.hpp"
 #include "mesh/junction_tables.hpp"
 #include "mesh/node_rings.hpp"
@@ -190,6 +191,10 @@ MeshStats compute_stats(const NodeMesh& m) {
   for (int32_t n : junctions.quadruple_points) s.higher_order_points += junctions.order(size_t(n)) >= 5;
   quality_stats(m, usable, s);
   edge_stats(m, et, s);
+  const detail::CornerSummary corners =
+      detail::summarize_corners(m, nt, np, detail::box_faces_of(m.points, m.domain), MeshStats::kSharpCornerDeg);
+  s.smallest_corner_deg = corners.smallest.angle_deg;
+  s.sharp_corners = corners.sharp;
   return s;
 }
 
@@ -212,8 +217,8 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
   order.resize(count);
 
   // What meets at their corners: the node tables compute_stats() builds.
-  const detail::NodePhases np =
-      detail::node_phases(detail::node_triangles(m.points.size(), m.triangles, &usable), m.pairs);
+  const detail::NodeTriangles nt = detail::node_triangles(m.points.size(), m.triangles, &usable);
+  const detail::NodePhases np = detail::node_phases(nt, m.pairs);
   const std::vector<uint8_t> box = detail::box_faces_of(m.points, m.domain);
   std::vector<WorstTriangle> worst;
   for (size_t t : order) {
@@ -223,12 +228,16 @@ std::vector<WorstTriangle> worst_triangles(const NodeMesh& m, size_t count) {
     w.pair = m.pairs[t];
     const auto& tri = m.triangles[t];
     w.min_angle_deg = 180;
+    size_t smallest = 0;
     for (size_t k = 0; k < 3; ++k) {
       const Vec3& a = m.points[size_t(tri[k])];
       const Vec3 &b = m.points[size_t(tri[(k + 1) % 3])], &c = m.points[size_t(tri[(k + 2) % 3])];
-      w.min_angle_deg = std::min(w.min_angle_deg, angle_deg(b - a, c - a));
+      if (const double angle = angle_deg(b - a, c - a); angle < w.min_angle_deg) w.min_angle_deg = angle, smallest = k;
       w.corners[k] = corner_of(m, np, box, tri[k]);
     }
+    // Its surface's corner at that node, if t alone fills it.
+    for (const detail::SurfaceCorner& c : detail::corners_at(m, nt, np, box, tri[smallest]))
+      if (c.triangles.size() == 1 && c.triangles[0] == int32_t(t)) w.corner_node = c.node, w.corner_deg = c.angle_deg;
     worst.push_back(std::move(w));
   }
   return worst;
@@ -300,6 +309,13 @@ std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m) {
                   (c[2].position - c[1].position).norm(), (c[0].position - c[2].position).norm());
     out += buf;
     for (const TriangleCorner& corner : c) out += corner_text(corner, m);
+    if (w.corner_node >= 0) {
+      std::snprintf(buf, sizeof buf,
+                    "  its smallest angle is its surface's whole corner at node %d, a junction point: no "
+                    "triangulation keeping the point and its curves does better there\n",
+                    w.corner_node);
+      out += buf;
+    }
   }
   return out;
 }
@@ -353,6 +369,10 @@ std::string to_text(const MeshStats& s) {
     counts += std::to_string(s.smallest_angles[i]);
   }
   line("smallest angle", bounds + " deg: " + counts + " triangles");
+  line("smallest corner", s.smallest_corner_deg < 180
+                              ? num("%.2f deg, %zu below %d deg (the smallest angle can be no larger there)",
+                                    s.smallest_corner_deg, s.sharp_corners, int(MeshStats::kSharpCornerDeg))
+                              : std::string("none below 180 deg"));
   line("edge min / max / rms", num("%.6g / %.6g / %.6g", s.min_edge, s.max_edge, s.rms_edge));
   if (s.self_intersections) line("self-intersections", std::to_string(*s.self_intersections) + " triangle pairs");
   return out;
@@ -379,6 +399,9 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
       {"max_angle_deg", s.max_angle_deg},
       {"smallest_angle_bin_deg", MeshStats::kAngleBinDeg},
       {"smallest_angles", s.smallest_angles},
+      {"smallest_corner_deg", s.smallest_corner_deg},
+      {"sharp_corner_deg", MeshStats::kSharpCornerDeg},
+      {"sharp_corners", s.sharp_corners},
       {"min_edge", s.min_edge},
       {"max_edge", s.max_edge},
       {"rms_edge", s.rms_edge},
@@ -404,7 +427,9 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
                       {"quality", w.quality},
                       {"min_angle_deg", w.min_angle_deg},
                       {"pair", {label(w.pair[0]), label(w.pair[1])}},
-                      {"corners", corners_json(w.corners)}});
+                      {"corners", corners_json(w.corners)},
+                      {"corner_node", w.corner_node},
+                      {"corner_deg", w.corner_node >= 0 ? nlohmann::ordered_json(w.corner_deg) : nullptr}});
     j["worst_triangles"] = list;
   }
   if (!folds.empty()) {

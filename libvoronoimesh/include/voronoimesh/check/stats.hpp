@@ -6,6 +6,7 @@
 #include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -45,6 +46,20 @@ struct MeshStats {
   /// that bound angles are compared by (CGAL's facet_angle: 30 degrees, the
   /// first three bins empty).
   std::array<size_t, 60 / kAngleBinDeg> smallest_angles{};
+  /// Corners below this many degrees count as sharp (sharp_corners): the first
+  /// bin of smallest_angles, to set them against.
+  static constexpr double kSharpCornerDeg = 10;
+  /// The smallest corner a surface makes at a junction point (a node whose
+  /// phases and the box faces it lies on number four or more: a quadruple
+  /// point, a triple curve's end on the box, a surface's end on a box edge), in
+  /// degrees: 180 when none is smaller. The surface's triangles there fill the
+  /// corner, so one of them has a smallest angle no larger than it whatever the
+  /// remeshing, as long as the point and its curves stay where the phases put
+  /// them. Where min_angle_deg is close to it, only moving junctions (or
+  /// changing which phases meet) could raise the worst angle.
+  double smallest_corner_deg = 180;
+  /// Corners of surfaces at junction points below kSharpCornerDeg.
+  size_t sharp_corners = 0;
   /// Shortest edge (distinct node edges), in the units of the points.
   double min_edge = 0, max_edge = 0, rms_edge = 0; ///< RMS edge length, in the units of the points
   /// @var max_edge
@@ -84,6 +99,13 @@ struct WorstTriangle {
   double min_angle_deg = 0;              ///< its smallest angle
   PhasePair pair{};                      ///< the phases it separates
   std::array<TriangleCorner, 3> corners; ///< its corners, in its node order
+  /// Where its smallest angle is the whole corner its surface makes at a
+  /// junction point (it is the surface's only triangle at that node;
+  /// MeshStats::smallest_corner_deg): that node, and the corner, which no
+  /// triangulation keeping the point and its curves can beat; -1 and NaN
+  /// elsewhere.
+  int32_t corner_node = -1;
+  double corner_deg = std::numeric_limits<double>::quiet_NaN(); ///< see corner_node
 };
 
 /// The `count` triangles of lowest quality, worst first (ties by index), with
