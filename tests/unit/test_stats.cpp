@@ -1,5 +1,7 @@
 #include "fixtures.hpp"
 
+#include "run/run_job.hpp"
+
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/improve/offsets.hpp"
 #include "voronoimesh/run/meshing.hpp"
@@ -368,6 +370,29 @@ TEST(Stats, a_triangle_filling_a_whole_corner_is_bounded_by_it) {
   EXPECT_NE(to_text(worst, m).find("whole corner at node " + std::to_string(worst[0].corner_node)), std::string::npos);
   const auto j = nlohmann::json::parse(to_json(s, worst, &m));
   EXPECT_EQ(j.at("worst_triangles")[0].at("corner_deg").get<double>(), worst[0].corner_deg);
+}
+
+// A run ends with a note on its slivers: how many, and how many fill a whole
+// corner (the squashed tetrahedron above: every one); none without slivers.
+TEST(Stats, the_sliver_note_counts_the_slivers_that_fill_whole_corners) {
+  NodeMesh m = test::four_phase_point();
+  EXPECT_EQ(detail::sliver_note(m), "");
+  for (Vec3& p : m.points)
+    if (p.isApprox(Vec3(0, 0, 1))) p = Vec3(0, 0, 0.01);
+  const size_t slivers = compute_stats(m).slivers;
+  ASSERT_GT(slivers, 0u);
+  const std::string note = detail::sliver_note(m);
+  const std::string count = std::to_string(slivers);
+  EXPECT_EQ(note.rfind(count + " triangles are slivers (q below 0.1, the worst ", 0), 0u) << note;
+  EXPECT_NE(note.find("); " + count + " of them fill their surface's whole corner"), std::string::npos) << note;
+  EXPECT_NE(note.find("stats --worst " + count + "`"), std::string::npos) << note;
+  // Slivers off junction points (a surface's own nodes squeezed together) fill none.
+  NodeMesh flat = test::tetrahedron();
+  flat.points[0] = 0.5 * (flat.points[1] + flat.points[2]) + Vec3(1e-3, 1e-3, 1e-3);
+  const std::string none = detail::sliver_note(flat);
+  EXPECT_NE(none.find("); none fills its surface's whole corner at a junction point; `voronoimesh stats --worst "),
+            std::string::npos)
+      << none;
 }
 
 // A triangle whose smallest angle shares its corner with others (or lies off

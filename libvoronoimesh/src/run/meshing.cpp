@@ -23,6 +23,7 @@
 #include <array>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
 
 namespace vm {
 
@@ -358,6 +359,26 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
 
 namespace detail {
 
+std::string sliver_note(const NodeMesh& mesh) {
+  constexpr double kSliver = 0.1; // MeshStats::slivers
+  size_t slivers = 0;
+  for (const auto& t : mesh.triangles)
+    slivers += triangle_quality(mesh.points[size_t(t[0])], mesh.points[size_t(t[1])], mesh.points[size_t(t[2])]) < kSliver;
+  if (slivers == 0) return {};
+  const std::vector<WorstTriangle> worst = worst_triangles(mesh, slivers);
+  const auto at_corners =
+      std::count_if(worst.begin(), worst.end(), [](const WorstTriangle& w) { return w.corner_node >= 0; });
+  char worst_q[32];
+  std::snprintf(worst_q, sizeof worst_q, "%.2g", worst.front().quality);
+  const std::string corners =
+      at_corners == 0 ? std::string("none fills its surface's whole corner at a junction point")
+                      : cat(at_corners, " of them fill their surface's whole corner at a junction point, whose curves "
+                                        "leave it too close together for any remeshing that keeps the junctions to do "
+                                        "better");
+  return cat(slivers, slivers == 1 ? " triangle is a sliver" : " triangles are slivers", " (q below ", kSliver,
+             ", the worst ", worst_q, "); ", corners, "; `voronoimesh stats --worst ", slivers, "` lists them");
+}
+
 void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshJob& job, RunObserver* observer) {
   // With no iterations and no history there is nothing to improve.
   QualityHistory history;
@@ -370,6 +391,8 @@ void finish_job(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const M
                        ": the surface turns back across each by more than ", int(MeshStats::kFoldDeg),
                        " degrees, two of its sheets laid onto each other (where a layer or rim is thinner than the "
                        "edges, or a surface meets the box at a glancing angle); `voronoimesh stats --folds N` lists where"));
+  if (observer)
+    if (const std::string note = sliver_note(mesh); !note.empty()) observer->note(note);
   // No output may replace an input of the run.
   StagedOutputs staged({job.input, job.mesh});
   write_staged(staged, mesh, job.outputs, recording ? &history : nullptr, observer);

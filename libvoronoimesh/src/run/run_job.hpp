@@ -48,6 +48,12 @@ void check_outputs(const RunOutputs& outputs);
 /// are refused as they are written (StagedOutputs).
 void check_outputs_apart(const RunOutputs& outputs, const std::vector<std::string>& inputs);
 
+/// The note a run ends with when its mesh has slivers (q below 0.1): how many,
+/// the worst, and how many of them fill their surface's whole corner at a
+/// junction point (WorstTriangle::corner_node), which only moving junctions
+/// could open; empty without slivers.
+std::string sliver_note(const NodeMesh& mesh);
+
 /// The end of run_job() once the mesh is there: improve it (when there are
 /// iterations or a history to record; `field` as improve_mesh() takes it),
 /// write the history and the outputs (meshing.cpp).
