@@ -132,7 +132,7 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     sum += q;
     ++counted;
     s.below_half += q < 0.5;
-    s.slivers += q < 0.1;
+    s.slivers += q < MeshStats::kSliverQuality;
     double smallest = 180;
     for (double angle : {angle_deg(b - a, c - a), angle_deg(c - b, a - b), angle_deg(a - c, b - c)}) {
       s.min_angle_deg = std::min(s.min_angle_deg, angle);

@@ -360,12 +360,12 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
 namespace detail {
 
 std::string sliver_note(const NodeMesh& mesh) {
-  constexpr double kSliver = 0.1; // MeshStats::slivers
+  constexpr double kSliver = MeshStats::kSliverQuality;
   size_t slivers = 0;
   for (const auto& t : mesh.triangles)
     slivers += triangle_quality(mesh.points[size_t(t[0])], mesh.points[size_t(t[1])], mesh.points[size_t(t[2])]) < kSliver;
-  if (slivers == 0) return {};
   const std::vector<WorstTriangle> worst = worst_triangles(mesh, slivers);
+  if (worst.empty()) return {};
   const auto at_corners =
       std::count_if(worst.begin(), worst.end(), [](const WorstTriangle& w) { return w.corner_node >= 0; });
   char worst_q[32];

@@ -28,7 +28,9 @@ struct MeshStats {
   double min_quality = 0, mean_quality = 0; ///< mean triangle quality q
   double quality_p01 = 0;       ///< 1st percentile of q: 99% of triangles are at least this good
   size_t below_half = 0;        ///< triangles with q < 0.5
-  size_t slivers = 0;           ///< triangles with q < 0.1
+  /// Triangles below this quality are slivers.
+  static constexpr double kSliverQuality = 0.1;
+  size_t slivers = 0;           ///< triangles with q < kSliverQuality
   /// Two triangles of one surface sharing an edge whose normals lie more than
   /// this apart turn back on each other there (a fold).
   static constexpr double kFoldDeg = 150;
