@@ -3,6 +3,8 @@
 
 #include "check/surface_corners.hpp"
 
+#include "core/union_find.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -19,17 +21,17 @@ std::vector<SurfaceCorner> corners_at(const NodeMesh& m, const NodeTriangles& nt
                                       const std::vector<uint8_t>& box, int32_t n) {
   std::vector<SurfaceCorner> corners;
   if (!is_junction_point(np, box, size_t(n))) return corners;
-  // The node's triangles by phase pair; within a pair, a fan is a run of
-  // triangles each sharing an edge at n with the next. Valences are small:
-  // fans are joined by repeated sweeps rather than a table.
+  // The node's triangles, each a wedge between its two other corners; two
+  // wedges of one phase pair that share an other corner share an edge at n,
+  // so one fan holds them. Joined through sorted (pair, corner) keys: a node of
+  // any valence costs k log k.
   struct Wedge {
     int32_t triangle;
     PhasePair pair;
-    int32_t fan;
-    std::array<int32_t, 2> ends; // the other two corners
     double angle;
   };
   std::vector<Wedge> wedges;
+  std::vector<std::tuple<PhasePair, int32_t, int32_t>> ends; // (pair, other corner, wedge)
   const Vec3& at = m.points[size_t(n)];
   for (int32_t t : nt.of(size_t(n))) {
     const auto& tri = m.triangles[size_t(t)];
@@ -37,27 +39,26 @@ std::vector<SurfaceCorner> corners_at(const NodeMesh& m, const NodeTriangles& nt
     const int32_t b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
     const Vec3 u = m.points[size_t(b)] - at, v = m.points[size_t(c)] - at;
     const double angle = std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
-    wedges.push_back({t, m.pairs[size_t(t)], int32_t(wedges.size()), {b, c}, angle});
+    const auto w = int32_t(wedges.size());
+    wedges.push_back({t, m.pairs[size_t(t)], angle});
+    ends.emplace_back(m.pairs[size_t(t)], b, w);
+    ends.emplace_back(m.pairs[size_t(t)], c, w);
   }
-  auto share_an_edge = [](const Wedge& x, const Wedge& y) {
-    return x.pair == y.pair && (x.ends[0] == y.ends[0] || x.ends[0] == y.ends[1] || x.ends[1] == y.ends[0] ||
-                                x.ends[1] == y.ends[1]);
-  };
-  for (bool joined = true; joined;) {
-    joined = false;
-    for (Wedge& x : wedges)
-      for (const Wedge& y : wedges)
-        if (y.fan < x.fan && share_an_edge(x, y)) x.fan = y.fan, joined = true;
-  }
-  std::sort(wedges.begin(), wedges.end(), [](const Wedge& x, const Wedge& y) { return x.fan < y.fan; });
-  for (size_t i = 0; i < wedges.size();) {
-    SurfaceCorner corner{0, n, wedges[i].pair, {}};
-    const int32_t fan = wedges[i].fan;
-    for (; i < wedges.size() && wedges[i].fan == fan; ++i) {
-      corner.angle_deg += wedges[i].angle;
-      corner.triangles.push_back(wedges[i].triangle);
+  std::sort(ends.begin(), ends.end());
+  UnionFind fans(wedges.size());
+  for (size_t i = 1; i < ends.size(); ++i)
+    if (std::get<0>(ends[i]) == std::get<0>(ends[i - 1]) && std::get<1>(ends[i]) == std::get<1>(ends[i - 1]))
+      fans.unite(std::get<2>(ends[i]), std::get<2>(ends[i - 1]));
+  // Each fan in the order of its first wedge (its representative: the smallest member).
+  std::vector<int32_t> corner_of(wedges.size(), -1);
+  for (size_t w = 0; w < wedges.size(); ++w) {
+    int32_t& corner = corner_of[size_t(fans.find(int32_t(w)))];
+    if (corner < 0) {
+      corner = int32_t(corners.size());
+      corners.push_back({0, n, wedges[w].pair, {}});
     }
-    corners.push_back(corner);
+    corners[size_t(corner)].angle_deg += wedges[w].angle;
+    corners[size_t(corner)].triangles.push_back(wedges[w].triangle);
   }
   return corners;
 }
