@@ -6,6 +6,7 @@
 
 #include "core/staged_outputs.hpp"
 #include "core/text.hpp"
+#include "mesh/angle.hpp"
 #include "mesh/topology.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -18,12 +19,13 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
-#include <numbers>
 #include <string_view>
 
 namespace vm {
 
 namespace {
+
+using detail::angle_deg;
 
 using detail::cat;
 
@@ -55,10 +57,6 @@ const std::array<MeasureBins, kNumMeasures>& all_bins() {
       uniform_bins("degree", "Vertex degree", "degree", 15, 1.0, true),
   };
   return bins;
-}
-
-double angle_deg(const Vec3& u, const Vec3& v) {
-  return std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
 }
 
 std::string lower_extension(const std::string& path) {

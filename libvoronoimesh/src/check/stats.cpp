@@ -6,6 +6,7 @@
 
 #include "check/surface_corners.hpp"
 #include "core/union_find.hpp"
+#include "mesh/angle.hpp"
 #include "mesh/junction_tables.hpp"
 #include "mesh/node_rings.hpp"
 #include "mesh/topology.hpp"
@@ -25,6 +26,7 @@ namespace vm {
 
 namespace {
 
+using detail::angle_deg;
 using detail::EdgeTable;
 using detail::Triangles;
 
@@ -108,10 +110,6 @@ size_t folds_of(const NodeMesh& m, const EdgeTable& et) {
 TriangleCorner corner_of(const NodeMesh& m, const detail::NodePhases& np, const std::vector<uint8_t>& box, int32_t n) {
   const auto phases = np.of(size_t(n));
   return {n, m.points[size_t(n)], {phases.begin(), phases.end()}, std::popcount(unsigned(box[size_t(n)]))};
-}
-
-double angle_deg(const Vec3& u, const Vec3& v) {
-  return std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
 }
 
 void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats& s) {

@@ -4,18 +4,23 @@
 #include "check/surface_corners.hpp"
 
 #include "core/union_find.hpp"
+#include "mesh/angle.hpp"
 
 #include <algorithm>
 #include <bit>
-#include <cmath>
-#include <numbers>
 #include <tuple>
 
 namespace vm::detail {
 
+namespace {
+
+/// Whether node `n` is a junction point, whose place the phases fix: its phases
+/// and the box faces it lies on number four or more.
 bool is_junction_point(const NodePhases& np, const std::vector<uint8_t>& box, size_t n) {
   return np.count(n) + size_t(std::popcount(unsigned(box[n]))) >= 4;
 }
+
+} // namespace
 
 std::vector<SurfaceCorner> corners_at(const NodeMesh& m, const NodeTriangles& nt, const NodePhases& np,
                                       const std::vector<uint8_t>& box, int32_t n) {
@@ -37,8 +42,7 @@ std::vector<SurfaceCorner> corners_at(const NodeMesh& m, const NodeTriangles& nt
     const auto& tri = m.triangles[size_t(t)];
     const size_t k = tri[0] == n ? 0 : tri[1] == n ? 1 : 2;
     const int32_t b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-    const Vec3 u = m.points[size_t(b)] - at, v = m.points[size_t(c)] - at;
-    const double angle = std::atan2(u.cross(v).norm(), u.dot(v)) * (180.0 / std::numbers::pi);
+    const double angle = angle_deg(m.points[size_t(b)] - at, m.points[size_t(c)] - at);
     const auto w = int32_t(wedges.size());
     wedges.push_back({t, m.pairs[size_t(t)], angle});
     ends.emplace_back(m.pairs[size_t(t)], b, w);

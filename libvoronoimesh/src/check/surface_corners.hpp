@@ -30,17 +30,13 @@ struct SurfaceCorner {
   std::vector<int32_t> triangles; ///< the fan's
 };
 
-/// Whether node `n` is a junction point, whose place the phases fix: its phases
-/// and the box faces it lies on number four or more.
-/// @param np  the node phases of the mesh
-/// @param box the box faces of each node (box_faces_of())
-bool is_junction_point(const NodePhases& np, const std::vector<uint8_t>& box, size_t n);
-
-/// The corners of every surface at node `n`, one per fan (none if `n` is no junction point).
+/// The corners of every surface at node `n`, one per fan; none unless `n` is a
+/// junction point, whose place the phases fix: its phases and the box faces it
+/// lies on number four or more.
 /// @param m   the mesh
 /// @param nt  its node triangles (only the triangles listed there count)
 /// @param np  its node phases
-/// @param box the box faces of each node
+/// @param box the box faces of each node (box_faces_of())
 std::vector<SurfaceCorner> corners_at(const NodeMesh& m, const NodeTriangles& nt, const NodePhases& np,
                                       const std::vector<uint8_t>& box, int32_t n);
 
