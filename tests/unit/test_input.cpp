@@ -184,6 +184,27 @@ TEST(LabelVolume, no_background_fills_gaps_between_grains) {
   for (const Vec3& p : mesh.points) EXPECT_NEAR((p.x() - origin.x()) / voxel, 15.5, 0.05);
 }
 
+// Every phase's voxels are counted, and each small phase is named with the
+// phase its voxels touch most, wherever in the volume it lies: a 48^3 volume
+// (the background is then no small phase, so only the slices of the small ones
+// are searched) with a one-voxel label in slice 40 and a 2^3 label inside a
+// block of another in slices 18-23.
+TEST(LabelVolume, small_labels_are_counted_and_their_neighbours_found_in_any_slice) {
+  constexpr int m = 48;
+  std::vector<uint16_t> v;
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        auto within = [&](int lo, int hi) { return i >= lo && i < hi && j >= lo && j < hi && k >= lo && k < hi; };
+        v.push_back(uint16_t(within(20, 22) ? 5 : within(18, 24) ? 7 : i == 30 && j == 9 && k == 40 ? 6 : 0));
+      }
+  const Scene scene = load_input(write_nrrd("small.nrrd", "type: ushort\ndimension: 3\nsizes: 48 48 48\n", v));
+  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{0, 5, 6, 7}));
+  EXPECT_EQ(scene.phase_voxels, (std::vector<int64_t>{m * m * m - 217, 8, 1, 208}));
+  // The background has more voxels than a small phase may; 5 lies in 7, 6 and 7 in the background.
+  EXPECT_EQ(scene.phase_around, (std::vector<int32_t>{-1, 3, 0, 0}));
+}
+
 // A few hundred labels: the field keeps K per voxel whatever the label count.
 // Its store holds as much as that of 16 labels in the same blocks (every block's
 // neighbours differ in both), and O(voxels x K) bytes. (Time is measured in bench/.)
