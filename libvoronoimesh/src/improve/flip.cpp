@@ -18,6 +18,7 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <tuple>
 
 namespace vm {
@@ -277,11 +278,30 @@ std::vector<int32_t> edges_around(const InterfaceMesh& mesh, const detail::FlipL
 }
 
 /// flip_edges() without the collapses, with or without peers.
+/// Bans every edge whose flip would change a triangle at one of `nodes`: the
+/// edges at each copy of the node and the edges across from it.
+void ban_around(const InterfaceMesh& mesh, std::span<const int32_t> nodes, std::vector<uint8_t>& banned) {
+  const OMesh& om = mesh.omesh();
+  for (int32_t n : nodes)
+    for (int32_t copy : mesh.copies(n))
+      for (const auto h : om.voh_range(OMesh::VertexHandle(copy))) {
+        banned[size_t(om.edge_handle(h).idx())] = 1;
+        if (!om.is_boundary(h)) banned[size_t(om.edge_handle(om.next_halfedge_handle(h)).idx())] = 1;
+      }
+}
+
 FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
   const size_t edge_count = mesh.omesh().n_edges();
   std::vector<int32_t> every(edge_count);
   std::iota(every.begin(), every.end(), 0);
   std::vector<uint8_t> banned(edge_count, 0);
+  // The triangles at a node the quality floor let through this iteration stay
+  // as they are, so that the floor pass can put the node back among them if
+  // the iteration would end below its floor. Flipped, they made the way back
+  // worse than the node's new place: the floor pass's take-back was refused
+  // and the liver's worst triangle fell 0.616 -> 0.528 in its 5th iteration.
+  // In one process: the floor pass does not run distributed.
+  if (params.guard && !peers) ban_around(mesh, params.guard->floor_exception_nodes(), banned);
   detail::FlipLog log;
   const uint64_t unflipped = mesh.version();
   FlipStats stats = flip_rounds(mesh, params, std::move(every), banned, log, peers);

@@ -75,6 +75,13 @@ void CrossingGuard::floor_exception_reverts(const InterfaceMesh& mesh, double qu
   excepted_.clear();
 }
 
+std::vector<int32_t> CrossingGuard::floor_exception_nodes() const {
+  std::vector<int32_t> nodes;
+  for (const auto& [n, moved] : excepted_) nodes.push_back(n);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
 GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta, const PhaseField* field,
                                   const AgreeOnUndone& agree, double quality_floor, bool floor_holds_all) {
   GuardReport report;

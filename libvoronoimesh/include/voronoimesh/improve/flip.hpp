@@ -27,7 +27,9 @@ struct FlipParams {
   /// junction triangle face against its phase pair (null: not checked).
   const PhaseField* field = nullptr;
   /// With guard_crossings: the guard whose index of the mesh to reuse (a
-  /// pipeline's, improve/guard.hpp); null: a fresh one for this call.
+  /// pipeline's, improve/guard.hpp); null: a fresh one for this call. In one
+  /// process the triangles at the nodes its quality floor let through this
+  /// iteration (CrossingGuard::floor_exception_nodes()) do not flip.
   CrossingGuard* guard = nullptr;
   /// An ear (a triangle with all three corners on one junction curve or box
   /// edge, which moves can only flatten) below this quality flips even into a
