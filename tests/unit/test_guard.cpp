@@ -195,11 +195,12 @@ TEST(Guard, a_move_the_floor_let_through_can_be_taken_back) {
   }
 }
 
-// The flip pass leaves the triangles at a node the floor let through as they
-// are (their edges and the edges across from the node are banned for the
-// call), so that the floor pass can put the node back among the triangles it
-// left: flipped, the way back could leave one below the floor, and the guard
-// would refuse it (the liver, iteration 5). The other triangles flip as ever.
+// In a pipeline with the floor pass, the flip pass leaves the triangles at a
+// node the floor let through as they are (FlipParams::keep_triangles_at: their
+// edges and the edges across from the node are banned for the call), so that
+// the floor pass can put the node back among the triangles it left: flipped,
+// the way back could leave one below the floor, and the guard would refuse it
+// (the liver, iteration 5). The other triangles flip as ever.
 TEST(Guard, flips_leave_the_triangles_of_a_node_the_floor_let_through_alone) {
   const Scene scene = test::example_scene("four_spheres.json", 16);
   const PhaseField& field = *scene.field;
@@ -240,15 +241,17 @@ TEST(Guard, flips_leave_the_triangles_of_a_node_the_floor_let_through_alone) {
   ASSERT_EQ(guard.floor_exception_nodes(), std::vector<int32_t>{v});
   ASSERT_EQ(mesh.positions(), moved.positions());
   const auto before = triangles_at(mesh, v);
-  FlipParams with_guard = params;
-  with_guard.guard = &guard;
-  const FlipStats stats = flip_edges(mesh, with_guard);
+  const std::vector<int32_t> let_through = guard.floor_exception_nodes();
+  FlipParams keeping = params;
+  keeping.guard = &guard;
+  keeping.keep_triangles_at = let_through;
+  const FlipStats stats = flip_edges(mesh, keeping);
   EXPECT_EQ(triangles_at(mesh, v), before);
   EXPECT_GT(stats.flips, 0u);
   EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
-  // Once the guard forgets it, the node's triangles flip again.
-  guard.forget_floor_exceptions();
-  flip_edges(mesh, with_guard);
+  // Once no longer kept, the node's triangles flip again.
+  keeping.keep_triangles_at = {};
+  flip_edges(mesh, keeping);
   EXPECT_NE(triangles_at(mesh, v), before);
 }
 

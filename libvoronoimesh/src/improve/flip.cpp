@@ -295,13 +295,8 @@ FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPee
   std::vector<int32_t> every(edge_count);
   std::iota(every.begin(), every.end(), 0);
   std::vector<uint8_t> banned(edge_count, 0);
-  // The triangles at a node the quality floor let through this iteration stay
-  // as they are, so that the floor pass can put the node back among them if
-  // the iteration would end below its floor. Flipped, they made the way back
-  // worse than the node's new place: the floor pass's take-back was refused
-  // and the liver's worst triangle fell 0.616 -> 0.528 in its 5th iteration.
-  // In one process: the floor pass does not run distributed.
-  if (params.guard && !peers) ban_around(mesh, params.guard->floor_exception_nodes(), banned);
+  // (In one process: the floor pass, the reason for them, does not run distributed.)
+  if (!peers) ban_around(mesh, params.keep_triangles_at, banned);
   detail::FlipLog log;
   const uint64_t unflipped = mesh.version();
   FlipStats stats = flip_rounds(mesh, params, std::move(every), banned, log, peers);

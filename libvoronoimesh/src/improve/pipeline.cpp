@@ -150,6 +150,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const std::vector<std::unique_ptr<Pass>> passes = make_passes();
   PassContext context(mesh, field);
   context.guard_crossings = options.guard_crossings;
+  context.floor_pass = std::any_of(steps_.begin(), steps_.end(), [](const Step& s) { return s.info.name == "floor"; });
   const auto [first_min, first_mean] = quality_summary(mesh);
   if (options.observer)
     options.observer({0, first_min, first_mean, 0, 0, 0, std::nullopt, {}, options.iterations}, mesh);

@@ -6,6 +6,8 @@
 #include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
+#include <span>
+
 namespace vm {
 
 /// Parameters of flip_edges() (the flip pass); defaults are the paper's.
@@ -27,9 +29,7 @@ struct FlipParams {
   /// junction triangle face against its phase pair (null: not checked).
   const PhaseField* field = nullptr;
   /// With guard_crossings: the guard whose index of the mesh to reuse (a
-  /// pipeline's, improve/guard.hpp); null: a fresh one for this call. In one
-  /// process the triangles at the nodes its quality floor let through this
-  /// iteration (CrossingGuard::floor_exception_nodes()) do not flip.
+  /// pipeline's, improve/guard.hpp); null: a fresh one for this call.
   CrossingGuard* guard = nullptr;
   /// An ear (a triangle with all three corners on one junction curve or box
   /// edge, which moves can only flatten) below this quality flips even into a
@@ -39,6 +39,11 @@ struct FlipParams {
   /// corners held off their curve (docs/algorithm.md, "Known gaps"). Last, so
   /// that positional initialisers written before it keep their meaning.
   double ear_below = 1;
+  /// Nodes whose triangles stay as they are (in one process): no edge at them
+  /// or across from them flips. The pipeline gives the nodes its quality floor
+  /// let through this iteration when a floor pass may put them back
+  /// (PassContext::floor_pass).
+  std::span<const int32_t> keep_triangles_at = {};
 };
 
 /// What one flip_edges() call did.

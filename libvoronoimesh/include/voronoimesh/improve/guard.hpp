@@ -156,8 +156,9 @@ public:
   /// @param delta         one entry per node
   void floor_exception_reverts(const InterfaceMesh& mesh, double quality_floor, std::vector<Vec3>& delta);
   /// The nodes the quality floor let through since forget_floor_exceptions()
-  /// (commit()), ascending: the flip pass leaves their triangles as they are,
-  /// so that the floor pass can still put them back among them.
+  /// (commit()), ascending: where a floor pass follows, the flip pass leaves
+  /// their triangles as they are (FlipParams::keep_triangles_at), so that it
+  /// can still put them back among them.
   std::vector<int32_t> floor_exception_nodes() const;
 
 private:
