@@ -277,7 +277,6 @@ std::vector<int32_t> edges_around(const InterfaceMesh& mesh, const detail::FlipL
   return edges;
 }
 
-/// flip_edges() without the collapses, with or without peers.
 /// Bans every edge whose flip would change a triangle at one of `nodes`: the
 /// edges at each copy of the node and the edges across from it.
 void ban_around(const InterfaceMesh& mesh, std::span<const int32_t> nodes, std::vector<uint8_t>& banned) {
@@ -290,12 +289,13 @@ void ban_around(const InterfaceMesh& mesh, std::span<const int32_t> nodes, std::
       }
 }
 
+/// flip_edges() without the collapses, with or without peers.
 FlipStats flip_all_rounds(InterfaceMesh& mesh, const FlipParams& params, FlipPeers* peers) {
   const size_t edge_count = mesh.omesh().n_edges();
   std::vector<int32_t> every(edge_count);
   std::iota(every.begin(), every.end(), 0);
   std::vector<uint8_t> banned(edge_count, 0);
-  // (In one process: the floor pass, the reason for them, does not run distributed.)
+  // The triangles kept for the floor pass, which runs in one process only.
   if (!peers) ban_around(mesh, params.keep_triangles_at, banned);
   detail::FlipLog log;
   const uint64_t unflipped = mesh.version();
