@@ -238,10 +238,10 @@ TEST(Guard, flips_leave_the_triangles_of_a_node_the_floor_let_through_alone) {
   std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
   delta[size_t(v)] = node_projection_step(mesh, field, v, start.positions()[size_t(v)]);
   ASSERT_EQ(guard.commit(mesh, delta, &field, {}, 1.0).undone_nodes, 0u); // let through the floor
-  ASSERT_EQ(guard.floor_exception_nodes(), std::vector<int32_t>{v});
+  const std::vector<int32_t> let_through = guard.floor_exception_nodes();
+  ASSERT_EQ(let_through, std::vector<int32_t>{v});
   ASSERT_EQ(mesh.positions(), moved.positions());
   const auto before = triangles_at(mesh, v);
-  const std::vector<int32_t> let_through = guard.floor_exception_nodes();
   FlipParams keeping = params;
   keeping.guard = &guard;
   keeping.keep_triangles_at = let_through;

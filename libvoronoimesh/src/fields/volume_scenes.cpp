@@ -276,7 +276,6 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   v.labels = {}; // the phases replace the labels: free them before the field grows
   PhaseCensus census(pv.labels.size());
   for (const PhaseCensus& part : counted) census.add(part);
-  std::vector<int64_t> voxels = census.voxels;
   LabelFieldParams params;
   params.signed_distance = o.label_function == LabelFunction::signed_distance;
   params.smoothing = o.smoothing;
@@ -289,10 +288,10 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   const double per_cell = o.voxel_faithful && o.voxels_per_cell == 0 ? 1 : o.voxels_per_cell;
   auto field = label_field(pv, params, path);
   const bool every_node = o.voxel_faithful && resolved_voxels_per_cell(per_cell, field->grid().spacing()) == 1 &&
-                          needs_every_grid_node(pv, *field, o.snap * field->grid().h(), voxels, notes);
+                          needs_every_grid_node(pv, *field, o.snap * field->grid().h(), census.voxels, notes);
   std::vector<int32_t> around = phases_around_small_ones(pv, census);
   const GridSpec grid = volume_scene_grid(field->grid(), per_cell, path, notes);
-  Scene scene{grid, field, true, std::move(voxels), std::move(around), std::move(notes)};
+  Scene scene{grid, field, true, std::move(census.voxels), std::move(around), std::move(notes)};
   scene.needs_every_grid_node = every_node;
   return scene;
 }
