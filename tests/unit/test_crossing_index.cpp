@@ -374,6 +374,13 @@ struct Fan {
     fans.build(triangles, corner_fans);
     return detail::FanCertificates(points, triangles, fans).embedded(0);
   }
+  /// Node 0's star, all its triangles, certified without fan ids.
+  bool star_embedded() const { return detail::embedded_stars(points, triangles)[0] == 1; }
+  /// Both certificates, which must agree: node 0's triangles are its one fan.
+  bool certified() const {
+    EXPECT_EQ(embedded(), star_embedded());
+    return embedded();
+  }
 };
 
 /// A fan of `m` triangles around the origin, its ring at heights z(i),
@@ -390,33 +397,55 @@ Fan ring_fan(int m, double turns, bool closed, const std::function<double(int)>&
 }
 
 TEST(FanCertificates, certify_flat_and_wavy_fans_that_go_once_around) {
-  EXPECT_TRUE(ring_fan(6, 1, true).embedded());
-  EXPECT_TRUE(ring_fan(7, 1, true, [](int i) { return 0.4 * std::sin(2.0 * i); }).embedded());
-  EXPECT_TRUE(ring_fan(5, 0.9, false).embedded()); // open, nine tenths of a turn
+  EXPECT_TRUE(ring_fan(6, 1, true).certified());
+  EXPECT_TRUE(ring_fan(7, 1, true, [](int i) { return 0.4 * std::sin(2.0 * i); }).certified());
+  EXPECT_TRUE(ring_fan(5, 0.9, false).certified()); // open, nine tenths of a turn
 }
 
 TEST(FanCertificates, refuse_fans_that_fold_wrap_or_break) {
   // A closed chain around twice: every triangle turns the same way, but each
   // sector overlaps another one.
-  EXPECT_FALSE(ring_fan(10, 2, true).embedded());
+  EXPECT_FALSE(ring_fan(10, 2, true).certified());
   // An open chain of more than one turn overlaps itself.
-  EXPECT_FALSE(ring_fan(7, 1.2, false).embedded());
+  EXPECT_FALSE(ring_fan(7, 1.2, false).certified());
   // One triangle folded back over its neighbour.
   Fan folded = ring_fan(6, 1, true);
   folded.points[3] = {0.9, 0.2, 0.05};
-  EXPECT_FALSE(folded.embedded());
+  EXPECT_FALSE(folded.certified());
   // A triangle standing on edge (seen along every axis it is a line or turns
   // against the others) is not certified.
   Fan standing = ring_fan(6, 1, true);
   standing.points[2] = {0, 0, 1};
   standing.points[3] = {0, 0, 2};
-  EXPECT_FALSE(standing.embedded());
+  EXPECT_FALSE(standing.certified());
   // Two separate wedges around one node: no single chain.
   Fan broken;
   broken.points = {Vec3::Zero(), {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {-1, -1, 0}};
   broken.add(1, 2);
   broken.add(3, 5);
-  EXPECT_FALSE(broken.embedded());
+  EXPECT_FALSE(broken.certified());
+}
+
+TEST(FanCertificates, stars_of_nodes_where_surfaces_meet_are_not_certified) {
+  // Three fins on the edge from node 0 to node 1 (a triple curve): neither end
+  // of the edge has one fan. The fins' outer corners have one triangle each,
+  // an open fan of one sector, certified.
+  const std::vector<Vec3> points{Vec3::Zero(), {0, 0, 1}, {1, 0, 0.5}, {-0.5, 0.8, 0.5}, {-0.5, -0.8, 0.5}};
+  const std::vector<Triangle> fins{{0, 1, 2}, {0, 1, 3}, {0, 1, 4}};
+  EXPECT_EQ(detail::embedded_stars(points, fins), (std::vector<uint8_t>{0, 0, 1, 1, 1}));
+  // Two closed fans sharing only their node (two cones tip to tip).
+  Fan upper = ring_fan(5, 1, true, [](int) { return 1.0; });
+  const Fan lower = ring_fan(5, 1, true, [](int) { return -1.0; });
+  const auto shift = int32_t(upper.points.size() - 1);
+  upper.points.insert(upper.points.end(), lower.points.begin() + 1, lower.points.end());
+  for (const Triangle& t : lower.triangles) upper.triangles.push_back({0, t[1] + shift, t[2] + shift});
+  EXPECT_FALSE(upper.star_embedded());
+  // A duplicate of one triangle, either way round, makes no fan.
+  for (const Triangle dup : {Triangle{0, 1, 2}, Triangle{0, 2, 1}}) {
+    Fan twice = ring_fan(6, 1, true);
+    twice.triangles.push_back(dup);
+    EXPECT_FALSE(twice.star_embedded());
+  }
 }
 
 // Where most triangles change between calls, mending an index costs more than

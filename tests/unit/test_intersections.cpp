@@ -1,5 +1,8 @@
 #include "fixtures.hpp"
 
+#include "check/embedded_fans.hpp"
+#include "check/triangle_pair.hpp"
+
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/core/errors.hpp"
 
@@ -282,6 +285,50 @@ TEST(Intersections, grid_agrees_with_all_pairs_on_a_random_soup) {
   ASSERT_GT(flagged.size(), 2u);
   EXPECT_EQ(find_self_intersections(m, expected.size(), flags).pairs, flagged);
   EXPECT_EQ(find_self_intersections(m, expected.size(), std::vector<uint8_t>(t.size(), 1)).pairs, expected);
+}
+
+TEST(Intersections, pairs_in_a_node_star_are_tested_unless_the_star_is_certified) {
+  // An icosphere whose nodes are shaken hard enough that many stars fold, some
+  // triangles turn over and faces pass through each other: the check (which
+  // leaves the pairs of certified stars untested) finds exactly the pairs the
+  // exact test finds one by one.
+  NodeMesh m = icosphere(2); // 320 triangles
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (Vec3& v : m.points)
+    if (rng() % 3 == 0) v += 0.3 * Vec3(u(rng), u(rng), u(rng));
+  std::vector<Pair> expected;
+  for (size_t i = 0; i < m.triangles.size(); ++i)
+    for (size_t j = i + 1; j < m.triangles.size(); ++j)
+      if (detail::intersect_improperly(m.points, m.triangles[i], m.triangles[j]))
+        expected.push_back({int32_t(i), int32_t(j)});
+  // Crossings in stars and between faces apart, and stars certified and not.
+  const size_t sharing = size_t(std::count_if(expected.begin(), expected.end(), [&](const Pair& q) {
+    const auto& b = m.triangles[size_t(q[1])];
+    return std::any_of(m.triangles[size_t(q[0])].begin(), m.triangles[size_t(q[0])].end(),
+                       [&](int32_t x) { return std::find(b.begin(), b.end(), x) != b.end(); });
+  }));
+  ASSERT_GT(sharing, 5u);
+  ASSERT_GT(expected.size(), sharing);
+  const std::vector<uint8_t> stars = detail::embedded_stars(m.points, m.triangles);
+  const auto certified = size_t(std::count(stars.begin(), stars.end(), 1));
+  ASSERT_GT(certified, m.points.size() / 4);
+  ASSERT_LT(certified, m.points.size());
+  EXPECT_EQ(find_self_intersections(m, expected.size() + 1).pairs, expected);
+  // A flat fan around its node twice, the second turn at half the radius:
+  // each triangle overlaps the one a turn on (and touches its neighbours').
+  std::vector<Vec3> p{O};
+  std::vector<std::array<int32_t, 3>> twice;
+  for (int k = 0; k < 10; ++k) {
+    const double angle = k * 2 * std::numbers::pi / 5;
+    p.push_back((k < 5 ? 1.0 : 0.5) * Vec3(std::cos(angle), std::sin(angle), 0));
+  }
+  for (int32_t k = 0; k < 10; ++k) twice.push_back({0, 1 + k, 1 + (k + 1) % 10});
+  size_t overlapping = 0;
+  for (size_t i = 0; i < twice.size(); ++i)
+    for (size_t j = i + 1; j < twice.size(); ++j) overlapping += detail::intersect_improperly(p, twice[i], twice[j]);
+  EXPECT_GE(overlapping, 10u);
+  EXPECT_EQ(count(soup(p, twice)), overlapping);
 }
 
 TEST(Intersections, bad_node_ids_are_rejected) {

@@ -22,6 +22,10 @@
 
 namespace vm::detail {
 
+/// What the corners of a fan make when ordered one after another around its
+/// node: no single chain, a chain with two ends, or one that closes.
+enum class ChainShape : uint8_t { none, open, closed };
+
 /// The fans of a mesh, each as its corners (3 t + k: corner k of triangle t)
 /// ordered into a chain around its node (each triangle's last corner the next
 /// one's first after the node), from a fan id per corner of each triangle (as
@@ -42,16 +46,15 @@ public:
   /// Its corners in chain order.
   std::span<const int32_t> corners(size_t fan) const { return corners_.at(fan); }
   /// Its corners form one chain (else it is never certified), and it closes.
-  bool chained(size_t fan) const { return shape_[fan] != kNoChain; }
-  bool closed(size_t fan) const { return shape_[fan] == kClosed; }
+  bool chained(size_t fan) const { return shape_[fan] != ChainShape::none; }
+  bool closed(size_t fan) const { return shape_[fan] == ChainShape::closed; }
 
 private:
-  static constexpr uint8_t kNoChain = 0, kOpen = 1, kClosed = 2;
   void order(size_t fan, std::span<const Triangle> triangles);
 
   PooledLists<int32_t> corners_;
   std::vector<int32_t> node_;
-  std::vector<uint8_t> shape_;
+  std::vector<ChainShape> shape_;
 };
 
 /// Which fans are embedded now, each decided once, when first asked, from any
@@ -69,5 +72,12 @@ private:
   const CornerFans& fans_;
   mutable std::vector<std::atomic<int8_t>> state_; ///< -1 not yet decided, else 0 or 1
 };
+
+/// Per node (of `points`), 1 when the node's triangles, all of them, make one
+/// fan (its star) that is certified embedded as FanCertificates certifies a
+/// fan: two of them meet only where they share corners. A check of a mesh
+/// without fan ids (find_self_intersections) leaves such pairs untested; on a
+/// smooth surface they are almost all the pairs whose boxes overlap.
+std::vector<uint8_t> embedded_stars(std::span<const Vec3> points, std::span<const Triangle> triangles);
 
 } // namespace vm::detail

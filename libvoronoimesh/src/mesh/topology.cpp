@@ -8,7 +8,8 @@
 
 namespace vm::detail {
 
-NodeTriangles node_triangles(size_t num_nodes, const Triangles& tris, const std::vector<char>* usable) {
+NodeTriangles node_triangles(size_t num_nodes, std::span<const std::array<int32_t, 3>> tris,
+                             const std::vector<char>* usable) {
   NodeTriangles nt;
   nt.off.assign(num_nodes + 1, 0);
   auto use = [&](size_t t) { return usable == nullptr || (*usable)[t] != 0; };

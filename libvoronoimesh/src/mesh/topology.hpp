@@ -54,7 +54,8 @@ struct NodeTriangles {
 /// Builds the node-triangle table. Triangles with `usable[t] == 0` are left out
 /// (the validator passes only triangles whose node ids are in range and distinct);
 /// a null `usable` means all, and then every node id must be in range.
-NodeTriangles node_triangles(size_t num_nodes, const Triangles& tris, const std::vector<char>* usable = nullptr);
+NodeTriangles node_triangles(size_t num_nodes, std::span<const std::array<int32_t, 3>> tris,
+                             const std::vector<char>* usable = nullptr);
 
 /// Every node-edge {a < b} with the halfedges lying on it, sorted by (a, b).
 struct EdgeTable {
