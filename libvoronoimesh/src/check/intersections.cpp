@@ -191,8 +191,14 @@ IntersectionReport find_in(const MeshArrays& m, size_t max_reported, std::span<c
   // two triangles of a node's star certified embedded meet only where they
   // share corners: those pairs are not tested. (Two triangles of the same three
   // nodes always intersect improperly; no star holding both is certified.)
-  const std::vector<uint8_t> embedded_star = detail::embedded_stars(m.points, m.triangles);
+  // Certifying costs about what it saves where every triangle's pairs are
+  // wanted, and more than it saves where a few are: only the former certify.
+  const size_t wanted =
+      involved.empty() ? nt : size_t(std::count_if(involved.begin(), involved.end(), [](uint8_t f) { return f != 0; }));
+  const std::vector<uint8_t> embedded_star =
+      2 * wanted > nt ? detail::embedded_stars(m.points, m.triangles) : std::vector<uint8_t>{};
   auto in_embedded_star = [&](const std::array<int32_t, 3>& a, const std::array<int32_t, 3>& b) {
+    if (embedded_star.empty()) return false;
     for (int32_t x : a)
       if ((x == b[0] || x == b[1] || x == b[2]) && embedded_star[size_t(x)]) return true;
     return false;
