@@ -4,6 +4,7 @@
 // (smooth, project, clamp, flip; sect. 4.2-4.3) with the crossing guard.
 //
 //   bench_mesh INPUT GRID THREADS [--no-guard] [--iterations N] [--voxels-per-cell F]
+//              [--check-crossings-every N]
 //   bench_mesh --header
 //
 // INPUT is anything vm::load_input reads (scene JSON, label volume, labelled
@@ -79,6 +80,7 @@ struct Progress {
 /// What the command line asks for beyond INPUT GRID THREADS.
 struct Options {
   bool guard = true;
+  int check_crossings_every = 1; ///< vm::RunOptions::check_crossings_every
   int iterations = kIterations; ///< fewer for the largest cases: the 50-iteration columns stay empty
   vm::InputOptions input;       ///< --voxels-per-cell for label volumes
 };
@@ -124,6 +126,7 @@ int run(const std::string& path, int grid, int threads, const Options& o) {
   vm::RunOptions options;
   options.iterations = o.iterations;
   options.guard_crossings = guard;
+  options.check_crossings_every = o.check_crossings_every;
   options.observer = [&](const vm::IterationReport& r, const vm::InterfaceMesh&) {
     now.seconds += r.seconds;
     now.min_q = r.min_quality, now.mean_q = r.mean_quality;
@@ -161,6 +164,7 @@ int main(int argc, char** argv) {
   }
   const char* const usage =
       "usage: bench_mesh INPUT GRID THREADS [--no-guard] [--iterations N] [--voxels-per-cell F]\n"
+      "                  [--check-crossings-every N]\n"
       "       bench_mesh --header\n";
   if (argc < 4) {
     std::fputs(usage, stderr);
@@ -172,6 +176,7 @@ int main(int argc, char** argv) {
     if (flag == "--no-guard") o.guard = false;
     else if (flag == "--iterations" && i + 1 < argc) o.iterations = std::atoi(argv[++i]);
     else if (flag == "--voxels-per-cell" && i + 1 < argc) o.input.voxels_per_cell = std::atof(argv[++i]);
+    else if (flag == "--check-crossings-every" && i + 1 < argc) o.check_crossings_every = std::atoi(argv[++i]);
     else {
       std::fputs(usage, stderr);
       return 2;

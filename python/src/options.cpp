@@ -51,6 +51,7 @@ Options options_from(const py::kwargs& kwargs, Input input) {
          m.stop_when_converged = v.cast<bool>();
        }},
       {"crossing_guard", [&](const py::handle& v) { m.guard_crossings = v.cast<bool>(); }},
+      {"check_crossings_every", [&](const py::handle& v) { m.check_crossings_every = v.cast<int>(); }},
       {"top_k", [&](const py::handle& v) { m.top_k = in.top_k = v.cast<int>(); }},
       {"lattice", [&](const py::handle& v) {
          if (v.is_none()) return m.lattice.reset(); // the input's default

@@ -14,6 +14,7 @@
 #include "fixtures.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <numeric>
@@ -318,6 +319,66 @@ TEST(Guard, the_default_pipeline_never_crosses_where_the_unguarded_one_does) {
       EXPECT_GT(worst, 0u); // the scene is hard enough to test the guard
     }
   }
+}
+
+/// The mesh `pipeline` makes of `scene` in `iterations`, with crossings looked
+/// for every `every` iterations (RunOptions::check_crossings_every), on
+/// `threads` threads; `reports` gets what the observer heard.
+InterfaceMesh run_checking_every(const Scene& scene, const Pipeline& pipeline, int iterations, int every,
+                                 std::vector<IterationReport>& reports, int threads = 2) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  InterfaceMesh mesh = initial_mesh(scene);
+  RunOptions run;
+  run.iterations = iterations;
+  run.check_crossings_every = every;
+  run.observer = [&](const IterationReport& r, const InterfaceMesh&) { reports.push_back(r); };
+  pipeline.run(mesh, scene.field.get(), run);
+  return mesh;
+}
+
+/// True when the two meshes have the same triangles and the same node positions, bit for bit.
+bool same_mesh(const InterfaceMesh& a, const InterfaceMesh& b) {
+  return a.positions() == b.positions() && a.triangles() == b.triangles();
+}
+
+// Where the guard never finds a crossing, looking for them once every few
+// iterations leaves the mesh of looking in every one, bit for bit.
+TEST(Guard, checking_every_few_iterations_where_nothing_crosses_makes_the_same_mesh) {
+  const Scene scene = test::example_scene("voronoi7.json", 24);
+  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());
+  std::vector<IterationReport> each, windowed;
+  const InterfaceMesh checked_each = run_checking_every(scene, pipeline, 12, 1, each);
+  const InterfaceMesh checked_every_4 = run_checking_every(scene, pipeline, 12, 4, windowed);
+  EXPECT_TRUE(same_mesh(checked_each, checked_every_4));
+  EXPECT_TRUE(std::none_of(each.begin(), each.end(), [](const IterationReport& r) { return r.crossings_deferred; }));
+  // Windows of 4 after two quiet iterations, none found crossed: 3-6, 7-10, 11-12.
+  ASSERT_EQ(windowed.size(), 13u);
+  for (const IterationReport& r : windowed) {
+    EXPECT_EQ(r.crossings_deferred, r.iteration >= 3) << r.iteration;
+    EXPECT_FALSE(r.runs_again) << r.iteration;
+  }
+}
+
+// A window whose end finds a crossing (30 Voronoi cells at grid 32, where
+// the guard finds a few late in the run) runs again from its start with every
+// move and flip checked: the mesh never keeps a crossing, and it does not
+// depend on the thread count.
+TEST(Guard, a_window_that_ends_crossed_runs_again_checked) {
+  const Scene scene = test::example_scene("voronoi30.json", 32);
+  const Pipeline pipeline = Pipeline::parse(kDefaultPipeline, builtin_registry());
+  std::vector<IterationReport> reports, on_one_thread;
+  const InterfaceMesh mesh = run_checking_every(scene, pipeline, 30, 3, reports);
+  EXPECT_TRUE(validate(mesh.to_node_mesh()).ok());
+  EXPECT_EQ(find_self_intersections(mesh.to_node_mesh()).count, 0u);
+  const auto again = std::find_if(reports.begin(), reports.end(), [](const IterationReport& r) { return r.runs_again; });
+  ASSERT_NE(again, reports.end()) << "no window ended crossed: the scene no longer tests the way back";
+  // The window's iterations are heard again, each checked.
+  const auto next = again + 1;
+  ASSERT_NE(next, reports.end());
+  EXPECT_LT(next->iteration, again->iteration);
+  EXPECT_FALSE(next->crossings_deferred);
+  EXPECT_EQ(reports.back().iteration, 30);
+  EXPECT_TRUE(same_mesh(mesh, run_checking_every(scene, pipeline, 30, 3, on_one_thread, 1)));
 }
 
 // The flip pass's first check may cost time in its flips alone only if the

@@ -93,6 +93,7 @@ struct ImproveOptions {
   bool stop_when_converged = false; ///< --stop-when-converged
   bool all_iterations = false;      ///< --all-iterations: never stop early, label volumes included
   bool unguarded = false; ///< skip the crossing guard (improve/guard.hpp)
+  int check_crossings_every = 1; ///< MeshOptions::check_crossings_every
   std::string history;    ///< where to write per-iteration histograms (.csv, .json, .svg)
 };
 /// Adds --iterations (default `default_iterations`), --pipeline, --plugin,

@@ -147,8 +147,19 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
   cmd->add_flag("--all-iterations", o.all_iterations,
                 "Run every one of --iterations, label volumes included (they stop when converged by default)")
       ->excludes(converged);
-  cmd->add_flag("--no-crossing-guard", o.unguarded,
-                "Do not undo moves and flips that make two surfaces cross (faster; only safe on well-resolved scenes)");
+  auto* unguarded = cmd->add_flag(
+      "--no-crossing-guard", o.unguarded,
+      "Do not undo moves and flips that make two surfaces cross (faster; only safe on well-resolved scenes)");
+  cmd->add_option("--check-crossings-every", o.check_crossings_every,
+                  "Look for crossing surfaces once every N iterations, in the whole mesh, instead of after every move "
+                  "and flip; where one is found, those iterations run again from where they began, each checked. "
+                  "The output is checked either way. Faster where surfaces rarely come to cross (1M triangles of 30 "
+                  "Voronoi cells, 20 iterations: a quarter faster at 5, a third at 10); the mesh is the same as with 1 "
+                  "where the guard finds nothing, and may differ where a crossing came and went in between. With "
+                  "--history or --mpi every iteration is checked")
+      ->default_val(1)
+      ->check(CLI::Range(1, 1000000))
+      ->excludes(unguarded);
   cmd->add_option("--history", o.history,
                   "Write per-iteration histograms of inradius, circumradius, edge length, quality, angles and vertex "
                   "degree (paper Fig. 7) to FILE: .svg (a picture), .csv or .json");
@@ -213,6 +224,7 @@ void set_improve_options(const ImproveOptions& improve, vm::MeshJob& job) {
   if (improve.stop_when_converged || improve.all_iterations)
     job.options.stop_when_converged = improve.stop_when_converged;
   job.options.guard_crossings = !improve.unguarded;
+  job.options.check_crossings_every = improve.check_crossings_every;
   job.outputs.history = improve.history;
 }
 

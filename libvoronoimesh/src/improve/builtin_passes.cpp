@@ -196,8 +196,13 @@ void register_builtin_passes(PassRegistry& registry) {
                              after_last % int(p.at("collapse_every")) == 0;
           collapse_below = std::min(collapse_below, c.quality_floor + (batch ? kWorstMargin : 0));
         }
-        FlipParams params{p.at("skip_quality"), int(p.at("max_rounds")), collapse_below,
-                          c.guard_crossings,    c.field,                 &c.guard,
+        // Flips and collapses are checked with the moves: not while those wait (defer_crossings()).
+        FlipParams params{p.at("skip_quality"),
+                          int(p.at("max_rounds")),
+                          collapse_below,
+                          c.guard_crossings && !c.guard.defers_crossings(),
+                          c.field,
+                          &c.guard,
                           p.at("ear_below")};
         const std::vector<int32_t> let_through =
             c.floor_pass ? c.guard.floor_exception_nodes() : std::vector<int32_t>{};

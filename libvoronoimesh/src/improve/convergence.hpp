@@ -14,25 +14,25 @@ class Convergence {
 public:
   /// `min_q` and `mean_q`: the mesh's before the first iteration.
   Convergence(const RunOptions& options, double min_q, double mean_q)
-      : options_(options), best_min_(min_q), best_mean_(mean_q), last_(options.iterations) {}
+      : options_(&options), best_min_(min_q), best_mean_(mean_q), last_(options.iterations) {}
 
   /// After each iteration, its mesh's quality: an iteration that raised neither
   /// the best minimum by more than RunOptions::tolerance nor the best mean by
   /// more than RunOptions::mean_tolerance stalled; after RunOptions::patience
   /// stalled ones in a row, the next iteration is the last.
   void after(int iteration, double min_q, double mean_q) {
-    const bool improved = min_q > best_min_ + options_.tolerance || mean_q > best_mean_ + options_.mean_tolerance;
+    const bool improved = min_q > best_min_ + options_->tolerance || mean_q > best_mean_ + options_->mean_tolerance;
     best_min_ = std::max(best_min_, min_q);
     best_mean_ = std::max(best_mean_, mean_q);
     stalled_ = improved ? 0 : stalled_ + 1;
-    if (options_.stop_when_converged && stalled_ >= options_.patience) last_ = std::min(last_, iteration + 1);
+    if (options_->stop_when_converged && stalled_ >= options_->patience) last_ = std::min(last_, iteration + 1);
   }
 
   /// The run's last iteration, as known now (RunOptions::iterations until it converges).
   int last() const { return last_; }
 
 private:
-  const RunOptions& options_;
+  const RunOptions* options_; // a pointer: the pipeline copies the state to run iterations again
   double best_min_, best_mean_;
   int stalled_ = 0;
   int last_;

@@ -32,6 +32,7 @@ std::vector<std::array<int32_t, 2>> CrossingGuard::crossings(const InterfaceMesh
   if (!index_) index_ = std::make_unique<detail::CrossingIndex>();
   auto found = index_->crossings(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
   checked_version_ = mesh.version();
+  checks_that_crossed_ += !found.empty();
   return found;
 }
 
@@ -41,6 +42,7 @@ std::vector<std::array<int32_t, 2>> CrossingGuard::crossings_of_changed(const In
   auto found =
       index_->crossings_after_changes(mesh.positions(), mesh.triangles(), involved, mesh.triangle_copies());
   checked_version_ = mesh.version();
+  checks_that_crossed_ += !found.empty();
   return found;
 }
 
@@ -186,7 +188,9 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
     // below it jumping through it in every iteration.
     // After the first round only the nodes put back have moved, and the
     // involved triangles are theirs: the index is mended from those alone.
-    const auto crossing = report.rounds == 1 ? crossings(mesh, involved) : crossings_of_changed(mesh, involved);
+    const auto crossing = deferred_         ? std::vector<std::array<int32_t, 2>>{}
+                          : report.rounds == 1 ? crossings(mesh, involved)
+                                               : crossings_of_changed(mesh, involved);
     for (const auto& pair : crossing) {
       double farthest = 0;
       for (int32_t t : pair)

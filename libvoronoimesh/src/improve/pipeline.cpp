@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -157,10 +158,47 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   double worst_now = first_min;
   detail::Convergence convergence(options, first_min, first_mean);
   int done = 0;
+  // Iterations whose crossings are checked together at the end of their
+  // window (RunOptions::check_crossings_every): the state they began from, to
+  // run them again, checked, should that check find a crossing.
+  const int window = options.guard_crossings ? std::max(1, options.check_crossings_every) : 1;
+  struct WindowStart {
+    int iteration;
+    InterfaceMesh mesh;
+    detail::Convergence convergence;
+    double worst_now;
+    int done;
+  };
+  std::optional<WindowStart> open;
+  // A window opens after kQuietIterations in a row in which the guard,
+  // checking each, found no crossing: on meshes where crossings keep coming
+  // (label volumes' thin structures), windows would mostly be run twice.
+  constexpr int kQuietIterations = 2;
+  int quiet = 0;
+  auto crossed = [&] { return !context.guard.crossings(mesh, {}).empty(); };
+  auto close_window = [&](int& it, bool crossing) {
+    if (crossing) {
+      quiet = 0;
+      it = open->iteration - 1;
+      mesh = std::move(open->mesh);
+      convergence = open->convergence;
+      worst_now = open->worst_now;
+      done = open->done;
+    }
+    open.reset();
+    context.guard.defer_crossings(false);
+  };
   for (int it = 1; it <= convergence.last(); ++it) {
     context.iterations = convergence.last();
-    if (options.stop_requested && options.stop_requested()) break;
+    if (options.stop_requested && options.stop_requested()) {
+      if (open) close_window(it, crossed()); // the mesh is then that of an iteration checked
+      break;
+    }
     const auto start = std::chrono::steady_clock::now();
+    if (window > 1 && !open && quiet >= kQuietIterations)
+      open.emplace(WindowStart{it, mesh, convergence, worst_now, done});
+    context.guard.defer_crossings(open.has_value());
+    const size_t crossed_before = context.guard.checks_that_crossed();
     context.iteration = it;
     context.flips = 0;
     context.undone_moves = 0;
@@ -173,11 +211,15 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     worst_now = min_q;
     // Converged: the next iteration is the last, and is told so before it runs.
     convergence.after(it, min_q, mean_q);
+    if (!open) quiet = context.guard.checks_that_crossed() == crossed_before ? quiet + 1 : 0;
+    const bool closes = open && (it - open->iteration + 1 == window || it >= convergence.last());
+    const bool crossing = closes && crossed(); // in this iteration's time
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
-                        pass_seconds, convergence.last()},
+                        pass_seconds, convergence.last(), open.has_value(), crossing},
                        mesh);
+    if (closes) close_window(it, crossing);
   }
   return done;
 }

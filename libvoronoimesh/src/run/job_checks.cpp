@@ -26,6 +26,8 @@ void check_options(const MeshOptions& o) {
     throw InvalidOption("snap", cat("must be between 0 and 0.5 (a fraction of the grid spacing h), got ", o.snap));
   if (o.top_k < 1 || o.top_k > 16) throw InvalidOption("top_k", cat("must be between 1 and 16, got ", o.top_k));
   if (o.iterations < 0) throw InvalidOption("iterations", cat("must be 0 or more, got ", o.iterations));
+  if (o.check_crossings_every < 1)
+    throw InvalidOption("check_crossings_every", cat("must be 1 or more iterations, got ", o.check_crossings_every));
   if (o.threads < 0) throw InvalidOption("threads", cat("must be 0 (all cores) or more, got ", o.threads));
   if (!(o.size >= 0 && o.size < 1e12))
     throw InvalidOption("size", cat("must be a length above 0 in world units (0: none), got ", o.size));

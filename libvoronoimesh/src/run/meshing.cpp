@@ -114,6 +114,7 @@ int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshO
   run.iterations = o.iterations;
   run.stop_when_converged = o.stop_when_converged.value_or(false);
   run.guard_crossings = o.guard_crossings;
+  run.check_crossings_every = history ? 1 : o.check_crossings_every;
   if (observer) run.stop_requested = [observer] { return observer->stop_requested(); };
   ImproveReport report;
   report.pipeline = pipeline_for(o, nullptr);

@@ -143,6 +143,20 @@ public:
   /// @param old_node the old id of each node of `mesh`, increasing, or -1 for a new node
   void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
 
+  /// While on, commit() leaves out its search for crossings (every other check
+  /// stays) and the passes that ask defers_crossings() check none of their
+  /// flips: the pipeline then checks the whole mesh once, after some
+  /// iterations, and runs them again from their start, checked, should it
+  /// find a crossing (RunOptions::check_crossings_every).
+  /// @param on whether to defer
+  void defer_crossings(bool on) { deferred_ = on; }
+  /// Whether crossings are left to a later whole check (defer_crossings()).
+  bool defers_crossings() const { return deferred_; }
+  /// How many of the guard's checks so far found a crossing (commits, flips
+  /// and whole checks alike): the pipeline defers crossings only where the
+  /// guard has been finding none.
+  size_t checks_that_crossed() const { return checks_that_crossed_; }
+
   /// Forgets the moves the quality floor let through (commit()).
   void forget_floor_exceptions() { excepted_.clear(); }
   /// Adds to `delta` the moves that take the nodes the quality floor let
@@ -168,6 +182,8 @@ private:
   };
   std::unique_ptr<detail::CrossingIndex> index_;
   uint64_t checked_version_ = 0; ///< the version() of the mesh at the guard's last look at one (checked_at())
+  bool deferred_ = false;        ///< defer_crossings()
+  size_t checks_that_crossed_ = 0; ///< checks_that_crossed()
   std::unordered_map<int32_t, FloorException> excepted_; ///< by node
 };
 

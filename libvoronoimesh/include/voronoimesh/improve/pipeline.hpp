@@ -117,6 +117,12 @@ struct IterationReport {
   /// quality converged (RunOptions::stop_when_converged), the next one; for
   /// progress that reaches its end when the run does.
   int last_iteration = 0;
+  /// Crossings were left to a whole check at the end of a window of iterations
+  /// (RunOptions::check_crossings_every), not looked for in this one.
+  bool crossings_deferred = false;
+  /// The check at the end of the window this iteration closed found a
+  /// crossing: the window's iterations run again, checked, and are reported again.
+  bool runs_again = false;
 };
 
 /// How Pipeline::run() iterates.
@@ -134,6 +140,19 @@ struct RunOptions {
   /// Undo any move that would make two triangles intersect (improve/guard.hpp). Off
   /// saves the exact intersection check of every iteration.
   bool guard_crossings = true;
+  /// With the guard on: look for crossings once every this many iterations,
+  /// in the whole mesh, instead of after every commit of moves and batch of
+  /// flips (the guard's other checks stay in every iteration). Where such a
+  /// check finds a crossing, the iterations since the last one run again from
+  /// the mesh as it was, every move and flip checked, so no crossing is left
+  /// in any mesh checked, and the output is checked. On meshes where the guard
+  /// never finds a crossing the result is the same as with 1; elsewhere it may
+  /// differ where a crossing came and went between two checks. 1: every
+  /// iteration. The observer then hears of iterations run again twice
+  /// (IterationReport::runs_again), and passes run them again from the mesh
+  /// as it was: a plugin pass that keeps state between iterations should
+  /// not count on seeing each iteration once.
+  int check_crossings_every = 1;
   /// Called after every iteration (and with iteration 0 before the first).
   std::function<void(const IterationReport&, const InterfaceMesh&)> observer;
   /// Asked before every iteration: true ends the run there, leaving the mesh as

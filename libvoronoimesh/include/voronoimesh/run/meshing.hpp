@@ -89,6 +89,10 @@ struct MeshOptions {
   std::optional<bool> stop_when_converged;
   /// Undo moves and flips that make surfaces cross (improve/guard.hpp).
   bool guard_crossings = true;
+  /// Look for crossings once every this many iterations, at least 1
+  /// (RunOptions::check_crossings_every); 1 with a quality history (whose
+  /// iterations must not run twice) and in a distributed run.
+  int check_crossings_every = 1;
 
   // --- both -----------------------------------------------------------------
   /// Worker threads, 0 or more; 0 = all cores. Results do not depend on it.
