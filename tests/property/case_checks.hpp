@@ -20,6 +20,12 @@ struct CheckOptions {
   /// A remesh pass spec ("remesh:size=2"), run first in every iteration and
   /// checked like the others (valid, nothing intersecting); empty: none.
   std::string remesh;
+  /// Over 1: instead of checking pass by pass, mesh the case whole (as
+  /// mesh_scene does) with crossings looked for every this many iterations
+  /// (RunOptions::check_crossings_every), and require the mesh valid, free of
+  /// crossings and inside the box (and the same on 1 and 2 threads, with
+  /// compare_threads).
+  int check_crossings_every = 1;
 };
 
 /// What check_case() found.

@@ -5,6 +5,7 @@
 //
 //   property_runner [--seed S] [--first A] [--count N] [--iterations K]
 //                   [--threads-every M] [--progress P] [--remesh SPEC] [--voxel-faithful]
+//                   [--check-crossings-every N]
 //   property_runner --seed S --case I --verbose     one case, with its scene
 
 #include "case_checks.hpp"
@@ -27,11 +28,13 @@ struct Args {
   bool verbose = false;
   std::string remesh; ///< a remesh pass spec run first in every iteration; empty: none
   bool voxel_faithful = false; ///< only the label cases, read voxel-faithful (random_case())
+  uint64_t check_every = 1;    ///< CheckOptions::check_crossings_every
 };
 
 [[noreturn]] void usage(const char* problem) {
   std::fprintf(stderr, "property_runner: %s\nusage: property_runner [--seed S] [--first A] [--count N] "
-                       "[--case I] [--iterations K] [--threads-every M] [--progress P] [--remesh SPEC] [--voxel-faithful] [--verbose]\n", problem);
+                       "[--case I] [--iterations K] [--threads-every M] [--progress P] [--remesh SPEC] [--voxel-faithful]\n"
+                       "       [--check-crossings-every N] [--verbose]\n", problem);
   std::exit(2);
 }
 
@@ -62,6 +65,7 @@ Args parse(int argc, char** argv) {
     else if (arg == "--iterations") a.iterations = int(v);
     else if (arg == "--threads-every") a.threads_every = v;
     else if (arg == "--progress") a.progress = v;
+    else if (arg == "--check-crossings-every") a.check_every = v >= 1 ? v : (usage("--check-crossings-every: 1 or more"), 1);
     else usage(("unknown option " + arg).c_str());
   }
   return a;
@@ -72,7 +76,9 @@ Args parse(int argc, char** argv) {
 int main(int argc, char** argv) {
   const Args a = parse(argc, argv);
   uint64_t checked = 0, failed = 0, against_field = 0, against_triangles = 0, folds = 0;
-  const char* variant = a.voxel_faithful ? " --voxel-faithful" : "";
+  std::string variant = a.voxel_faithful ? " --voxel-faithful" : "";
+  if (a.check_every > 1)
+    variant += " --check-crossings-every " + std::to_string(a.check_every) + " --iterations " + std::to_string(a.iterations);
   for (uint64_t index = a.first; index < a.first + a.count; ++index) {
     if (a.voxel_faithful && SceneKind(index % kSceneKinds) != SceneKind::labels) continue;
     ++checked;
@@ -89,6 +95,7 @@ int main(int argc, char** argv) {
     o.iterations = a.iterations;
     o.compare_threads = a.threads_every > 0 && index % a.threads_every == 0;
     o.remesh = a.remesh;
+    o.check_crossings_every = int(a.check_every);
     if (a.verbose) {
       std::printf("%s\n", c.description().c_str());
       if (!c.scene_json.empty()) std::printf("scene:\n%s\n", c.scene_json.c_str());
@@ -102,7 +109,7 @@ int main(int argc, char** argv) {
       ++failed;
       std::printf("FAIL seed %llu case %llu (%s): %s\n  reproduce: property_runner --seed %llu --case %llu%s --verbose\n",
                   (unsigned long long)a.seed, (unsigned long long)index, scene_kind_name(c.kind),
-                  r.failures.front().c_str(), (unsigned long long)a.seed, (unsigned long long)index, variant);
+                  r.failures.front().c_str(), (unsigned long long)a.seed, (unsigned long long)index, variant.c_str());
     }
     if (a.progress > 0 && (index - a.first + 1) % a.progress == 0) {
       std::fprintf(stderr, "progress %llu %llu\n", (unsigned long long)(index - a.first + 1),

@@ -109,6 +109,8 @@ public:
   /// now (for tests: none, in an index kept right through rebuilds and refiling).
   std::vector<int32_t> lists_unlike_search() const;
   size_t refiled() const { return refiled_; }
+  /// The triangles of the mesh the index last saw (renumber()'s old ids must be among them).
+  size_t triangles_seen() const { return slot_of_.size(); }
   bool rebuilt() const { return rebuilt_; }
 
 private:

@@ -46,6 +46,12 @@ std::vector<std::array<int32_t, 2>> CrossingGuard::crossings_of_changed(const In
   return found;
 }
 
+void CrossingGuard::forget_meshes() {
+  index_.reset();
+  checked_version_ = 0;
+  excepted_.clear();
+}
+
 const detail::CrossingIndex* CrossingGuard::index_for(const InterfaceMesh& mesh) {
   if (!index_ || !index_->refresh(mesh.positions(), mesh.triangles(), mesh.triangle_copies())) return nullptr;
   checked_version_ = mesh.version();
@@ -54,6 +60,10 @@ const detail::CrossingIndex* CrossingGuard::index_for(const InterfaceMesh& mesh)
 
 void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face,
                                std::span<const int32_t> old_node) {
+  // Old ids beyond the mesh the index saw: not an edit of it (a mesh put back
+  // without forget_meshes()); the next check builds anew.
+  const auto last_old = std::find_if(old_face.rbegin(), old_face.rend(), [](int32_t f) { return f >= 0; });
+  if (index_ && last_old != old_face.rend() && size_t(*last_old) >= index_->triangles_seen()) index_.reset();
   if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());
   checked_version_ = 0; // the index files what the renumbering changed at its next check
   if (excepted_.empty()) return;

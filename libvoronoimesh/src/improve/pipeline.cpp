@@ -181,6 +181,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
       quiet = 0;
       it = open->iteration - 1;
       mesh = std::move(open->mesh);
+      context.guard.forget_meshes(); // its index follows the mesh the window left
       convergence = open->convergence;
       worst_now = open->worst_now;
       done = open->done;

@@ -150,6 +150,10 @@ public:
   /// find a crossing (RunOptions::check_crossings_every).
   /// @param on whether to defer
   void defer_crossings(bool on) { deferred_ = on; }
+  /// Forgets the meshes seen so far (the index drops; the next check builds
+  /// anew): for a mesh put back to an earlier state, which renumbered() could
+  /// not carry the index over to.
+  void forget_meshes();
   /// Whether crossings are left to a later whole check (defer_crossings()).
   bool defers_crossings() const { return deferred_; }
   /// How many of the guard's checks so far found a crossing (commits, flips
