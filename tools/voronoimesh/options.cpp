@@ -158,7 +158,6 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
                   "where the guard finds nothing, and may differ where a crossing came and went in between. With "
                   "--history or --mpi every iteration is checked")
       ->default_val(1)
-      ->check(CLI::Range(1, 1000000))
       ->excludes(unguarded);
   cmd->add_option("--history", o.history,
                   "Write per-iteration histograms of inradius, circumradius, edge length, quality, angles and vertex "
