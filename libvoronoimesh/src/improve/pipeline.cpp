@@ -9,9 +9,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace vm {
