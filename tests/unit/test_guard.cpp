@@ -11,6 +11,8 @@
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/project.hpp"
 
+#include "improve/crossing_windows.hpp"
+
 #include "fixtures.hpp"
 
 #include <gtest/gtest.h>
@@ -383,8 +385,60 @@ TEST(Guard, a_window_that_ends_crossed_runs_again_checked) {
     EXPECT_LT(next->iteration, again->iteration);
     EXPECT_FALSE(next->crossings_deferred);
     EXPECT_EQ(reports.back().iteration, 30);
+    // After each window that ended crossed, the next opens only after twice as
+    // many checked iterations in a row as the last one needed (2, then 4, ...).
+    size_t needed = 2, checked_in_a_row = 0;
+    for (const IterationReport& r : reports) {
+      if (r.iteration == 0) continue;
+      if (r.crossings_deferred && checked_in_a_row > 0) EXPECT_GE(checked_in_a_row, needed) << r.iteration;
+      checked_in_a_row = r.crossings_deferred ? 0 : checked_in_a_row + 1;
+      if (r.runs_again) needed *= 2;
+    }
     EXPECT_TRUE(same_mesh(mesh, run_checking_every(scene, pipeline, 30, 3, on_one_thread, 1)));
   }
+}
+
+// Windows open after two checked iterations in a row in which the guard found
+// no crossing, and after each window that ended crossed, after twice as many
+// (4, then 8): where crossings keep coming, few iterations run twice.
+TEST(Guard, windows_wait_twice_as_long_after_each_that_ended_crossed) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(12));
+  InterfaceMesh crossed = mesh; // a node of one surface moved onto a node of another
+  const auto [v, w] = nodes_on_two_surfaces(mesh);
+  ASSERT_GE(v, 0);
+  std::vector<Vec3> jump(mesh.num_nodes(), Vec3::Zero());
+  jump[size_t(v)] = mesh.positions()[size_t(w)] - mesh.positions()[size_t(v)];
+  crossed.move_nodes(jump);
+  CrossingGuard guard;
+  const RunOptions options;
+  detail::RunState state{detail::Convergence(options, 0, 0), 0, 0};
+  detail::CrossingWindows windows(3);
+  // Runs iterations from `it` on, each finding a crossing if `finds` says so,
+  // until one ends a window; returns the first iteration of that window.
+  auto run_until_a_window_ends = [&](int& it, auto finds) {
+    for (int first = 0;; ++it) {
+      windows.before(it, mesh, state, guard);
+      if (windows.is_open() && first == 0) first = it;
+      if (!windows.is_open() && finds(it)) EXPECT_FALSE(guard.crossings(crossed, {}).empty());
+      if (windows.closes(it, 100, guard)) return first;
+    }
+  };
+  auto never = [](int) { return false; };
+  int it = 1;
+  EXPECT_EQ(run_until_a_window_ends(it, never), 3); // after iterations 1 and 2
+  EXPECT_EQ(it, 5);
+  windows.close(true, it, mesh, state, guard); // crossed: back to before iteration 3
+  EXPECT_EQ(it, 2);
+  ++it;
+  EXPECT_EQ(run_until_a_window_ends(it, never), 7); // after four: 3, 4, 5, 6
+  windows.close(true, it, mesh, state, guard);
+  ++it;
+  // Eight now, counted anew after a crossing the guard found (iteration 8).
+  EXPECT_EQ(run_until_a_window_ends(it, [](int i) { return i == 8; }), 17);
+  windows.close(false, it, mesh, state, guard);
+  EXPECT_FALSE(guard.defers_crossings());
+  ++it;
+  EXPECT_EQ(run_until_a_window_ends(it, never), 20); // after a clean window, the next at once
 }
 
 // The flip pass's first check may cost time in its flips alone only if the

@@ -6,6 +6,7 @@
 #include "core/fixed_point_sum.hpp"
 #include "core/parallel.hpp"
 #include "improve/convergence.hpp"
+#include "improve/crossing_windows.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -155,74 +156,41 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const auto [first_min, first_mean] = quality_summary(mesh);
   if (options.observer)
     options.observer({0, first_min, first_mean, 0, 0, 0, std::nullopt, {}, options.iterations}, mesh);
-  double worst_now = first_min;
-  detail::Convergence convergence(options, first_min, first_mean);
-  int done = 0;
-  // Iterations whose crossings are checked together at the end of their
-  // window (RunOptions::check_crossings_every): the state they began from, to
-  // run them again, checked, should that check find a crossing.
-  const int window = options.guard_crossings ? std::max(1, options.check_crossings_every) : 1;
-  struct WindowStart {
-    int iteration;
-    InterfaceMesh mesh;
-    detail::Convergence convergence;
-    double worst_now;
-    int done;
-  };
-  std::optional<WindowStart> open;
-  // A window opens after kQuietIterations in a row in which the guard,
-  // checking each, found no crossing: on meshes where crossings keep coming
-  // (label volumes' thin structures), windows would mostly be run twice.
-  constexpr int kQuietIterations = 2;
-  int quiet = 0;
+  detail::RunState state{detail::Convergence(options, first_min, first_mean), first_min, 0};
+  detail::CrossingWindows windows(options.guard_crossings ? options.check_crossings_every : 1);
   auto crossed = [&] { return !context.guard.crossings(mesh, {}).empty(); };
-  auto close_window = [&](int& it, bool crossing) {
-    if (crossing) {
-      quiet = 0;
-      it = open->iteration - 1;
-      mesh = std::move(open->mesh);
-      context.guard.forget_meshes(); // its index follows the mesh the window left
-      convergence = open->convergence;
-      worst_now = open->worst_now;
-      done = open->done;
-    }
-    open.reset();
-    context.guard.defer_crossings(false);
-  };
-  for (int it = 1; it <= convergence.last(); ++it) {
-    context.iterations = convergence.last();
+  for (int it = 1; it <= state.convergence.last(); ++it) {
+    context.iterations = state.convergence.last();
     if (options.stop_requested && options.stop_requested()) {
-      if (open) close_window(it, crossed()); // the mesh is then that of an iteration checked
+      // The mesh is then that of an iteration checked.
+      if (windows.is_open()) windows.close(crossed(), it, mesh, state, context.guard);
       break;
     }
     const auto start = std::chrono::steady_clock::now();
-    if (window > 1 && !open && quiet >= kQuietIterations)
-      open.emplace(WindowStart{it, mesh, convergence, worst_now, done});
-    context.guard.defer_crossings(open.has_value());
-    const size_t crossed_before = context.guard.checks_that_crossed();
+    windows.before(it, mesh, state, context.guard);
     context.iteration = it;
     context.flips = 0;
     context.undone_moves = 0;
     context.stats.reset();
-    context.quality_floor = worst_now;
+    context.quality_floor = state.worst_now;
     context.guard.forget_floor_exceptions();
     const std::vector<double> pass_seconds = iterate(context, passes);
-    done = it;
+    state.done = it;
     const auto [min_q, mean_q] = quality_summary(mesh);
-    worst_now = min_q;
+    state.worst_now = min_q;
     // Converged: the next iteration is the last, and is told so before it runs.
-    convergence.after(it, min_q, mean_q);
-    if (!open) quiet = context.guard.checks_that_crossed() == crossed_before ? quiet + 1 : 0;
-    const bool closes = open && (it - open->iteration + 1 == window || it >= convergence.last());
+    state.convergence.after(it, min_q, mean_q);
+    const bool deferred = windows.is_open();
+    const bool closes = windows.closes(it, state.convergence.last(), context.guard);
     const bool crossing = closes && crossed(); // in this iteration's time
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), context.stats,
-                        pass_seconds, convergence.last(), open.has_value(), crossing},
+                        pass_seconds, state.convergence.last(), deferred, crossing},
                        mesh);
-    if (closes) close_window(it, crossing);
+    if (closes) windows.close(crossing, it, mesh, state, context.guard);
   }
-  return done;
+  return state.done;
 }
 
 } // namespace vm
