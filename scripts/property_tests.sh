@@ -51,7 +51,12 @@ if [[ $failures -gt 0 ]]; then
 fi
 # A batch that crashed has no summary line: its cases count as not checked.
 summaries=$(cat "$work"/batch*.log | grep -c '^checked' || true)
-echo "last run: $checked ${variant:+label }cases checked of $((cases - first_case)) (from case $first_case), $failures failures, $((batches - first_batch - summaries)) batches crashed (seed $seed, $(( $(date +%s) - start )) s)"
+again=""
+if [[ -n $windows ]]; then
+  sum_of() { cat "$work"/batch*.log | sed -n "s/^checked .* \([0-9]*\) windows run again in \([0-9]*\) cases$/\\$1/p" | paste -sd+ | bc; }
+  again=", $(sum_of 1) windows run again in $(sum_of 2) cases"
+fi
+echo "last run: $checked ${variant:+label }cases checked of $((cases - first_case)) (from case $first_case), $failures failures$again, $((batches - first_batch - summaries)) batches crashed (seed $seed, $(( $(date +%s) - start )) s)"
 [[ $failures -eq 0 && $summaries -eq $((batches - first_batch)) && ( -n $variant || $checked -eq $((cases - first_case)) ) ]]
 exit
 }

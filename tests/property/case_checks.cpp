@@ -85,13 +85,19 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   }
 }
 
-/// The whole of mesh_scene() on `threads` threads.
-NodeMesh meshed(const RandomCase& c, const CheckOptions& o, int threads) {
+/// Counts the windows of unchecked crossings that ran again.
+struct WindowCount : RunObserver {
+  size_t run_again = 0;
+  void iteration(const IterationReport& report, const InterfaceMesh&) override { run_again += report.runs_again; }
+};
+
+/// The whole of mesh_scene() on `threads` threads, watched by `observer` (null for none).
+NodeMesh meshed(const RandomCase& c, const CheckOptions& o, int threads, RunObserver* observer = nullptr) {
   MeshOptions options = c.options;
   options.iterations = o.iterations;
   options.threads = threads;
   options.check_crossings_every = o.check_crossings_every;
-  return mesh_scene(c.scene, options);
+  return mesh_scene(c.scene, options, observer);
 }
 
 void compare_threads(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
@@ -107,8 +113,10 @@ CaseResult check_case(const RandomCase& c, const CheckOptions& o) {
   CaseResult r;
   try {
     if (o.check_crossings_every > 1) {
-      const NodeMesh m = meshed(c, o, 1);
+      WindowCount windows;
+      const NodeMesh m = meshed(c, o, 1, &windows);
       r.triangles = m.num_triangles();
+      r.windows_run_again = windows.run_again;
       valid_unintersected_and_inside(m, "meshed with crossings checked every " +
                                             std::to_string(o.check_crossings_every) + " iterations", r);
     } else {

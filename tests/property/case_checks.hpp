@@ -39,6 +39,9 @@ struct CaseResult {
   /// Surface edges that fold at the end (MeshStats::folds): good triangles laid
   /// onto each other, which the checks above do not see.
   size_t folds = 0;
+  /// With CheckOptions::check_crossings_every over 1: windows whose check at
+  /// their end found a crossing, so that their iterations ran again.
+  size_t windows_run_again = 0;
   bool ok() const { return failures.empty(); }
 };
 

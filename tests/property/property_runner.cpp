@@ -76,6 +76,7 @@ Args parse(int argc, char** argv) {
 int main(int argc, char** argv) {
   const Args a = parse(argc, argv);
   uint64_t checked = 0, failed = 0, against_field = 0, against_triangles = 0, folds = 0;
+  uint64_t windowed_cases = 0, windows_run_again = 0; // with --check-crossings-every
   std::string variant = a.voxel_faithful ? " --voxel-faithful" : "";
   if (a.check_every > 1)
     variant += " --check-crossings-every " + std::to_string(a.check_every) + " --iterations " + std::to_string(a.iterations);
@@ -104,6 +105,8 @@ int main(int argc, char** argv) {
     against_field += r.against_field > 0;
     against_triangles += r.against_field;
     folds += r.folds;
+    windowed_cases += r.windows_run_again > 0;
+    windows_run_again += r.windows_run_again;
     if (a.verbose) std::printf("%zu triangles created\n", r.triangles);
     if (!r.ok()) {
       ++failed;
@@ -118,8 +121,12 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   std::printf("checked %llu cases, %llu failed, %llu with %llu triangles against their pair's direction, "
-              "%llu surface edges folding\n",
+              "%llu surface edges folding",
               (unsigned long long)checked, (unsigned long long)failed, (unsigned long long)against_field,
               (unsigned long long)against_triangles, (unsigned long long)folds);
+  if (a.check_every > 1)
+    std::printf(", %llu windows run again in %llu cases", (unsigned long long)windows_run_again,
+                (unsigned long long)windowed_cases);
+  std::printf("\n");
   return failed ? 1 : 0;
 }
