@@ -387,6 +387,9 @@ TEST(Guard, a_window_that_ends_crossed_runs_again_checked) {
     EXPECT_EQ(reports.back().iteration, 30);
     // After each window that ended crossed, the next opens only after twice as
     // many checked iterations in a row as the last one needed (2, then 4, ...).
+    // A lower bound only: the reports do not say which checked iterations found
+    // a crossing, so this holds here with the doubling taken out too; the rule
+    // itself is tested in windows_wait_twice_as_long_after_each_that_ended_crossed.
     size_t needed = 2, checked_in_a_row = 0;
     for (const IterationReport& r : reports) {
       if (r.iteration == 0) continue;
@@ -420,7 +423,7 @@ TEST(Guard, windows_wait_twice_as_long_after_each_that_ended_crossed) {
       windows.before(it, mesh, state, guard);
       if (windows.is_open() && first == 0) first = it;
       if (!windows.is_open() && finds(it)) EXPECT_FALSE(guard.crossings(crossed, {}).empty());
-      if (windows.closes(it, 100, guard)) return first;
+      if (windows.after(it, 100, guard)) return first;
     }
   };
   auto never = [](int) { return false; };

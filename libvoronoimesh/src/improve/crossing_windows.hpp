@@ -41,9 +41,10 @@ public:
   /// The iteration running now is in an open window.
   bool is_open() const { return open_.has_value(); }
 
-  /// After iteration `it`, run until `last`: whether it ends the open window.
-  /// Counts the checked iterations in a row whose guard found no crossing.
-  bool closes(int it, int last, const CrossingGuard& guard) {
+  /// After iteration `it`, run until `last`: counts it among the quiet checked
+  /// iterations if it was checked and its guard found no crossing; returns
+  /// whether it ends the open window.
+  bool after(int it, int last, const CrossingGuard& guard) {
     if (!open_) {
       quiet_ = guard.checks_that_crossed() == crossed_before_ ? quiet_ + 1 : 0;
       return false;

@@ -181,7 +181,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
     // Converged: the next iteration is the last, and is told so before it runs.
     state.convergence.after(it, min_q, mean_q);
     const bool deferred = windows.is_open();
-    const bool closes = windows.closes(it, state.convergence.last(), context.guard);
+    const bool closes = windows.after(it, state.convergence.last(), context.guard);
     const bool crossing = closes && crossed(); // in this iteration's time
     if (options.observer)
       options.observer({it, min_q, mean_q, context.flips, context.undone_moves,
