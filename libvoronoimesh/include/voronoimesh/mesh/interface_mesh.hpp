@@ -10,8 +10,7 @@
 #include "voronoimesh/core/pooled_lists.hpp"
 #include "voronoimesh/core/types.hpp"
 #include "voronoimesh/mesh/node_mesh.hpp"
-
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include "voronoimesh/mesh/omesh.hpp"
 
 #include <array>
 #include <cstdint>
@@ -21,11 +20,6 @@
 #include <vector>
 
 namespace vm {
-
-/// OpenMesh traits: double-precision points.
-struct MeshTraits : public OpenMesh::DefaultTraitsDouble {};
-/// The OpenMesh triangle mesh type of InterfaceMesh (double-precision points).
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 
 namespace detail {
 
