@@ -56,14 +56,15 @@ void InterfaceMesh::build(const NodeMesh& m) {
   // One OpenMesh vertex per corner class, numbered by node so each node's
   // copies are contiguous.
   const std::vector<int32_t> partner = detail::glued_partners(et, tris, m.pairs);
-  std::vector<int32_t> vertex_of_corner;
-  detail::number_corner_classes(nt, tris, partner, vertex_of_corner, copy_off_);
-  link(m, vertex_of_corner, partner, detail::some_edge_joins_vertices_twice(et, vertex_of_corner, partner));
+  std::vector<int32_t> vertex_of_corner, copy_off;
+  detail::number_corner_classes(nt, tris, partner, vertex_of_corner, copy_off);
+  link(m, copy_off, vertex_of_corner, partner, detail::some_edge_joins_vertices_twice(et, vertex_of_corner, partner));
   build_adjacency();
 }
 
-void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner,
-                         const std::vector<int32_t>& partner, bool face_by_face) {
+void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& copy_off,
+                         const std::vector<int32_t>& vertex_of_corner, const std::vector<int32_t>& partner,
+                         bool face_by_face) {
   pos_ = m.points;
   domain_ = m.domain;
   grid_spacing_ = m.grid_spacing;
@@ -72,9 +73,10 @@ void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_o
   colors_ = m.phase_colors;
   outside_ = m.outside_phase;
   const size_t num_nodes = m.points.size(), num_tris = m.triangles.size();
-  const auto num_vertices = size_t(copy_off_[num_nodes]);
-  copy_v_.resize(num_vertices);
-  std::iota(copy_v_.begin(), copy_v_.end(), 0);
+  const auto num_vertices = size_t(copy_off[num_nodes]);
+  std::vector<uint32_t> num_copies(num_nodes);
+  for (size_t n = 0; n < num_nodes; ++n) num_copies[n] = uint32_t(copy_off[n + 1] - copy_off[n]);
+  copies_.assign(num_copies);
 
   // Emptied, its memory kept, where it held a mesh before (apply_edit()): its
   // properties stay, and every value of them is set below.
@@ -85,7 +87,8 @@ void InterfaceMesh::link(const NodeMesh& m, const std::vector<int32_t>& vertex_o
   mesh_->property(pair_).set_persistent(true);
   mesh_->resize(num_vertices, 0, 0);
   detail::parallel_for_each_index(num_nodes, [&](size_t n) {
-    for (int32_t v = copy_off_[n]; v < copy_off_[n + 1]; ++v) {
+    std::iota(copies_.at(n).begin(), copies_.at(n).end(), copy_off[n]);
+    for (int32_t v = copy_off[n]; v < copy_off[n + 1]; ++v) {
       const auto vh = OMesh::VertexHandle(v);
       mesh_->set_point(vh, OMesh::Point(m.points[n].x(), m.points[n].y(), m.points[n].z()));
       mesh_->property(node_, vh) = int32_t(n);

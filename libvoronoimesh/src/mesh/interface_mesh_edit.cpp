@@ -172,13 +172,13 @@ void InterfaceMesh::apply_edit(const NodeMesh& m, std::span<const int32_t> trian
   // Corner classes: a dirty node's from its triangles; a clean node's are its
   // copies here, in the order of their first triangle now.
   InterfaceMesh im;
-  im.copy_off_.assign(nodes + 1, 0);
+  std::vector<int32_t> copy_off(nodes + 1, 0);
   std::vector<int32_t> corner_at(at_dirty.tri.size()), class_at(at_dirty.tri.size());
   detail::parallel_for(tbb::blocked_range<size_t>(0, dirty_nodes.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<int32_t> parent;
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto first = size_t(at_dirty.off[i]);
-      im.copy_off_[size_t(dirty_nodes[i]) + 1] = detail::corner_classes_at(
+      copy_off[size_t(dirty_nodes[i]) + 1] = detail::corner_classes_at(
           dirty_nodes[i], at_dirty.of(i), tris, partner, parent, &corner_at[first], &class_at[first]);
     }
   });
@@ -186,7 +186,7 @@ void InterfaceMesh::apply_edit(const NodeMesh& m, std::span<const int32_t> trian
   detail::parallel_for_each_index(nodes, [&](size_t n) {
     if (dirty[n]) return;
     const auto copies_then = copies(node_was[n]);
-    im.copy_off_[n + 1] = int32_t(copies_then.size());
+    copy_off[n + 1] = int32_t(copies_then.size());
     if (copies_then.size() == 1) {
       class_of_copy[size_t(copies_then[0])] = 0;
       return;
@@ -200,17 +200,17 @@ void InterfaceMesh::apply_edit(const NodeMesh& m, std::span<const int32_t> trian
     std::sort(by_first.begin(), by_first.end());
     for (size_t i = 0; i < by_first.size(); ++i) class_of_copy[size_t(by_first[i].second)] = int32_t(i);
   });
-  for (size_t n = 0; n < nodes; ++n) im.copy_off_[n + 1] += im.copy_off_[n];
+  for (size_t n = 0; n < nodes; ++n) copy_off[n + 1] += copy_off[n];
   std::vector<int32_t> vertex_of_corner(3 * faces);
   detail::parallel_for_each_index(faces, [&](size_t t) {
     for (size_t k = 0; k < 3; ++k)
       if (const int32_t v = tris[t][k]; !dirty[size_t(v)])
         vertex_of_corner[3 * t + k] =
-            im.copy_off_[size_t(v)] + class_of_copy[size_t(triangle_copies_[size_t(triangle_was[t])][k])];
+            copy_off[size_t(v)] + class_of_copy[size_t(triangle_copies_[size_t(triangle_was[t])][k])];
   });
   detail::parallel_for_each_index(dirty_nodes.size(), [&](size_t i) {
     for (auto j = size_t(at_dirty.off[i]); j < size_t(at_dirty.off[i + 1]); ++j)
-      vertex_of_corner[size_t(corner_at[j])] = im.copy_off_[size_t(dirty_nodes[i])] + class_at[j];
+      vertex_of_corner[size_t(corner_at[j])] = copy_off[size_t(dirty_nodes[i])] + class_at[j];
   });
 
   // Phase sets: a clean node's as here, a dirty one's from its triangles (the
@@ -232,7 +232,7 @@ void InterfaceMesh::apply_edit(const NodeMesh& m, std::span<const int32_t> trian
   im.mesh_ = std::move(mesh_);
   im.node_ = node_;
   im.pair_ = pair_;
-  im.link(m, vertex_of_corner, partner, twice);
+  im.link(m, copy_off, vertex_of_corner, partner, twice);
 
   // Rings: a clean node's neighbours are those it had, renumbered (in the same
   // order: what is kept keeps its order); a dirty one's from the new mesh.

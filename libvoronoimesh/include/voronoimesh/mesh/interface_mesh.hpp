@@ -100,9 +100,7 @@ public:
   /// OpenMesh vertices (copies) of node n.
   /// @param n a node id, in [0, num_nodes())
   /// @return the indices of its OpenMesh vertices
-  std::span<const int32_t> copies(int32_t n) const {
-    return {copy_v_.data() + copy_off_[n], size_t(copy_off_[n + 1] - copy_off_[n])};
-  }
+  std::span<const int32_t> copies(int32_t n) const { return copies_.at(size_t(n)); }
 
   /// Node positions (authoritative; OpenMesh points mirror them).
   const std::vector<Vec3>& positions() const { return pos_; }
@@ -197,13 +195,14 @@ public:
 
 private:
   static uint64_t next_version(); ///< a version() no mesh of this process had
-  /// The nodes, the OpenMesh vertices (copy_off_ set) and faces of `m`: face t
-  /// is triangle t, with the vertex of each corner (3t + k) and the glued
-  /// partner of each halfedge as given; through add_face() one by one when
-  /// `face_by_face` (detail::some_edge_joins_vertices_twice()) or when the
-  /// classes cannot be linked otherwise.
-  void link(const NodeMesh& m, const std::vector<int32_t>& vertex_of_corner, const std::vector<int32_t>& partner,
-            bool face_by_face);
+  /// The nodes, the OpenMesh vertices and faces of `m`: node n's copies are
+  /// the vertices copy_off[n] to copy_off[n + 1] - 1, face t is triangle t,
+  /// with the vertex of each corner (3t + k) and the glued partner of each
+  /// halfedge as given; through add_face() one by one when `face_by_face`
+  /// (detail::some_edge_joins_vertices_twice()) or when the classes cannot be
+  /// linked otherwise.
+  void link(const NodeMesh& m, const std::vector<int32_t>& copy_off, const std::vector<int32_t>& vertex_of_corner,
+            const std::vector<int32_t>& partner, bool face_by_face);
   /// from_node_mesh(m) into this mesh: its OpenMesh arrays emptied, and
   /// refilled in the memory they had (link()).
   void build(const NodeMesh& m);
@@ -221,7 +220,9 @@ private:
   OpenMesh::FPropHandleT<OpenMesh::Vec2s> pair_;
   std::vector<Vec3> pos_;
   std::vector<PhaseSet> phases_;
-  std::vector<int32_t> copy_off_, copy_v_;
+  /// Each node's OpenMesh vertices: lists that can grow and shrink, for
+  /// edits that give a node copies or take them away (docs/edits-in-place.md).
+  detail::PooledLists<int32_t> copies_;
   detail::PooledLists<int32_t> adj_; ///< each node's neighbours, sorted
   std::vector<std::array<int32_t, 3>> triangles_, triangle_copies_;
   mutable std::vector<double> quality_; ///< qualities(), when quality_current_
