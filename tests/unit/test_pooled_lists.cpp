@@ -1,6 +1,7 @@
 // core/pooled_lists.hpp: keep_lists(), which carries the crossing index's
-// neighbour lists over a renumbering without copying them, and map_items() by
-// ranges of lists, which the index maps in parallel.
+// neighbour lists over a renumbering without copying them, map_items() by
+// ranges of lists, which the index maps in parallel, and take_last(), with
+// which the edits in place remove a node.
 
 #include "voronoimesh/core/pooled_lists.hpp"
 
@@ -17,13 +18,18 @@ std::vector<int32_t> items(const PooledLists<int32_t>& lists, size_t list) {
   return {span.begin(), span.end()};
 }
 
-TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
+/// Lists of the given sizes holding 0, 1, 2, ... in order.
+PooledLists<int32_t> numbered(const std::vector<uint32_t>& sizes) {
   PooledLists<int32_t> lists;
-  const std::vector<uint32_t> sizes{2, 3, 1};
   lists.assign(sizes);
   int32_t next = 0;
-  for (size_t l = 0; l < 3; ++l)
-    for (int32_t& x : lists.at(l)) x = next++; // 0 1 | 2 3 4 | 5
+  for (size_t l = 0; l < sizes.size(); ++l)
+    for (int32_t& x : lists.at(l)) x = next++;
+  return lists;
+}
+
+TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
+  PooledLists<int32_t> lists = numbered({2, 3, 1}); // 0 1 | 2 3 4 | 5
   const std::vector<int32_t> from{0, -1, 2}; // list 1 dropped, a new empty one in its place
   lists.keep_lists(from);
   ASSERT_EQ(lists.count(), 3u);
@@ -42,11 +48,7 @@ TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
 }
 
 TEST(PooledLists, map_items_of_a_range_of_lists_leaves_the_others) {
-  PooledLists<int32_t> lists;
-  lists.assign(std::vector<uint32_t>{2, 2, 2, 2});
-  int32_t next = 0;
-  for (size_t l = 0; l < 4; ++l)
-    for (int32_t& x : lists.at(l)) x = next++; // 0 1 | 2 3 | 4 5 | 6 7
+  PooledLists<int32_t> lists = numbered({2, 2, 2, 2}); // 0 1 | 2 3 | 4 5 | 6 7
   lists.map_items([](int32_t x) { return x % 2 ? 10 * x : -1; }, 1, 3);
   EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{0, 1}));
   EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{30}));
@@ -54,6 +56,20 @@ TEST(PooledLists, map_items_of_a_range_of_lists_leaves_the_others) {
   EXPECT_EQ(items(lists, 3), (std::vector<int32_t>{6, 7}));
   lists.map_items([](int32_t x) { return x + 1; }, 3, 99); // past the end: clamped
   EXPECT_EQ(items(lists, 3), (std::vector<int32_t>{7, 8}));
+}
+
+TEST(PooledLists, take_last_moves_the_last_list_into_a_slot) {
+  // As the edits in place remove a node: its list goes, the last takes its index.
+  PooledLists<int32_t> lists = numbered({2, 1, 3}); // 0 1 | 2 | 3 4 5
+  lists.take_last(0);
+  ASSERT_EQ(lists.count(), 2u);
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{3, 4, 5}));
+  EXPECT_EQ(items(lists, 1), (std::vector<int32_t>{2}));
+  lists.push(0, 6); // still grows
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{3, 4, 5, 6}));
+  lists.take_last(1); // the last list itself
+  ASSERT_EQ(lists.count(), 1u);
+  EXPECT_EQ(items(lists, 0), (std::vector<int32_t>{3, 4, 5, 6}));
 }
 
 } // namespace

@@ -141,6 +141,13 @@ public:
       r.size = kept;
     }
   }
+  /// List `list` becomes the last list, which goes (as swap-removal of an
+  /// element goes): the room of the list replaced stays in the pool, unused.
+  /// @param list the list's index
+  void take_last(size_t list) {
+    range_[list] = range_.back();
+    range_.pop_back();
+  }
   /// The number of lists.
   /// @return it
   size_t count() const { return range_.size(); }

@@ -56,6 +56,23 @@ using PhaseSet = std::array<int16_t, kMaxPhasesAtNode>;
 /// @return the entries that are not -1 padding
 int phase_count(const PhaseSet& s);
 
+/// A local change of an InterfaceMesh's triangles (InterfaceMesh::edit_in_place()).
+struct LocalEdit {
+  std::vector<int32_t> removed_faces;                ///< OpenMesh faces that go, distinct
+  std::vector<std::array<int32_t, 3>> added;         ///< triangles that come, node ids in orientation order
+  std::vector<PhasePair> added_pairs;                ///< the phase pair of each added triangle
+  std::vector<Vec3> new_nodes;                       ///< nodes num_nodes(), num_nodes() + 1, ... that come
+  std::vector<int32_t> removed_nodes;                ///< nodes the edit leaves without a triangle that go, distinct
+};
+
+/// How edit_in_place() renumbered: each removed face's (node's) slot taken by
+/// the last one (SlotMoves), then the added faces (new nodes) appended in
+/// order. Arrays by face (node) follow by replaying the moves, then appending.
+struct EditMoves {
+  std::vector<SlotMove> faces; ///< moves of faces, in the order made
+  std::vector<SlotMove> nodes; ///< moves of nodes, in the order made
+};
+
 /// The mesh the improvement passes work on (see the file comment); NodeMesh in, NodeMesh out.
 class InterfaceMesh {
 public:
@@ -83,6 +100,21 @@ public:
   ///                     not -1 (the order of the nodes kept is kept)
   /// @throws TopologyError as from_node_mesh(m); the mesh is then unusable
   void apply_edit(const NodeMesh& m, std::span<const int32_t> triangle_was, std::span<const int32_t> node_was);
+  /// Makes a local edit in place (docs/edits-in-place.md): the removed faces
+  /// go from OpenMesh by swap-removal, the added ones come through
+  /// add_face(), and every node they touch gets the copies, phases and
+  /// neighbours from_node_mesh() would give it, by the same rule (the corner
+  /// classes of its triangles); nodes the edit leaves untouched keep theirs.
+  /// The mesh is then what from_node_mesh() makes of the edited triangles,
+  /// with other face and node numbers (`moves`).
+  /// @param edit  the change; new nodes are numbered from num_nodes() before the removed ones go
+  /// @param moves receives the renumbering
+  /// @return false, with the mesh untouched, where an edit would join two copies of a node into
+  ///         one fan or split one copy's fan in two (OpenMesh cannot follow in place: rebuild)
+  /// @throws TopologyError for an added triangle with a repeated or unknown node, or a node with
+  ///         more phases than a PhaseSet holds; std::invalid_argument for a removed node that keeps
+  ///         a triangle. The mesh is unusable after a TopologyError thrown by OpenMesh's refusal.
+  bool edit_in_place(const LocalEdit& edit, EditMoves& moves);
   /// The node-level mesh back (node order and triangle order preserved).
   NodeMesh to_node_mesh() const;
 
@@ -212,6 +244,10 @@ private:
   /// (room for valence_of(v)); returns how many.
   size_t ring_of(size_t v, int32_t* out) const;
   void read_face(size_t f);       ///< triangles_[f] and triangle_copies_[f] from OpenMesh
+  /// The phases and neighbours of node n from its faces now.
+  void refresh_node(size_t n);
+  /// The last node takes node n's id (n has no copies left); returns its old id.
+  int32_t fill_node_slot(int32_t n);
   void mirror_position(size_t n); ///< node n's position into the points of its copies
   void find_box_faces();
 
