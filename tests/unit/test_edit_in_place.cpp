@@ -1,6 +1,7 @@
 // InterfaceMesh::edit_in_place(): random local edits (refills, flips, edge
-// splits on surfaces and junctions, node merges) in sequence, each checked
-// against from_node_mesh() of the same triangles.
+// splits on surfaces and junctions, node merges; faces rewritten in place or
+// removed and added) in sequence, each checked against from_node_mesh() of the
+// same triangles.
 #include "fixtures.hpp"
 
 #include "voronoimesh/check/validate.hpp"
@@ -104,6 +105,7 @@ void expect_consistent(const InterfaceMesh& m) {
 NodeMesh edited(NodeMesh m, const LocalEdit& edit) {
   std::vector<char> gone(m.triangles.size(), 0);
   for (int32_t f : edit.removed_faces) gone[size_t(f)] = 1;
+  for (int32_t f : edit.rewritten_faces) gone[size_t(f)] = 1;
   NodeMesh out = m;
   out.triangles.clear();
   out.pairs.clear();
@@ -133,8 +135,26 @@ std::vector<int32_t> faces_on(const InterfaceMesh& m, int32_t a, int32_t b) {
   return on;
 }
 
+/// Where element `id` is after `moves` (it must not be one removed).
+int32_t position_after(const std::vector<SlotMove>& moves, int32_t id) {
+  for (const SlotMove& m : moves)
+    if (m.from == id) id = m.to;
+  return id;
+}
+
+/// `e` with its first `count` removed faces rewritten by its first added
+/// triangles instead (the faces then keep their indices).
+LocalEdit rewriting(LocalEdit e, size_t count) {
+  e.rewritten_faces.assign(e.removed_faces.begin(), e.removed_faces.begin() + ptrdiff_t(count));
+  e.removed_faces.erase(e.removed_faces.begin(), e.removed_faces.begin() + ptrdiff_t(count));
+  return e;
+}
+
 /// A random local edit of `m`, or nothing where the one drawn does not apply.
+/// Faces that change corners are rewritten in place or removed and added, at
+/// random.
 std::optional<LocalEdit> random_edit(const InterfaceMesh& m, std::mt19937& rng) {
+  const bool rewrite = rng() % 2;
   LocalEdit e;
   const auto f = int32_t(rng() % m.num_triangles());
   const auto& tri = m.triangles()[size_t(f)];
@@ -145,7 +165,7 @@ std::optional<LocalEdit> random_edit(const InterfaceMesh& m, std::mt19937& rng) 
   case 0: // every face at a, out and in again
     e.removed_faces = m.faces_at(std::array{a});
     for (int32_t g : e.removed_faces) e.added.push_back(m.triangles()[size_t(g)]), e.added_pairs.push_back(m.pair(OMesh::FaceHandle(g)));
-    return e;
+    return rewriting(e, rewrite ? e.removed_faces.size() : 0);
   case 1: { // flip a-b inside its patch: (a, b, c) and (b, a, d) become (a, d, c) and (d, b, c)
     const auto on = faces_on(m, a, b);
     if (on.size() != 2 || m.pair(OMesh::FaceHandle(on[0])) != m.pair(OMesh::FaceHandle(on[1]))) return {};
@@ -156,33 +176,41 @@ std::optional<LocalEdit> random_edit(const InterfaceMesh& m, std::mt19937& rng) 
     e.removed_faces = {f, g};
     e.added = {{a, d, c}, {d, b, c}};
     e.added_pairs = {p, p};
-    return e;
+    return rewriting(e, rewrite ? 2 : 0);
   }
   case 2: { // a new node halfway along a-b, in every face on it (surface or junction)
     const auto mid = int32_t(m.num_nodes());
     e.new_nodes = {(m.positions()[size_t(a)] + m.positions()[size_t(b)]) / 2};
     e.removed_faces = faces_on(m, a, b);
+    std::vector<std::array<int32_t, 3>> second_halves;
     for (int32_t g : e.removed_faces) {
       auto t = m.triangles()[size_t(g)];
       while (!((t[0] == a && t[1] == b) || (t[0] == b && t[1] == a))) std::rotate(t.begin(), t.begin() + 1, t.end());
       e.added.push_back({t[0], mid, t[2]});
-      e.added.push_back({mid, t[1], t[2]});
-      e.added_pairs.push_back(m.pair(OMesh::FaceHandle(g)));
-      e.added_pairs.push_back(m.pair(OMesh::FaceHandle(g)));
+      second_halves.push_back({mid, t[1], t[2]});
     }
-    return e;
+    e.added.insert(e.added.end(), second_halves.begin(), second_halves.end());
+    for (int half = 0; half < 2; ++half)
+      for (int32_t g : e.removed_faces) e.added_pairs.push_back(m.pair(OMesh::FaceHandle(g)));
+    return rewriting(e, rewrite ? e.removed_faces.size() : 0);
   }
   default: { // b merged into a: b's faces renamed, those on a-b gone, b gone
-    e.removed_faces = m.faces_at(std::array{b});
-    for (int32_t g : e.removed_faces) {
+    std::vector<int32_t> renamed, dropped;
+    for (int32_t g : m.faces_at(std::array{b})) {
       auto t = m.triangles()[size_t(g)];
-      if (std::count(t.begin(), t.end(), a)) continue;
+      if (std::count(t.begin(), t.end(), a)) {
+        dropped.push_back(g);
+        continue;
+      }
+      renamed.push_back(g);
       std::replace(t.begin(), t.end(), b, a);
       e.added.push_back(t);
       e.added_pairs.push_back(m.pair(OMesh::FaceHandle(g)));
     }
+    e.removed_faces = renamed;
+    e.removed_faces.insert(e.removed_faces.end(), dropped.begin(), dropped.end());
     e.removed_nodes = {b};
-    return e;
+    return rewriting(e, rewrite ? renamed.size() : 0);
   }
   }
 }
@@ -215,6 +243,12 @@ Outcome run_edits(const NodeMesh& start, int edits, uint32_t seed) {
     }
     ++out.made;
     SCOPED_TRACE(testing::Message() << "edit " << i << " of seed " << seed);
+    for (size_t r = 0; r < edit->rewritten_faces.size(); ++r) { // in its old slot, or where the moves took it
+      auto tri = edit->added[r];
+      for (int32_t& n : tri) n = position_after(moves.nodes, n);
+      const auto f = OMesh::FaceHandle(position_after(moves.faces, edit->rewritten_faces[r]));
+      EXPECT_EQ(key_of(trial.face_nodes(f), trial.pair(f)), key_of(tri, edit->added_pairs[r])) << "rewrite " << r;
+    }
     expect_consistent(trial);
     EXPECT_TRUE(validate(trial).ok());
     const Shape got = shape_of(trial), want = shape_of(expected);

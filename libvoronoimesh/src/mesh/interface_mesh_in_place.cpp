@@ -62,10 +62,15 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   for (size_t i = 0; i < edit.added.size(); ++i)
     if (!detail::well_formed(edit.added[i], all_nodes))
       throw TopologyError("in-place edit: added triangle " + std::to_string(i) + " repeats a node or names none");
+  if (edit.rewritten_faces.size() > edit.added.size())
+    throw TopologyError("in-place edit: " + std::to_string(edit.rewritten_faces.size()) + " faces rewritten by " +
+                        std::to_string(edit.added.size()) + " triangles");
+  std::vector<int32_t> going = edit.removed_faces; // every face whose corners go or change
+  going.insert(going.end(), edit.rewritten_faces.begin(), edit.rewritten_faces.end());
 
   // The nodes the edit touches, and the triangles at them after it.
   std::vector<int32_t> touched;
-  for (const int32_t f : edit.removed_faces)
+  for (const int32_t f : going)
     for (const int32_t n : triangles_[size_t(f)]) touched.push_back(n);
   for (const auto& t : edit.added) touched.insert(touched.end(), t.begin(), t.end());
   touched = sorted(std::move(touched));
@@ -73,7 +78,7 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   {
     const auto first_new = std::lower_bound(touched.begin(), touched.end(), int32_t(old_nodes));
     const std::vector<int32_t> at = faces_at(std::span(touched.begin(), first_new));
-    const std::vector<int32_t> removed = sorted(edit.removed_faces);
+    const std::vector<int32_t> removed = sorted(going);
     std::set_difference(at.begin(), at.end(), removed.begin(), removed.end(), std::back_inserter(cut.kept_faces));
   }
   for (const int32_t f : cut.kept_faces) {
@@ -131,11 +136,11 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   // The edit: faces out of OpenMesh, our arrays by face after them.
   version_ = next_version();
   std::vector<std::pair<int32_t, int32_t>> node_of_copy; // of the copies at removed faces
-  for (const int32_t f : edit.removed_faces)
+  for (const int32_t f : going)
     for (size_t k = 0; k < 3; ++k) node_of_copy.emplace_back(triangle_copies_[size_t(f)][k], triangles_[size_t(f)][k]);
   std::sort(node_of_copy.begin(), node_of_copy.end());
   SlotMoves removal;
-  mesh_->remove_faces(edit.removed_faces, removal);
+  mesh_->remove_faces(edit.removed_faces, removal, edit.rewritten_faces);
   const bool qualities_kept = quality_current_ && quality_.size() == triangles_.size();
   for (const SlotMove& m : removal.faces) {
     triangles_[size_t(m.to)] = triangles_[size_t(m.from)];
@@ -148,6 +153,12 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
     }
   }
   moves.faces = removal.faces;
+  std::vector<int32_t> hole_at(edit.rewritten_faces); // where each rewritten face's slot went
+  {
+    const std::unordered_map<int32_t, int32_t> face_now = where_now(removal.faces);
+    for (int32_t& f : hole_at)
+      if (const auto it = face_now.find(f); it != face_now.end()) f = it->second;
+  }
   // The copies follow the vertices: the ones gone leave their node's list
   // first, then the moved ones are renamed (a moved vertex's new index is
   // below every moved one's old index, so no renaming meets another).
@@ -194,6 +205,13 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
                           std::to_string(edit.added[i][2]) + ")");
     const PhasePair& p = edit.added_pairs[i];
     mesh_->property(pair_, f) = OpenMesh::Vec2s(int16_t(p[0]), int16_t(p[1]));
+    if (i < hole_at.size()) {
+      const auto slot = size_t(hole_at[i]);
+      mesh_->fill_hole(int32_t(slot));
+      read_face(slot);
+      if (qualities_kept) quality_[slot] = quality_of(slot);
+      continue;
+    }
     triangles_.emplace_back();
     triangle_copies_.emplace_back();
     read_face(size_t(f.idx()));

@@ -1,6 +1,7 @@
 #include "voronoimesh/mesh/omesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 
 namespace vm {
@@ -23,8 +24,15 @@ void OMesh::fill_face_slot(int32_t f, int32_t last) {
   const FaceHandle to(f), from(last);
   face(to) = face(from);
   HalfedgeHandle h = halfedge_handle(to);
-  for (int k = 0; k < 3; ++k, h = next_halfedge_handle(h)) set_face_handle(h, to);
+  if (h.is_valid()) // else a hole: no halfedge to tell
+    for (int k = 0; k < 3; ++k, h = next_halfedge_handle(h)) set_face_handle(h, to);
   fprops_swap(unsigned(f), unsigned(last));
+}
+
+void OMesh::fill_hole(int32_t hole) {
+  const auto last = int32_t(n_faces() - 1);
+  fill_face_slot(hole, last);
+  resize(n_vertices(), n_edges(), size_t(last));
 }
 
 void OMesh::fill_edge_slot(int32_t e, int32_t last) {
@@ -54,23 +62,29 @@ void OMesh::fill_vertex_slot(int32_t v, int32_t last) {
   vprops_swap(unsigned(v), unsigned(last));
 }
 
-void OMesh::remove_faces(std::span<const int32_t> faces, SlotMoves& moves) {
-  std::vector<int32_t> dead_edges, touched;
-  for (const int32_t f : faces) {
-    std::array<HalfedgeHandle, 3> sides;
-    sides[0] = halfedge_handle(FaceHandle(f));
-    sides[1] = next_halfedge_handle(sides[0]);
-    sides[2] = next_halfedge_handle(sides[1]);
-    for (const HalfedgeHandle h : sides) {
-      set_face_handle(h, FaceHandle());
-      touched.push_back(to_vertex_handle(h).idx());
+void OMesh::unlink_face(int32_t f, std::vector<int32_t>& dead_edges, std::vector<int32_t>& touched) {
+  std::array<HalfedgeHandle, 3> sides;
+  sides[0] = halfedge_handle(FaceHandle(f));
+  sides[1] = next_halfedge_handle(sides[0]);
+  sides[2] = next_halfedge_handle(sides[1]);
+  for (const HalfedgeHandle h : sides) {
+    set_face_handle(h, FaceHandle());
+    touched.push_back(to_vertex_handle(h).idx());
+  }
+  // As delete_face(): an edge with no face left on either side goes.
+  for (const HalfedgeHandle h : sides)
+    if (is_boundary(opposite_halfedge_handle(h))) {
+      unlink_edge(edge_handle(h));
+      dead_edges.push_back(edge_handle(h).idx());
     }
-    // As delete_face(): an edge with no face left on either side goes.
-    for (const HalfedgeHandle h : sides)
-      if (is_boundary(opposite_halfedge_handle(h))) {
-        unlink_edge(edge_handle(h));
-        dead_edges.push_back(edge_handle(h).idx());
-      }
+}
+
+void OMesh::remove_faces(std::span<const int32_t> faces, SlotMoves& moves, std::span<const int32_t> holes) {
+  std::vector<int32_t> dead_edges, touched;
+  for (const int32_t f : faces) unlink_face(f, dead_edges, touched);
+  for (const int32_t f : holes) {
+    unlink_face(f, dead_edges, touched);
+    set_halfedge_handle(FaceHandle(f), HalfedgeHandle());
   }
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());

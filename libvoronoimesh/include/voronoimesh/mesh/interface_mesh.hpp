@@ -59,6 +59,10 @@ int phase_count(const PhaseSet& s);
 /// A local change of an InterfaceMesh's triangles (InterfaceMesh::edit_in_place()).
 struct LocalEdit {
   std::vector<int32_t> removed_faces;                ///< OpenMesh faces that go, distinct
+  /// OpenMesh faces that change corners but keep their index (a flip, a node
+  /// renamed by a merge): added[i] takes the place of rewritten_faces[i].
+  /// Distinct, none among removed_faces, at most as many as `added`.
+  std::vector<int32_t> rewritten_faces;
   std::vector<std::array<int32_t, 3>> added;         ///< triangles that come, node ids in orientation order
   std::vector<PhasePair> added_pairs;                ///< the phase pair of each added triangle
   std::vector<Vec3> new_nodes;                       ///< nodes num_nodes(), num_nodes() + 1, ... that come
@@ -66,8 +70,10 @@ struct LocalEdit {
 };
 
 /// How edit_in_place() renumbered: each removed face's (node's) slot taken by
-/// the last one (SlotMoves), then the added faces (new nodes) appended in
-/// order. Arrays by face (node) follow by replaying the moves, then appending.
+/// the last one (SlotMoves; a rewritten face counts as kept and moves when it
+/// is the last), then the added faces past the rewritten ones (new nodes)
+/// appended in order. Arrays by face (node) follow by replaying the moves,
+/// then appending.
 struct EditMoves {
   std::vector<SlotMove> faces; ///< moves of faces, in the order made
   std::vector<SlotMove> nodes; ///< moves of nodes, in the order made
@@ -102,7 +108,8 @@ public:
   void apply_edit(const NodeMesh& m, std::span<const int32_t> triangle_was, std::span<const int32_t> node_was);
   /// Makes a local edit in place (docs/edits-in-place.md): the removed faces
   /// go from OpenMesh by swap-removal, the added ones come through
-  /// add_face(), and every node they touch gets the copies, phases and
+  /// add_face(), the rewritten ones into their old slots, and every node they
+  /// touch gets the copies, phases and
   /// neighbours from_node_mesh() would give it, by the same rule (the corner
   /// classes of its triangles); nodes the edit leaves untouched keep theirs.
   /// The mesh is then what from_node_mesh() makes of the edited triangles,

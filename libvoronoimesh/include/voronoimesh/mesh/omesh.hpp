@@ -48,16 +48,29 @@ public:
   /// then close up by swap-removal (the elements' properties move with them),
   /// so the cost is that of the removed elements and their neighbours, not of
   /// the mesh. No status properties are needed.
+  /// Faces in `holes` are unlinked the same way but keep their slots, empty
+  /// (a hole moves like any face when it is the last one), for faces that
+  /// take their place and index (fill_hole()).
   /// @param faces the faces to remove, distinct, indices into faces()
   /// @param moves appended to: the moves of faces, edges and vertices made
-  void remove_faces(std::span<const int32_t> faces, SlotMoves& moves);
+  /// @param holes faces to unlink whose slots stay, distinct, none in `faces`
+  void remove_faces(std::span<const int32_t> faces, SlotMoves& moves, std::span<const int32_t> holes = {});
+  /// Moves the last face (one just added) into `hole`, an empty slot that
+  /// remove_faces() left, and shortens the faces by one.
+  /// @param hole the slot, below the last face
+  void fill_hole(int32_t hole);
 
 private:
+  /// Unlinks face f from its halfedges, and the edges it leaves without a
+  /// face from the mesh; appends those edges to `dead_edges` and f's vertices
+  /// to `touched`.
+  void unlink_face(int32_t f, std::vector<int32_t>& dead_edges, std::vector<int32_t>& touched);
   /// Unlinks edge e, which has no face on either side, from its boundary
   /// loops and from its vertices' outgoing halfedges; a vertex it leaves
   /// without edges gets an invalid halfedge.
   void unlink_edge(EdgeHandle e);
-  /// Moves the last face into slot f (which no halfedge names any more).
+  /// Moves the last face into slot f (which no halfedge names any more); the
+  /// last may be a hole.
   void fill_face_slot(int32_t f, int32_t last);
   /// Moves the last edge into slot e (unlinked).
   void fill_edge_slot(int32_t e, int32_t last);
