@@ -14,8 +14,10 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace vm::test {
 
@@ -195,6 +197,14 @@ inline NodeMesh created_mesh(const Scene& scene, const CreateParams& params = {}
 
 /// created_mesh() as the passes take it.
 inline InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::from_node_mesh(created_mesh(scene)); }
+
+/// 0, 1, ..., n - 1: each triangle or node of a mesh as itself (an edit or
+/// renumbering that keeps everything), or the start of ids that moves follow.
+inline std::vector<int32_t> identity(size_t n) {
+  std::vector<int32_t> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  return ids;
+}
 
 /// Run options of `n` iterations, the rest the defaults.
 inline RunOptions iterations(int n) {

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <numeric>
 #include <random>
 #include <sstream>
 #include <string>
@@ -72,12 +71,6 @@ void replay(const std::vector<SlotMove>& moves, std::vector<int32_t>& a) {
     a[size_t(m.to)] = a[size_t(m.from)];
     a.pop_back();
   }
-}
-
-std::vector<int32_t> identity(size_t n) {
-  std::vector<int32_t> a(n);
-  std::iota(a.begin(), a.end(), 0);
-  return a;
 }
 
 /// Removes `gone` from a copy of `before` and expects what is left to be

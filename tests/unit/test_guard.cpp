@@ -19,7 +19,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <numeric>
 #include <random>
 
 namespace {
@@ -458,12 +457,6 @@ TEST(Guard, knows_whether_it_saw_the_mesh_as_it_is) {
   const InterfaceMesh copy = mesh; // the same mesh: the same version
   EXPECT_EQ(copy.version(), seen);
   EXPECT_NE(InterfaceMesh::from_node_mesh(mesh.to_node_mesh()).version(), seen); // built anew
-  // Each triangle and node of the mesh as itself: an edit or renumbering that keeps everything.
-  auto identity = [](size_t n) {
-    std::vector<int32_t> ids(n);
-    std::iota(ids.begin(), ids.end(), 0);
-    return ids;
-  };
   auto changes_version = [&](const char* what, auto&& change) {
     SCOPED_TRACE(what);
     const uint64_t before = mesh.version();
@@ -482,12 +475,12 @@ TEST(Guard, knows_whether_it_saw_the_mesh_as_it_is) {
   changes_version("faces changed", [&] { mesh.faces_changed(std::vector<int32_t>{0}); });
   changes_version("topology changed", [&] { mesh.topology_changed(); });
   changes_version("an edit", [&] {
-    mesh.apply_edit(mesh.to_node_mesh(), identity(mesh.num_triangles()), identity(mesh.num_nodes()));
+    mesh.apply_edit(mesh.to_node_mesh(), test::identity(mesh.num_triangles()), test::identity(mesh.num_nodes()));
   });
   guard.crossings(mesh, all);
   EXPECT_TRUE(guard.checked_at(mesh.version()));
   // Its index files the renumbered at its next check.
-  guard.renumbered(mesh, identity(mesh.num_triangles()), identity(mesh.num_nodes()));
+  guard.renumbered(mesh, test::identity(mesh.num_triangles()), test::identity(mesh.num_nodes()));
   EXPECT_FALSE(guard.checked_at(mesh.version()));
 }
 
