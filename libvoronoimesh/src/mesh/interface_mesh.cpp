@@ -181,6 +181,10 @@ void InterfaceMesh::faces_changed(std::span<const int32_t> changed) {
   detail::parallel_for_each_index(faces.size(), [&](size_t i) { read_face(size_t(faces[i])); });
   update_qualities(faces);
   gather();
+  refresh_rings(nodes);
+}
+
+void InterfaceMesh::refresh_rings(std::span<const int32_t> nodes) {
   // As build_adjacency() does for all: room for each ring made first, then
   // the rings (walking the OpenMesh rings is most of the work) found in parallel
   // straight into their lists.

@@ -218,7 +218,8 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
     if (qualities_kept) quality_.push_back(quality_of(size_t(f.idx())));
   }
   quality_current_ = qualities_kept;
-  for (const int32_t n : touched) refresh_node(size_t(n));
+  for (const int32_t n : touched) refresh_phases(size_t(n));
+  refresh_rings(touched);
 
   // Nodes out, from the highest: the last one takes each slot.
   std::vector<int32_t> removed_nodes = sorted(edit.removed_nodes);
@@ -227,7 +228,7 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   return true;
 }
 
-void InterfaceMesh::refresh_node(size_t n) {
+void InterfaceMesh::refresh_phases(size_t n) {
   std::vector<int32_t> phases;
   for (const int32_t c : copies(int32_t(n)))
     for (const auto f : mesh_->vf_range(OMesh::VertexHandle(c))) {
@@ -237,10 +238,6 @@ void InterfaceMesh::refresh_node(size_t n) {
   phases = sorted(std::move(phases));
   detail::check_phase_count(n, phases.size());
   phases_[n] = detail::phase_set(phases);
-  const size_t valence = valence_of(n);
-  adj_.reserve(n, valence);
-  adj_.resize(n, valence);
-  adj_.truncate(n, ring_of(n, adj_.at(n).data()));
 }
 
 int32_t InterfaceMesh::fill_node_slot(int32_t n) {

@@ -251,8 +251,10 @@ private:
   /// (room for valence_of(v)); returns how many.
   size_t ring_of(size_t v, int32_t* out) const;
   void read_face(size_t f);       ///< triangles_[f] and triangle_copies_[f] from OpenMesh
-  /// The phases and neighbours of node n from its faces now.
-  void refresh_node(size_t n);
+  /// The neighbours of `nodes` (distinct) from their faces now, in parallel.
+  void refresh_rings(std::span<const int32_t> nodes);
+  /// The phases of node n from its faces now.
+  void refresh_phases(size_t n);
   /// The last node takes node n's id (n has no copies left); returns its old id.
   int32_t fill_node_slot(int32_t n);
   void mirror_position(size_t n); ///< node n's position into the points of its copies
