@@ -312,3 +312,22 @@ TEST(EditInPlace, declines_to_join_two_fans_of_a_node_or_split_one) {
   EXPECT_FALSE(one.edit_in_place(LocalEdit{.removed_faces = {2}}, moves));
   EXPECT_EQ(shape_of(one), shape_of(InterfaceMesh::from_node_mesh(fan(false))));
 }
+
+TEST(EditInPlace, refuses_to_remove_a_node_that_keeps_a_triangle_before_changing_anything) {
+  InterfaceMesh m = InterfaceMesh::from_node_mesh(two_cubes(3));
+  const auto& face = m.triangles()[0];
+  // The node farthest from face 0: the edit, which removes face 0, neither
+  // touches it nor sees its triangles.
+  int32_t far = 0;
+  for (size_t n = 0; n < m.num_nodes(); ++n)
+    if ((m.positions()[n] - m.positions()[size_t(face[0])]).norm() >
+        (m.positions()[size_t(far)] - m.positions()[size_t(face[0])]).norm())
+      far = int32_t(n);
+  const Shape before = shape_of(m);
+  EditMoves moves;
+  for (int32_t node : {face[1], far, int32_t(m.num_nodes())}) { // kept triangles seen, unseen; no node
+    EXPECT_THROW(m.edit_in_place(LocalEdit{.removed_faces = {0}, .removed_nodes = {node}}, moves), std::invalid_argument)
+        << node;
+    EXPECT_EQ(shape_of(m), before) << node;
+  }
+}

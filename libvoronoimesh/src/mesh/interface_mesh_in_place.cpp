@@ -8,6 +8,7 @@
 #include "mesh/topology.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -91,9 +92,16 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   cut.nodes = sorted(std::move(cut.nodes));
   for (auto& t : cut.triangles)
     for (int32_t& n : t) n = cut.local(n);
-  for (const int32_t n : edit.removed_nodes)
-    if (std::binary_search(cut.nodes.begin(), cut.nodes.end(), n))
+  // A removed node must be left without triangles: none in the cut-out, and
+  // none where the edit does not touch it. Checked before anything changes.
+  for (const int32_t n : edit.removed_nodes) {
+    if (n < 0 || size_t(n) >= all_nodes)
+      throw std::invalid_argument("in-place edit: removed node " + std::to_string(n) + " is not a node");
+    const bool untouched = !std::binary_search(touched.begin(), touched.end(), n);
+    if (std::binary_search(cut.nodes.begin(), cut.nodes.end(), n) ||
+        (untouched && size_t(n) < old_nodes && !copies(n).empty()))
       throw std::invalid_argument("in-place edit: removed node " + std::to_string(n) + " keeps a triangle");
+  }
 
   // Each touched node's corner classes, as from_node_mesh() finds them: the
   // cut-out holds every triangle on each edge at a touched node, so the glue
@@ -242,7 +250,7 @@ void InterfaceMesh::refresh_phases(size_t n) {
 
 int32_t InterfaceMesh::fill_node_slot(int32_t n) {
   const auto last = int32_t(pos_.size() - 1);
-  if (!copies(n).empty()) throw std::invalid_argument("in-place edit: removed node " + std::to_string(n) + " keeps a copy");
+  assert(copies(n).empty()); // edit_in_place() checked it kept no triangle
   if (n != last) {
     pos_[size_t(n)] = pos_[size_t(last)];
     phases_[size_t(n)] = phases_[size_t(last)];

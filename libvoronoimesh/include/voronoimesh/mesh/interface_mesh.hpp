@@ -118,9 +118,10 @@ public:
   /// @param moves receives the renumbering
   /// @return false, with the mesh untouched, where an edit would join two copies of a node into
   ///         one fan or split one copy's fan in two (OpenMesh cannot follow in place: rebuild)
-  /// @throws TopologyError for an added triangle with a repeated or unknown node, or a node with
-  ///         more phases than a PhaseSet holds; std::invalid_argument for a removed node that keeps
-  ///         a triangle. The mesh is unusable after a TopologyError thrown by OpenMesh's refusal.
+  /// @throws TopologyError for an added triangle with a repeated or unknown node (the mesh
+  ///         untouched), for a node with more phases than a PhaseSet holds or a triangle
+  ///         OpenMesh refuses (the mesh then unusable); std::invalid_argument, the mesh
+  ///         untouched, for a removed node that is none or keeps a triangle.
   bool edit_in_place(const LocalEdit& edit, EditMoves& moves);
   /// The node-level mesh back (node order and triangle order preserved).
   NodeMesh to_node_mesh() const;
