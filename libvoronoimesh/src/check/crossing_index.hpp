@@ -71,8 +71,8 @@ public:
 
   /// Carries the index over to a mesh rebuilt from this one (a collapse
   /// renumbers triangles and nodes; a remesh also makes new ones): `old_triangle[t]`
-  /// and `old_node[n]` are the old ids of new triangle t and node n, increasing
-  /// but for -1, which marks a new one; `corner_fans` are the new mesh's.
+  /// and `old_node[n]` are the old ids of new triangle t and node n, each once
+  /// in any order, or -1, which marks a new one; `corner_fans` are the new mesh's.
   /// Triangles that lost a node and new ones are filed at the next call;
   /// the others keep their filing, so no rebuild is needed.
   void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,

@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "improve/collapse_peers.hpp"
+#include "improve/merges_made.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -33,7 +34,6 @@ constexpr size_t kCandidatesPerCollapse = 8;
 
 using detail::CollapsePeers;
 using detail::SliverCollapse;
-using detail::drop_unused_nodes;
 using detail::merge_passing;
 
 /// The collapses of one batch, chosen from the `slivers` (sorted worst first,
@@ -273,9 +273,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     if (!any_failed) break;
   }
   if (done) {
-    kept.triangles = kept_triangles;
-    drop_unused_nodes(m, kept.nodes);
-    mesh.apply_edit(m, kept.triangles, kept.nodes);
+    detail::make_merges(mesh, before, m, kept_triangles, peers, node_ids, triangle_ids, kept);
     if (params.guard) params.guard->renumbered(mesh, kept.triangles, kept.nodes);
   }
   return done;

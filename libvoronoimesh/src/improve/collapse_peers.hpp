@@ -39,16 +39,18 @@ public:
   virtual bool any(bool mine) = 0;
 };
 
-/// What a distributed collapse kept of the mesh, to follow its nodes and
-/// triangles: the old index of each node and each triangle of the rebuilt mesh.
+/// What a collapse kept of the mesh, to follow its nodes and triangles: the
+/// old index of each node and each triangle of the edited mesh, and in a
+/// distributed run their ids now (make_merges(), improve/merges_made.hpp).
 struct CollapseKept {
   std::vector<int32_t> nodes, triangles;
+  std::vector<int64_t> node_ids, triangle_ids;
 };
 
 /// collapse_junction_slivers() agreed across ranks: `node_ids` and
-/// `triangle_ids` give this rank's nodes and triangles their ids. Unlike one
-/// process it keeps the nodes no triangle uses any more out of the rebuilt mesh
-/// the same way, and reports in `kept` what it kept.
+/// `triangle_ids` give this rank's nodes and triangles their ids. It numbers
+/// what it keeps as one process does (make_merges()), and reports in `kept`
+/// what it kept and the ids they have now.
 size_t collapse_junction_slivers(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers& peers,
                                  std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
                                  CollapseKept& kept);

@@ -62,8 +62,10 @@ void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_
                                std::span<const int32_t> old_node) {
   // Old ids beyond the mesh the index saw: not an edit of it (a mesh put back
   // without forget_meshes()); the next check builds anew.
-  const auto last_old = std::find_if(old_face.rbegin(), old_face.rend(), [](int32_t f) { return f >= 0; });
-  if (index_ && last_old != old_face.rend() && size_t(*last_old) >= index_->triangles_seen()) index_.reset();
+  const auto highest_old = std::max_element(old_face.begin(), old_face.end());
+  if (index_ && highest_old != old_face.end() && *highest_old >= 0 &&
+      size_t(*highest_old) >= index_->triangles_seen())
+    index_.reset();
   if (index_) index_->renumber(old_face, old_node, mesh.triangle_copies());
   checked_version_ = 0; // the index files what the renumbering changed at its next check
   if (excepted_.empty()) return;

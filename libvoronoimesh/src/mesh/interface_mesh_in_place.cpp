@@ -63,6 +63,12 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   for (size_t i = 0; i < edit.added.size(); ++i)
     if (!detail::well_formed(edit.added[i], all_nodes))
       throw TopologyError("in-place edit: added triangle " + std::to_string(i) + " repeats a node or names none");
+  if (edit.placed_at.size() != edit.placed_nodes.size())
+    throw std::invalid_argument("in-place edit: " + std::to_string(edit.placed_nodes.size()) + " nodes placed at " +
+                                std::to_string(edit.placed_at.size()) + " points");
+  for (const int32_t n : edit.placed_nodes)
+    if (n < 0 || size_t(n) >= old_nodes)
+      throw std::invalid_argument("in-place edit: placed node " + std::to_string(n) + " is not a node");
   if (edit.rewritten_faces.size() > edit.added.size())
     throw TopologyError("in-place edit: " + std::to_string(edit.rewritten_faces.size()) + " faces rewritten by " +
                         std::to_string(edit.added.size()) + " triangles");
@@ -141,8 +147,16 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
     }
   }
 
-  // The edit: faces out of OpenMesh, our arrays by face after them.
+  // The edit: nodes placed (before the faces that come read their points),
+  // faces out of OpenMesh, our arrays by face after them.
   version_ = next_version();
+  const std::vector<uint8_t> placed_box = detail::box_faces_of(edit.placed_at, domain_);
+  for (size_t i = 0; i < edit.placed_nodes.size(); ++i) {
+    const auto n = size_t(edit.placed_nodes[i]);
+    pos_[n] = edit.placed_at[i];
+    box_[n] = placed_box[i];
+    mirror_position(n);
+  }
   std::vector<std::pair<int32_t, int32_t>> node_of_copy; // of the copies at removed faces
   for (const int32_t f : going)
     for (size_t k = 0; k < 3; ++k) node_of_copy.emplace_back(triangle_copies_[size_t(f)][k], triangles_[size_t(f)][k]);
@@ -226,6 +240,7 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
     if (qualities_kept) quality_.push_back(quality_of(size_t(f.idx())));
   }
   quality_current_ = qualities_kept;
+  if (qualities_kept && !edit.placed_nodes.empty()) update_qualities(faces_at(edit.placed_nodes));
   for (const int32_t n : touched) refresh_phases(size_t(n));
   refresh_rings(touched);
 

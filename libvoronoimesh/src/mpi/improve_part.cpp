@@ -201,20 +201,17 @@ public:
   vm::detail::CollapsePeers& collapse_peers() override { return collapse_peers_.emplace(run_.comm, own_); }
   std::span<const int64_t> node_ids() const override { return w_.vertex_ids; }
   std::span<const int64_t> triangle_ids() const override { return w_.triangle_ids; }
-  /// The window follows the nodes and triangles the rebuilt mesh keeps (their
-  /// start positions and ownership too).
+  /// The window follows the nodes and triangles the edited mesh keeps (their
+  /// start positions and ownership too), under the ids they have now.
   void renumbered(const vm::detail::CollapseKept& kept) override {
-    std::vector<int64_t> vertex_ids, triangle_ids;
     std::vector<Vec3> start;
     std::vector<uint8_t> still_own;
     for (int32_t v : kept.nodes) {
-      vertex_ids.push_back(w_.vertex_ids[size_t(v)]);
       start.push_back(w_.mesh.points[size_t(v)]);
       still_own.push_back(own_[size_t(v)]);
     }
-    for (int32_t t : kept.triangles) triangle_ids.push_back(w_.triangle_ids[size_t(t)]);
-    w_.vertex_ids = std::move(vertex_ids);
-    w_.triangle_ids = std::move(triangle_ids);
+    w_.vertex_ids = kept.node_ids;
+    w_.triangle_ids = kept.triangle_ids;
     w_.mesh.points = std::move(start);
     w_.mesh.triangles.clear(); // the rebuilt mesh has them
     w_.mesh.pairs.clear();

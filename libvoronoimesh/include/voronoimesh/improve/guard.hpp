@@ -139,8 +139,8 @@ public:
   /// Without this call it would notice the change by itself and build its
   /// index anew.
   /// @param mesh     the rebuilt mesh
-  /// @param old_face the old id of each face of `mesh`, increasing, or -1 for a new face
-  /// @param old_node the old id of each node of `mesh`, increasing, or -1 for a new node
+  /// @param old_face the old id of each face of `mesh` (each once, in any order), or -1 for a new face
+  /// @param old_node the old id of each node of `mesh` (each once, in any order), or -1 for a new node
   void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
 
   /// While on, commit() leaves out its search for crossings (every other check

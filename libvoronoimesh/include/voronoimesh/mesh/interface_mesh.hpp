@@ -67,6 +67,10 @@ struct LocalEdit {
   std::vector<PhasePair> added_pairs;                ///< the phase pair of each added triangle
   std::vector<Vec3> new_nodes;                       ///< nodes num_nodes(), num_nodes() + 1, ... that come
   std::vector<int32_t> removed_nodes;                ///< nodes the edit leaves without a triangle that go, distinct
+  /// Nodes the edit puts elsewhere (a collapse target moved onto the box),
+  /// distinct, none removed; their box faces follow as a build finds them.
+  std::vector<int32_t> placed_nodes;
+  std::vector<Vec3> placed_at; ///< where each of placed_nodes goes
 };
 
 /// How edit_in_place() renumbered: each removed face's (node's) slot taken by
