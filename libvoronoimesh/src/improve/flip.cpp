@@ -149,25 +149,30 @@ FlipStats flip_rounds(InterfaceMesh& mesh, const FlipParams& params, std::vector
   FlipStats stats;
   FaceQuality quality(mesh);
   const size_t logged = log.size();
-  // Each judged entry is written by the task of its edge: assigned in this
-  // thread first, the first round's 50 MB on 1M triangles were a serial pass
-  // over fresh memory.
-  detail::UnsetVector<FlipCandidate> judged;
+  // Each edge's gain is written by the task of its edge: assigned in this
+  // thread first, the first round's entries on 1M triangles were a serial pass
+  // over fresh memory. Gains alone, and the few gaining edges judged again
+  // for their nodes: whole candidates for every edge, 50 MB on 1M triangles,
+  // came from fresh pages at every call (glibc maps anything over 32 MB anew),
+  // a third of a run's page faults once collapses stopped rebuilding the mesh.
+  detail::UnsetVector<double> gain;
   std::vector<FlipCandidate> found;
   std::vector<uint8_t> take;
   for (int round = 0; round < params.max_rounds; ++round) {
-    judged.resize(edges.size());
+    detail::resize_to_overwrite(gain, edges.size());
     detail::parallel_for_each_index(edges.size(), [&](size_t i) {
-      judged[i] = FlipCandidate{-1, edges[i], {}};
-      if (banned[size_t(edges[i])]) return;
-      judged[i].gain = flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, judged[i].nodes);
+      std::array<int32_t, 4> nodes;
+      gain[i] = banned[size_t(edges[i])] ? -1 : flip_gain(mesh, quality, OMesh::EdgeHandle(edges[i]), params, nodes);
     });
     // Gathered and sorted in parallel: `better` is a total order (an edge's
     // nodes are its own), so the list is the same for any thread count.
-    const std::vector<int32_t> gaining =
-        detail::indices_where(judged.size(), [&](size_t i) { return judged[i].gain > 0; });
+    const std::vector<int32_t> gaining = detail::indices_where(gain.size(), [&](size_t i) { return gain[i] > 0; });
     found.resize(gaining.size());
-    detail::parallel_for_each_index(gaining.size(), [&](size_t i) { found[i] = judged[size_t(gaining[i])]; });
+    detail::parallel_for_each_index(gaining.size(), [&](size_t i) {
+      const int32_t e = edges[size_t(gaining[i])];
+      found[i] = FlipCandidate{gain[size_t(gaining[i])], e, {}};
+      flip_gain(mesh, quality, OMesh::EdgeHandle(e), params, found[i].nodes);
+    });
     detail::parallel_sort(found.begin(), found.end(), better);
     if (peers ? !peers->any(!found.empty()) : found.empty()) break;
     take.assign(found.size(), 0);
