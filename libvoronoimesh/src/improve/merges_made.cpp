@@ -126,8 +126,10 @@ void made_by_rebuild(InterfaceMesh& mesh, const NodeMesh& before, NodeMesh& merg
                      std::span<const int32_t> kept_triangles, const Removed& removed, CollapsePeers* peers,
                      std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids, CollapseKept& kept) {
   std::vector<int32_t> live_nodes;
-  indices_where(before.num_nodes(), [&](size_t n) { return !std::binary_search(removed.nodes.begin(), removed.nodes.end(), int32_t(n)); },
-                live_nodes);
+  const auto& gone = removed.nodes; // ascending
+  indices_where(
+      before.num_nodes(), [&](size_t n) { return !std::binary_search(gone.begin(), gone.end(), int32_t(n)); },
+      live_nodes);
   std::vector<int64_t> node_id, triangle_id;
   ids_after_removal(node_ids, removed.nodes, live_nodes, peers, node_id);
   // Triangles in the order of `before` (kept_triangles ascends).
