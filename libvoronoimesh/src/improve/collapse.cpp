@@ -254,7 +254,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     std::unordered_multimap<int64_t, int32_t> claimed; // id -> the collapses claiming it
     const auto chosen = choose(slivers, passed_over, most, claimed, from);
     if (attempt > 0 && std::includes(tried.begin(), tried.end(), from.begin(), from.end())) break;
-    NodeMesh trial = before;
+    NodeMesh trial;
     std::vector<int32_t> trial_kept;
     // A failure can only be at a node some collapse claims (its a, b and rings).
     detail::Blame blame(claimed.begin(), claimed.end());
@@ -264,7 +264,8 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     if (std::none_of(moved_to.begin(), moved_to.end(), [](const Vec3& to) { return to.allFinite(); })) moved_to.clear();
     const detail::MergeChecks checks{.guard_crossings = params.guard_crossings, .refuse_surface_folds = true,
                                      .kept = params.kept, .peers = peers, .index = index};
-    const size_t trial_done = merge_passing(trial, chosen, blame, checks, node_ids, trial_kept, moved_to, &made);
+    const size_t trial_done =
+        merge_passing(before, trial, chosen, blame, checks, node_ids, trial_kept, moved_to, &made);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order
     bool any_failed = false;

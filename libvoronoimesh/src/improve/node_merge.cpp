@@ -261,7 +261,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   return true;
 }
 
-size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
+size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to, std::vector<uint8_t>* made, bool close_folds) {
   CollapsePeers* const peers = checks.peers;
@@ -312,7 +312,7 @@ size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> c
     for (int32_t n : failed) failed_ids.push_back(node_ids[size_t(n)]);
     if (peers) failed_ids = peers->all(failed_ids);
     if (blamed && failed_ids.empty()) {
-      m = std::move(trial);
+      merged = std::move(trial);
       done = left;
       if (made) made->assign(active.begin(), active.end());
       break;

@@ -122,8 +122,10 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// triangle) as pass, all at once: after each merge of the active ones, the
 /// collapses blamed for a failing node (find_merge_failures()) are dropped and the
 /// rest tried again (one or two whole-mesh checks, not one per collapse). A
-/// failure that no collapse is blamed for keeps `m` as it was.
-/// @param m              the mesh, replaced by the merged one when anything was collapsed
+/// failure that no collapse is blamed for makes none.
+/// @param m              the mesh
+/// @param merged         set to the merged mesh when anything was collapsed, else untouched (not `m`:
+///                       the caller keeps both without copying `m`, a whole mesh of fresh pages a call)
 /// @param chosen         the collapses {a, b} as node ids
 /// @param blame          the indices in `chosen` of the collapses to drop for a failure at each node id, sorted
 ///                       (at least every collapse whose target's new ring the node is in, and the target)
@@ -133,8 +135,8 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param moved_to       empty, or where each collapse's a goes (not finite: it stays)
 /// @param made           if given, set to one flag per collapse of `chosen`: made or not
 /// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
-/// @return the number of collapses made (0: `m` unchanged)
-size_t merge_passing(NodeMesh& m, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
+/// @return the number of collapses made (0: `merged` untouched)
+size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
                      const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
                      std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
                      bool close_folds = false);

@@ -436,9 +436,11 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     detail::parallel_for_each_index(ids.size(), [&](size_t n) { ids[n] = int64_t(n); });
     std::vector<int32_t> kept_triangles, kept_nodes;
     const detail::MergeChecks checks{.guard_crossings = params.guard_crossings, .kept = field};
+    NodeMesh merged;
     const size_t done =
-        detail::merge_passing(m, chosen, blame, checks, ids, kept_triangles, moved_to, nullptr, point_merges);
+        detail::merge_passing(m, merged, chosen, blame, checks, ids, kept_triangles, moved_to, nullptr, point_merges);
     if (done == 0) return false;
+    m = std::move(merged);
     (point_merges ? stats.point_merges : stats.collapses) += done;
     detail::drop_unused_nodes(m, kept_nodes);
     follow(triangle_was, kept_triangles);
