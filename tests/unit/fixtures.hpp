@@ -200,8 +200,8 @@ inline InterfaceMesh initial_mesh(const Scene& scene) { return InterfaceMesh::fr
 
 /// 0, 1, ..., n - 1: each triangle or node of a mesh as itself (an edit or
 /// renumbering that keeps everything), or the start of ids that moves follow.
-inline std::vector<int32_t> identity(size_t n) {
-  std::vector<int32_t> ids(n);
+template <class Index = int32_t> std::vector<Index> identity(size_t n) {
+  std::vector<Index> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
   return ids;
 }

@@ -36,12 +36,6 @@ public:
   bool any(bool mine) override { return mine; }
 };
 
-std::vector<int64_t> iota64(size_t n) {
-  std::vector<int64_t> ids(n);
-  std::iota(ids.begin(), ids.end(), 0);
-  return ids;
-}
-
 /// Points, triangles and pairs in order.
 void expect_same_in_order(const InterfaceMesh& a, const InterfaceMesh& b) {
   const NodeMesh x = a.to_node_mesh(), y = b.to_node_mesh();
@@ -65,7 +59,7 @@ TEST(SwapRemoval, renames_as_removing_from_the_end_of_an_array_does) {
     for (size_t i = 0; i < n; ++i)
       if (rng() % 3 == 0) removed_at.push_back(int32_t(i));
     // The array way: each removed slot, highest first, takes the last element.
-    std::vector<int32_t> slot_of_element(n), element_at(n);
+    std::vector<int32_t> element_at(n);
     std::iota(element_at.begin(), element_at.end(), 0);
     for (auto it = removed_at.rbegin(); it != removed_at.rend(); ++it) {
       element_at[size_t(*it)] = element_at.back();
@@ -131,15 +125,16 @@ TEST(MergesMade, in_place_and_rebuilt_give_one_mesh_in_one_order) {
     if (!validate(compact).ok()) continue; // not a mesh to make (turned triangles do not matter here)
     merges += size_t(std::count_if(into.begin(), into.end(), [](int32_t a) { return a >= 0; }));
     NodeMesh merged_too = merged;
-    const std::vector<int64_t> node_ids = iota64(before.num_nodes()), triangle_ids = iota64(before.num_triangles());
+    const auto node_ids = identity<int64_t>(before.num_nodes());
+    const auto triangle_ids = identity<int64_t>(before.num_triangles());
     detail::CollapseKept kept_in_place, kept_rebuilt;
     detail::make_merges(in_place, before, merged, kept_triangles, nullptr, node_ids, triangle_ids, kept_in_place);
     detail::make_merges(rebuilt, before, merged_too, kept_triangles, &peers, node_ids, triangle_ids, kept_rebuilt);
     expect_same_in_order(in_place, rebuilt);
     EXPECT_EQ(kept_in_place.nodes, kept_rebuilt.nodes);
     EXPECT_EQ(kept_in_place.triangles, kept_rebuilt.triangles);
-    EXPECT_EQ(kept_rebuilt.node_ids, iota64(rebuilt.num_nodes())); // one rank: ids are indices, no gaps
-    EXPECT_EQ(kept_rebuilt.triangle_ids, iota64(rebuilt.num_triangles()));
+    EXPECT_EQ(kept_rebuilt.node_ids, identity<int64_t>(rebuilt.num_nodes())); // one rank: ids are indices, no gaps
+    EXPECT_EQ(kept_rebuilt.triangle_ids, identity<int64_t>(rebuilt.num_triangles()));
     EXPECT_TRUE(validate(in_place.to_node_mesh()).ok()) << "batch " << batch;
     if (HasFailure()) return;
   }
@@ -158,7 +153,8 @@ TEST(MergesMade, a_collapse_call_in_one_process_and_on_one_rank_agree) {
   OneRank peers;
   size_t made = 0;
   for (int call = 0; call < 3; ++call) {
-    const std::vector<int64_t> node_ids = iota64(rank.num_nodes()), triangle_ids = iota64(rank.num_triangles());
+    const auto node_ids = identity<int64_t>(rank.num_nodes());
+    const auto triangle_ids = identity<int64_t>(rank.num_triangles());
     detail::CollapseKept kept;
     const size_t in_one = collapse_junction_slivers(one, params);
     const size_t on_rank = detail::collapse_junction_slivers(rank, params, peers, node_ids, triangle_ids, kept);
