@@ -157,18 +157,23 @@ TEST(CrossingIndex, checks_a_trial_of_edits_as_a_search_of_the_whole_trial_would
     std::vector<int32_t> turned, kept;
     detail::merge_nodes(before, into, trial, turned, kept, &points);
     // Involved: the trial's triangles at an edited node (a merge target or a moved node).
-    std::vector<uint8_t> involved(trial.num_triangles(), 0), left_out(before.num_triangles(), 0);
-    std::vector<Triangle> extra;
-    std::vector<int32_t> extra_id;
+    std::vector<uint8_t> involved(trial.num_triangles(), 0);
+    std::vector<CrossingIndex::TrialTriangle> extra;
+    std::vector<int32_t> extra_id, left_out;
     for (size_t t = 0; t < trial.num_triangles(); ++t)
       for (int32_t v : trial.triangles[t]) involved[t] |= edited[size_t(v)];
     for (size_t t = 0; t < trial.num_triangles(); ++t)
-      if (involved[t]) extra.push_back(trial.triangles[t]), extra_id.push_back(int32_t(t));
+      if (const Triangle& tri = trial.triangles[t]; involved[t]) {
+        extra.push_back({tri, {points[size_t(tri[0])], points[size_t(tri[1])], points[size_t(tri[2])]}});
+        extra_id.push_back(int32_t(t));
+      }
     for (size_t t = 0; t < before.num_triangles(); ++t)
-      for (int32_t v : before.triangles[t]) left_out[t] |= edited[size_t(v)];
+      if (std::any_of(before.triangles[t].begin(), before.triangles[t].end(),
+                      [&](int32_t v) { return edited[size_t(v)]; }))
+        left_out.push_back(int32_t(t));
     std::vector<int32_t> trial_of(before.num_triangles(), -1);
     for (size_t t = 0; t < kept.size(); ++t) trial_of[size_t(kept[t])] = int32_t(t);
-    const auto found = index.crossings_with(points, before.triangles, extra, left_out);
+    const auto found = index.crossings_with(before.points, before.triangles, extra, left_out);
     std::vector<BoxPair> pairs;
     for (const auto& [e, s] : found.with_mesh) pairs.push_back({extra_id[size_t(e)], trial_of[size_t(s)]});
     for (const auto& [e, f] : found.among_extra) pairs.push_back({extra_id[size_t(e)], extra_id[size_t(f)]});

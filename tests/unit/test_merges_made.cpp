@@ -5,6 +5,7 @@
 
 #include "improve/collapse_peers.hpp"
 #include "improve/merges_made.hpp"
+#include "improve/mesh_part.hpp"
 #include "improve/node_merge.hpp"
 
 #include "voronoimesh/check/validate.hpp"
@@ -89,17 +90,20 @@ TEST(SwapRemoval, renames_as_removing_from_the_end_of_an_array_does) {
 
 // Batches of random merges (b into a neighbour on all of b's constraints, no
 // two sharing a ring) in sequence on a 30-cell Voronoi mesh: each made in place
-// and rebuilt as a distributed run rebuilds gives the same mesh in the same
-// order, a valid one, with the same maps of what was kept.
-TEST(MergesMade, in_place_and_rebuilt_give_one_mesh_in_one_order) {
+// from the part of the mesh at the merges and rebuilt from the whole mesh as a
+// distributed run rebuilds gives the same mesh in the same order, a valid one,
+// with the same maps of what was kept; and the part's merges put back into
+// the whole mesh are the whole mesh's merges.
+TEST(MergesMade, in_place_from_a_part_and_rebuilt_give_one_mesh_in_one_order) {
   InterfaceMesh in_place = initial_mesh(example_scene("voronoi30.json", 20));
   InterfaceMesh rebuilt = in_place;
   std::mt19937 rng(11);
   OneRank peers;
   size_t merges = 0;
   for (int batch = 0; batch < 12; ++batch) {
-    const NodeMesh before = in_place.to_node_mesh();
-    std::vector<int32_t> into(before.num_nodes(), -1);
+    const detail::MeshPart whole = detail::whole_part(rebuilt);
+    const NodeMesh& before = whole.mesh;
+    std::vector<int32_t> into(before.num_nodes(), -1), seeds;
     std::vector<uint8_t> claimed(before.num_nodes(), 0);
     for (int draw = 0; draw < 40; ++draw) {
       const auto b = int32_t(rng() % before.num_nodes());
@@ -112,9 +116,9 @@ TEST(MergesMade, in_place_and_rebuilt_give_one_mesh_in_one_order) {
                       [&](int32_t w) { return claimed[size_t(w)]; }))
         continue;
       into[size_t(b)] = a;
-      claimed[size_t(a)] = claimed[size_t(b)] = 1;
-      for (int32_t w : ring) claimed[size_t(w)] = 1;
-      for (int32_t w : in_place.neighbours(a)) claimed[size_t(w)] = 1;
+      for (int32_t n : {a, b}) claimed[size_t(n)] = 1, seeds.push_back(n);
+      for (int32_t w : ring) claimed[size_t(w)] = 1, seeds.push_back(w);
+      for (int32_t w : in_place.neighbours(a)) claimed[size_t(w)] = 1, seeds.push_back(w);
     }
     NodeMesh merged;
     std::vector<int32_t> turned, kept_triangles;
@@ -124,12 +128,25 @@ TEST(MergesMade, in_place_and_rebuilt_give_one_mesh_in_one_order) {
     detail::drop_unused_nodes(compact, kept_nodes);
     if (!validate(compact).ok()) continue; // not a mesh to make (turned triangles do not matter here)
     merges += size_t(std::count_if(into.begin(), into.end(), [](int32_t a) { return a >= 0; }));
-    NodeMesh merged_too = merged;
+    // The same merges on the part at the claimed nodes.
+    const detail::MeshPart part = detail::part_at(in_place, seeds);
+    ASSERT_LT(part.mesh.num_triangles(), before.num_triangles() / 2);
+    std::vector<int32_t> part_into(part.mesh.num_nodes(), -1), part_turned, part_kept;
+    for (size_t n = 0; n < part.nodes.size(); ++n)
+      if (const int32_t a = into[size_t(part.nodes[n])]; a >= 0) part_into[n] = part.part_node(a);
+    NodeMesh part_merged, put_back;
+    detail::merge_nodes(part.mesh, part_into, part_merged, part_turned, part_kept);
+    std::vector<int32_t> put_back_kept;
+    detail::put_back(part, part_merged, part_kept, before, put_back, put_back_kept);
+    EXPECT_EQ(put_back.points, merged.points);
+    EXPECT_EQ(put_back.triangles, merged.triangles);
+    EXPECT_EQ(put_back.pairs, merged.pairs);
+    EXPECT_EQ(put_back_kept, kept_triangles);
     const auto node_ids = identity<int64_t>(before.num_nodes());
     const auto triangle_ids = identity<int64_t>(before.num_triangles());
     detail::CollapseKept kept_in_place, kept_rebuilt;
-    detail::make_merges(in_place, before, merged, kept_triangles, nullptr, node_ids, triangle_ids, kept_in_place);
-    detail::make_merges(rebuilt, before, merged_too, kept_triangles, &peers, node_ids, triangle_ids, kept_rebuilt);
+    detail::make_merges(in_place, part, part_merged, part_kept, nullptr, node_ids, triangle_ids, kept_in_place);
+    detail::make_merges(rebuilt, whole, merged, kept_triangles, &peers, node_ids, triangle_ids, kept_rebuilt);
     expect_same_in_order(in_place, rebuilt);
     EXPECT_EQ(kept_in_place.nodes, kept_rebuilt.nodes);
     EXPECT_EQ(kept_in_place.triangles, kept_rebuilt.triangles);

@@ -85,20 +85,28 @@ public:
   bool refresh(std::span<const Vec3> points, std::span<const Triangle> triangles,
                std::span<const Triangle> corner_fans);
 
+  /// A triangle of a trial of edits: its nodes (ids of the mesh's nodes, so
+  /// that what it shares with a mesh triangle is known) and where its corners
+  /// are in the trial, which may differ from the mesh's at nodes the trial moves.
+  struct TrialTriangle {
+    Triangle nodes;
+    std::array<Vec3, 3> corners;
+  };
   /// Crossings of a trial of edits (improve/node_merge.hpp) with the mesh the
-  /// last refresh() saw: `extra` are the trial's triangles at the edits (node
-  /// ids into `points`, the trial's nodes, which differ from the mesh's only at
-  /// nodes of extra triangles), `left_out` flags the mesh's triangles they
-  /// replace. Each extra triangle is tested, exactly, against every mesh
-  /// triangle not left out whose box overlaps its own, and against the other
-  /// extra ones: the pairs find_self_intersections() would report on the
-  /// trial with the extra triangles involved, in the time of a search around
-  /// them. Pairs are {extra index, mesh triangle} and {extra index, extra index}.
+  /// last refresh() saw (`points` and `triangles` as it saw them): `extra` are
+  /// the trial's triangles at the edits, `left_out` the mesh's triangles they
+  /// replace (ascending; every mesh triangle at a node the trial moves). Each
+  /// extra triangle is tested, exactly, against every mesh triangle not left
+  /// out whose box overlaps its own, and against the other extra ones: the
+  /// pairs find_self_intersections() would report on the trial with the extra
+  /// triangles involved, in the time of a search around them, and without a
+  /// copy of the trial's whole mesh. Pairs are {extra index, mesh triangle}
+  /// and {extra index, extra index}.
   struct TrialCrossings {
     std::vector<BoxPair> with_mesh, among_extra;
   };
   TrialCrossings crossings_with(std::span<const Vec3> points, std::span<const Triangle> triangles,
-                                std::span<const Triangle> extra, std::span<const uint8_t> left_out) const;
+                                std::span<const TrialTriangle> extra, std::span<const int32_t> left_out) const;
 
   /// Whether the last call answered through the index (or, while the mesh
   /// changed too much between calls to keep one, with a one-off check);

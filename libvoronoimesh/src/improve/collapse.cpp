@@ -3,6 +3,7 @@
 #include "core/parallel.hpp"
 #include "improve/collapse_peers.hpp"
 #include "improve/merges_made.hpp"
+#include "improve/mesh_part.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -246,7 +247,21 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   const size_t most = std::max(size_t(std::max(params.max_collapses, 0)), slivers.size() / kCandidatesPerCollapse);
   std::vector<uint8_t> passed_over(slivers.size(), 0), made;
   std::vector<size_t> from, tried;
-  const NodeMesh before = mesh.to_node_mesh();
+  // The merges are tried on the part of the mesh they can change: the faces
+  // at the nodes the collapses claim (their ends and rings), which hold every
+  // face a merge renames or removes and every face whose validity it can
+  // change. Not in a distributed run, nor where crossings are searched for
+  // without the index: both look at the whole mesh.
+  const bool whole = peers || (params.guard_crossings && !index);
+  std::vector<int32_t> seeds;
+  if (!whole)
+    for (const SliverCollapse& s : slivers)
+      if (s.a >= 0)
+        for (const int64_t id : s.claims) seeds.push_back(int32_t(id)); // one process: ids are nodes
+  const detail::MeshPart part = whole ? detail::whole_part(mesh) : detail::part_at(mesh, seeds);
+  std::vector<int64_t> part_ids;
+  if (!whole)
+    for (const int32_t n : part.nodes) part_ids.push_back(node_ids[size_t(n)]);
   NodeMesh m;
   std::vector<int32_t> kept_triangles;
   size_t done = 0;
@@ -263,9 +278,9 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     for (size_t i : from) moved_to.push_back(slivers[i].to);
     if (std::none_of(moved_to.begin(), moved_to.end(), [](const Vec3& to) { return to.allFinite(); })) moved_to.clear();
     const detail::MergeChecks checks{.guard_crossings = params.guard_crossings, .refuse_surface_folds = true,
-                                     .kept = params.kept, .peers = peers, .index = index};
-    const size_t trial_done =
-        merge_passing(before, trial, chosen, blame, checks, node_ids, trial_kept, moved_to, &made);
+                                     .kept = params.kept, .peers = peers, .index = index, .part = &part};
+    const size_t trial_done = merge_passing(part.mesh, trial, chosen, blame, checks, whole ? node_ids : part_ids,
+                                            trial_kept, moved_to, &made);
     if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order
     bool any_failed = false;
@@ -274,7 +289,7 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
     if (!any_failed) break;
   }
   if (done) {
-    detail::make_merges(mesh, before, m, kept_triangles, peers, node_ids, triangle_ids, kept);
+    detail::make_merges(mesh, part, m, kept_triangles, peers, node_ids, triangle_ids, kept);
     if (params.guard) params.guard->renumbered(mesh, kept.triangles, kept.nodes);
   }
   return done;

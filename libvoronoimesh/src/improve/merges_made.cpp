@@ -38,22 +38,34 @@ std::vector<std::pair<int64_t, int64_t>> swap_removal_renames(std::vector<int64_
 
 namespace {
 
-/// What a batch of merges removes: the triangles of `before` none of `merged`
-/// was, and the nodes no triangle of `merged` uses any more.
+/// What a batch of merges removes, in the whole mesh's numbers: the triangles
+/// of the part none of `merged` was, and the nodes no triangle uses any more
+/// (of the part's nodes no triangle of `merged` uses, those with no face
+/// outside the part).
 struct Removed {
   std::vector<int32_t> triangles, nodes;
 };
 
-Removed removed_by(const NodeMesh& before, const NodeMesh& merged, std::span<const int32_t> kept_triangles) {
+Removed removed_by(const InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& merged,
+                   std::span<const int32_t> kept_triangles) {
+  const NodeMesh& before = part.mesh;
   std::vector<uint8_t> kept(before.num_triangles(), 0), used(before.num_nodes(), 0);
   parallel_for_each_index(kept_triangles.size(), [&](size_t t) {
     kept[size_t(kept_triangles[t])] = 1;
     for (const int32_t v : merged.triangles[t])
       std::atomic_ref<uint8_t>(used[size_t(v)]).store(1, std::memory_order_relaxed);
   });
+  auto all_faces_in_part = [&](int32_t n) {
+    if (part.is_whole) return true;
+    const int32_t whole = part.whole_node(n);
+    const std::vector<int32_t> faces = mesh.faces_at(std::span(&whole, 1));
+    return std::includes(part.triangles.begin(), part.triangles.end(), faces.begin(), faces.end());
+  };
   Removed r;
   indices_where(before.num_triangles(), [&](size_t t) { return !kept[t]; }, r.triangles);
-  indices_where(before.num_nodes(), [&](size_t n) { return !used[n]; }, r.nodes);
+  for (int32_t& t : r.triangles) t = part.whole_triangle(t);
+  for (const int32_t n : indices_where(before.num_nodes(), [&](size_t n) { return !used[n]; }))
+    if (all_faces_in_part(n)) r.nodes.push_back(part.whole_node(n));
   return r;
 }
 
@@ -69,25 +81,30 @@ std::vector<int32_t> replayed(size_t count, const std::vector<SlotMove>& moves) 
 }
 
 /// The merges as one edit in place; false where edit_in_place() declines.
-bool made_in_place(InterfaceMesh& mesh, const NodeMesh& before, const NodeMesh& merged,
+bool made_in_place(InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& merged,
                    std::span<const int32_t> kept_triangles, const Removed& removed, CollapseKept& kept) {
+  const NodeMesh& before = part.mesh;
   LocalEdit edit;
   edit.removed_faces = removed.triangles;
   indices_where(merged.num_triangles(),
                 [&](size_t t) { return merged.triangles[t] != before.triangles[size_t(kept_triangles[t])]; },
                 edit.rewritten_faces); // still merged's indices
   for (int32_t& t : edit.rewritten_faces) {
-    edit.added.push_back(merged.triangles[size_t(t)]);
+    const auto& tri = merged.triangles[size_t(t)];
+    edit.added.push_back({part.whole_node(tri[0]), part.whole_node(tri[1]), part.whole_node(tri[2])});
     edit.added_pairs.push_back(merged.pairs[size_t(t)]);
-    t = kept_triangles[size_t(t)];
+    t = part.whole_triangle(kept_triangles[size_t(t)]);
   }
   edit.removed_nodes = removed.nodes;
-  indices_where(before.num_nodes(), [&](size_t n) { return merged.points[n] != before.points[n]; }, edit.placed_nodes);
-  for (const int32_t n : edit.placed_nodes) edit.placed_at.push_back(merged.points[size_t(n)]);
+  for (const int32_t n : indices_where(before.num_nodes(), [&](size_t n) { return merged.points[n] != before.points[n]; })) {
+    edit.placed_nodes.push_back(part.whole_node(n));
+    edit.placed_at.push_back(merged.points[size_t(n)]);
+  }
+  const size_t faces = mesh.num_triangles(), nodes = mesh.num_nodes();
   EditMoves moves;
   if (!mesh.edit_in_place(edit, moves)) return false;
-  kept.triangles = replayed(before.num_triangles(), moves.faces);
-  kept.nodes = replayed(before.num_nodes(), moves.nodes);
+  kept.triangles = replayed(faces, moves.faces);
+  kept.nodes = replayed(nodes, moves.nodes);
   return true;
 }
 
@@ -164,12 +181,20 @@ void made_by_rebuild(InterfaceMesh& mesh, const NodeMesh& before, NodeMesh& merg
 
 } // namespace
 
-void make_merges(InterfaceMesh& mesh, const NodeMesh& before, NodeMesh& merged, std::span<const int32_t> kept_triangles,
+void make_merges(InterfaceMesh& mesh, const MeshPart& part, NodeMesh& merged, std::span<const int32_t> kept_triangles,
                  CollapsePeers* peers, std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
                  CollapseKept& kept) {
-  const Removed removed = removed_by(before, merged, kept_triangles);
-  if (!peers && made_in_place(mesh, before, merged, kept_triangles, removed, kept)) return;
-  made_by_rebuild(mesh, before, merged, kept_triangles, removed, peers, node_ids, triangle_ids, kept);
+  const Removed removed = removed_by(mesh, part, merged, kept_triangles);
+  if (!peers && made_in_place(mesh, part, merged, kept_triangles, removed, kept)) return;
+  if (part.is_whole) {
+    made_by_rebuild(mesh, part.mesh, merged, kept_triangles, removed, peers, node_ids, triangle_ids, kept);
+    return;
+  }
+  const NodeMesh before = mesh.to_node_mesh(); // the edit declined: the mesh is as it was
+  NodeMesh whole;
+  std::vector<int32_t> whole_kept;
+  put_back(part, merged, kept_triangles, before, whole, whole_kept);
+  made_by_rebuild(mesh, before, whole, whole_kept, removed, peers, node_ids, triangle_ids, kept);
 }
 
 } // namespace vm::detail

@@ -10,6 +10,7 @@
 /// one mesh in one order (the passes break ties by ids).
 
 #include "improve/collapse_peers.hpp"
+#include "improve/mesh_part.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <cstdint>
@@ -29,19 +30,20 @@ namespace vm::detail {
 std::vector<std::pair<int64_t, int64_t>> swap_removal_renames(std::vector<int64_t> removed,
                                                               std::vector<int64_t> live_top);
 
-/// Makes on `mesh` the merges that turned `before` (its to_node_mesh()) into
-/// `merged`, numbered by swap-removal (see the file comment).
+/// Makes on `mesh` the merges that turned `part` into `merged`, numbered by
+/// swap-removal (see the file comment).
 /// @param mesh           the mesh, edited
-/// @param before         mesh.to_node_mesh() before the merges
-/// @param merged         `before` merged (merge_nodes(): the same nodes, those merged away without a
+/// @param part           the part of `mesh` (or all of it) the merges were made on, as it was before them;
+///                       each node that merges, and each target, with all its faces in it
+/// @param merged         `part.mesh` merged (merge_nodes(): the same nodes, those merged away without a
 ///                       triangle; a target may have moved); consumed
-/// @param kept_triangles the triangle of `before` each triangle of `merged` was
+/// @param kept_triangles the triangle of `part.mesh` each triangle of `merged` was
 /// @param peers          the ranks of a distributed run, or null in one process
-/// @param node_ids       the id of each node of `before`, increasing (one process: its index)
-/// @param triangle_ids   the id of each triangle of `before`, increasing
-/// @param kept           set to the node and triangle of `before` each node and triangle of `mesh` is now,
-///                       and their ids now
-void make_merges(InterfaceMesh& mesh, const NodeMesh& before, NodeMesh& merged, std::span<const int32_t> kept_triangles,
+/// @param node_ids       the id of each node of `mesh`, increasing (one process: its index)
+/// @param triangle_ids   the id of each triangle of `mesh`, increasing
+/// @param kept           set to the node and triangle of `mesh` before the merges each node and triangle
+///                       of `mesh` is now, and their ids now
+void make_merges(InterfaceMesh& mesh, const MeshPart& part, NodeMesh& merged, std::span<const int32_t> kept_triangles,
                  CollapsePeers* peers, std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
                  CollapseKept& kept);
 

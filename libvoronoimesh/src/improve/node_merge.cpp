@@ -2,6 +2,7 @@
 
 #include "improve/collapse_peers.hpp"
 #include "improve/kept_points.hpp"
+#include "improve/mesh_part.hpp"
 
 #include "check/crossing_index.hpp"
 #include "core/indices_where.hpp"
@@ -45,31 +46,46 @@ std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>&
   return near;
 }
 
-/// find_merge_failures()'s crossings through the index of `before`, the mesh
-/// the trial was merged from: the trial's triangles at targets (`involved`)
-/// against the triangles of `before` that no merge touched, and each other.
-/// Appends the nodes of both triangles of each crossing pair.
+/// find_merge_failures()'s crossings through the index of the mesh `before`
+/// is `part` of (all of it if null): the trial's triangles at targets
+/// (`involved`) against the mesh's triangles that no merge touched, and each
+/// other. Appends the nodes of both triangles of each crossing pair (those
+/// of the trial).
 void report_trial_crossings(const NodeMesh& trial, std::span<const uint8_t> involved, const NodeMesh& before,
-                            const std::vector<int32_t>& into, const CrossingIndex& index, std::vector<int32_t>& nodes) {
-  std::vector<Triangle> extra;
-  for (size_t t = 0; t < trial.num_triangles(); ++t)
-    if (involved[t]) extra.push_back(trial.triangles[t]);
+                            const std::vector<int32_t>& into, const CrossingIndex& index, const MeshPart* part,
+                            std::vector<int32_t>& nodes) {
+  auto whole_node = [&](int32_t n) { return part ? part->whole_node(n) : n; };
+  std::vector<CrossingIndex::TrialTriangle> extra;
+  std::vector<int32_t> extra_of; // the trial's triangle of each extra one
+  for (size_t t = 0; t < trial.num_triangles(); ++t) {
+    if (!involved[t]) continue;
+    const auto& tri = trial.triangles[t];
+    extra.push_back({{whole_node(tri[0]), whole_node(tri[1]), whole_node(tri[2])},
+                     {trial.points[size_t(tri[0])], trial.points[size_t(tri[1])], trial.points[size_t(tri[2])]}});
+    extra_of.push_back(int32_t(t));
+  }
   // What the extra triangles replace: every triangle at a merged node or a
   // target (the targets are the nodes the merged ones go into).
-  std::vector<uint8_t> at_merge(before.num_nodes(), 0), left_out(before.num_triangles(), 0);
+  std::vector<uint8_t> at_merge(before.num_nodes(), 0);
+  std::vector<int32_t> left_out;
   for (size_t b = 0; b < into.size(); ++b)
     if (into[b] >= 0) at_merge[b] = 1, at_merge[size_t(into[b])] = 1;
   for (size_t t = 0; t < before.num_triangles(); ++t)
-    left_out[t] = touches(before, at_merge, t);
-  const CrossingIndex::TrialCrossings found = index.crossings_with(trial.points, before.triangles, extra, left_out);
+    if (touches(before, at_merge, t)) left_out.push_back(part ? part->whole_triangle(int32_t(t)) : int32_t(t));
+  const auto points = part ? part->whole_points : std::span<const Vec3>(before.points);
+  const auto triangles = part ? part->whole_triangles : std::span<const Triangle>(before.triangles);
+  const CrossingIndex::TrialCrossings found = index.crossings_with(points, triangles, extra, left_out);
+  auto add_trial_triangle = [&](int32_t e) {
+    const auto& tri = trial.triangles[size_t(extra_of[size_t(e)])];
+    nodes.insert(nodes.end(), tri.begin(), tri.end());
+  };
   for (const auto& [e, s] : found.with_mesh) {
-    nodes.insert(nodes.end(), extra[size_t(e)].begin(), extra[size_t(e)].end());
-    nodes.insert(nodes.end(), before.triangles[size_t(s)].begin(), before.triangles[size_t(s)].end());
+    add_trial_triangle(e);
+    // A node of the mesh outside the part takes part in no merge: no merge is blamed there.
+    for (const int32_t v : triangles[size_t(s)])
+      if (const int32_t n = part ? part->part_node(v) : v; n >= 0) nodes.push_back(n);
   }
-  for (const auto& [e, f] : found.among_extra) {
-    nodes.insert(nodes.end(), extra[size_t(e)].begin(), extra[size_t(e)].end());
-    nodes.insert(nodes.end(), extra[size_t(f)].begin(), extra[size_t(f)].end());
-  }
+  for (const auto& [e, f] : found.among_extra) add_trial_triangle(e), add_trial_triangle(f);
 }
 
 /// Two triangles at a merge target that became the same three nodes, of the
@@ -240,7 +256,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   std::vector<uint8_t> involved(trial.num_triangles(), 0), searched;
   for (int32_t t : at_target) involved[size_t(t)] = 1;
   if (checks.index && before) {
-    report_trial_crossings(trial, involved, *before, into, *checks.index, nodes);
+    report_trial_crossings(trial, involved, *before, into, *checks.index, checks.part, nodes);
     return true;
   }
   // A triangle at a target as it was (only its target's other triangles

@@ -20,6 +20,7 @@ namespace vm::detail {
 
 class CollapsePeers;
 class CrossingIndex; // check/crossing_index.hpp
+struct MeshPart;     // improve/mesh_part.hpp
 
 /// `m` with every node b of `into` (into[b] = a, or -1) merged into its a:
 /// triangles that lose a corner disappear. With `points`, the nodes of `out`
@@ -90,6 +91,9 @@ struct MergeChecks {
   /// crossings of the triangles at targets are found (the same pairs, found
   /// around them instead of in a search of the whole merged mesh).
   const CrossingIndex* index = nullptr;
+  /// With `index`: the part of the index's mesh that the meshes checked are
+  /// merged from (improve/mesh_part.hpp); null if they are merged from all of it.
+  const MeshPart* part = nullptr;
 };
 
 /// Where `trial` (a mesh after merge_nodes() by `into`) fails `checks`: appends

@@ -271,15 +271,20 @@ bool InterfaceMesh::has_phase(int32_t n, int32_t p) const {
   return std::find(s.begin(), s.end(), int16_t(p)) != s.end();
 }
 
-NodeMesh InterfaceMesh::to_node_mesh() const {
+NodeMesh InterfaceMesh::without_nodes() const {
   NodeMesh m;
-  m.points = pos_;
   m.domain = domain_;
   m.grid_spacing = grid_spacing_;
   m.phase_names = names_;
   m.phase_labels = labels_;
   m.phase_colors = colors_;
   m.outside_phase = outside_;
+  return m;
+}
+
+NodeMesh InterfaceMesh::to_node_mesh() const {
+  NodeMesh m = without_nodes();
+  m.points = pos_;
   // Read from OpenMesh, not triangles(): between flips that may be stale.
   m.triangles.resize(mesh_->n_faces());
   m.pairs.resize(mesh_->n_faces());
@@ -287,6 +292,22 @@ NodeMesh InterfaceMesh::to_node_mesh() const {
     m.triangles[f] = face_nodes(OMesh::FaceHandle(int(f)));
     m.pairs[f] = pair(OMesh::FaceHandle(int(f)));
   });
+  return m;
+}
+
+NodeMesh InterfaceMesh::to_node_mesh(std::span<const int32_t> faces, std::vector<int32_t>& nodes) const {
+  NodeMesh m = without_nodes();
+  nodes.clear();
+  for (const int32_t f : faces) {
+    m.triangles.push_back(face_nodes(OMesh::FaceHandle(f)));
+    m.pairs.push_back(pair(OMesh::FaceHandle(f)));
+    nodes.insert(nodes.end(), m.triangles.back().begin(), m.triangles.back().end());
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  for (auto& tri : m.triangles)
+    for (int32_t& v : tri) v = int32_t(std::lower_bound(nodes.begin(), nodes.end(), v) - nodes.begin());
+  for (const int32_t n : nodes) m.points.push_back(pos_[size_t(n)]);
   return m;
 }
 

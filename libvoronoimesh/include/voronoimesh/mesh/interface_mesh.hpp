@@ -129,6 +129,12 @@ public:
   bool edit_in_place(const LocalEdit& edit, EditMoves& moves);
   /// The node-level mesh back (node order and triangle order preserved).
   NodeMesh to_node_mesh() const;
+  /// The node-level mesh of some faces only: they are its triangles, in the
+  /// order given, and their corners its nodes, numbered in the order of their
+  /// ids here (a part of the mesh to try edits on without a copy of all of it).
+  /// @param faces OpenMesh face indices, ascending, each once
+  /// @param nodes receives the node here of each node of the part, ascending
+  NodeMesh to_node_mesh(std::span<const int32_t> faces, std::vector<int32_t>& nodes) const;
 
   size_t num_nodes() const { return pos_.size(); }         ///< nodes (geometric points)
   size_t num_triangles() const { return mesh_->n_faces(); } ///< triangles of every patch
@@ -238,6 +244,8 @@ public:
   bool has_phase(int32_t n, int32_t p) const;
 
 private:
+  /// A NodeMesh with this mesh's domain and phase tables, and no nodes or triangles.
+  NodeMesh without_nodes() const;
   static uint64_t next_version(); ///< a version() no mesh of this process had
   /// The nodes, the OpenMesh vertices and faces of `m`: node n's copies are
   /// the vertices copy_off[n] to copy_off[n + 1] - 1, face t is triangle t,
