@@ -6,6 +6,8 @@
 
 #include "check/crossing_index.hpp"
 #include "check/embedded_fans.hpp"
+#include "improve/merges_made.hpp"
+#include "improve/mesh_part.hpp"
 #include "improve/node_merge.hpp"
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/improve/flip.hpp"
@@ -236,6 +238,60 @@ TEST(CrossingIndex, carries_over_a_rebuild_with_new_triangles_and_nodes) {
 // nodes of what crosses: after the first round only those moved, and the
 // index, told so, mends and searches from their triangles alone; likewise for
 // the faces a flip changed.
+// Random merges made in place as the collapses make them (make_merges() from
+// the part at the merges): the index, told only what the edit removed and
+// moved, keeps its lists right and answers as the whole-mesh check does,
+// without building anew.
+TEST(CrossingIndex, carries_over_merges_made_in_place_told_sparsely) {
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
+  CrossingIndex index;
+  for (int call = 0; call < 3; ++call) index.crossings(mesh.positions(), mesh.triangles(), {}, mesh.triangle_copies());
+  ASSERT_TRUE(index.indexed());
+  std::mt19937_64 rng(23);
+  size_t merges = 0;
+  for (int batch = 0; batch < 4; ++batch) {
+    // b into a neighbour a on all of b's constraints, no two merges sharing a ring.
+    std::vector<int32_t> into(mesh.num_nodes(), -1), seeds;
+    std::vector<uint8_t> claimed(mesh.num_nodes(), 0);
+    for (int draw = 0; draw < 60; ++draw) {
+      const auto b = int32_t(rng() % mesh.num_nodes());
+      const auto ring = mesh.neighbours(b);
+      const int32_t a = ring[rng() % ring.size()];
+      std::vector<int32_t> around(ring.begin(), ring.end());
+      around.insert(around.end(), mesh.neighbours(a).begin(), mesh.neighbours(a).end());
+      if (!mesh.constraints_within(b, a) || std::any_of(around.begin(), around.end(), [&](int32_t w) {
+            return claimed[size_t(w)];
+          }))
+        continue;
+      into[size_t(b)] = a;
+      for (int32_t w : around) claimed[size_t(w)] = 1, seeds.push_back(w);
+      ++merges;
+    }
+    const detail::MeshPart part = detail::part_at(mesh, seeds);
+    std::vector<int32_t> part_into(part.mesh.num_nodes(), -1), turned, kept_triangles;
+    for (size_t n = 0; n < part.nodes.size(); ++n)
+      if (const int32_t a = into[size_t(part.nodes[n])]; a >= 0) part_into[n] = part.part_node(a);
+    NodeMesh merged;
+    detail::merge_nodes(part.mesh, part_into, merged, turned, kept_triangles);
+    const auto node_ids = test::identity<int64_t>(mesh.num_nodes());
+    const auto triangle_ids = test::identity<int64_t>(mesh.num_triangles());
+    detail::CollapseKept kept;
+    detail::make_merges(mesh, part, merged, kept_triangles, nullptr, node_ids, triangle_ids, kept);
+    ASSERT_TRUE(kept.in_place) << batch;
+    index.renumber_after_removal(kept.removed_triangles, moved_by(kept.moves.faces));
+    EXPECT_TRUE(index.lists_unlike_search().empty()) << batch;
+    std::vector<Vec3> points = mesh.positions();
+    shake(points, rng, 20, 0.8 / 16);
+    const auto found = index.crossings(points, mesh.triangles(), {}, mesh.triangle_copies());
+    EXPECT_TRUE(index.indexed()) << batch;
+    EXPECT_FALSE(index.rebuilt()) << batch;
+    EXPECT_GT(index.refiled(), 0u) << batch; // the renamed triangles and those at moved nodes
+    EXPECT_EQ(found, reference(points, mesh.triangles(), {})) << batch;
+    EXPECT_TRUE(index.lists_unlike_search().empty()) << batch;
+  }
+  EXPECT_GT(merges, 40u);
+}
+
 TEST(CrossingIndex, answers_after_local_changes_as_the_whole_mesh_check_does) {
   InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
   CrossingIndex index;

@@ -37,6 +37,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace vm::detail {
@@ -77,6 +78,15 @@ public:
   /// the others keep their filing, so no rebuild is needed.
   void renumber(std::span<const int32_t> old_triangle, std::span<const int32_t> old_node,
                 std::span<const Triangle> corner_fans);
+
+  /// Carries the index over an edit in place that removed triangles and moved
+  /// others into their indices (swap-removal; InterfaceMesh::edit_in_place()),
+  /// and may have given some other nodes or fans: `removed` are the old ids of
+  /// the triangles that went, `moved` (old id, new id) those that moved
+  /// (moved_by()). Costs the edit, not the mesh. Triangles with other nodes or
+  /// fans (the edit's, and those at nodes and fans that moved) are filed again
+  /// at the next call, as after renumber().
+  void renumber_after_removal(std::span<const int32_t> removed, std::span<const std::pair<int32_t, int32_t>> moved);
 
   /// Brings the index up to date with the mesh, as crossings() does first,
   /// where it keeps one and few triangles changed: then true, and

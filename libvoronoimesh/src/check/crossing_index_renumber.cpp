@@ -91,4 +91,22 @@ void CrossingIndex::renumber(std::span<const int32_t> old_triangle, std::span<co
   fans_stale_ = true;
 }
 
+void CrossingIndex::renumber_after_removal(std::span<const int32_t> removed,
+                                           std::span<const std::pair<int32_t, int32_t>> moved) {
+  last_triangles_.clear(); // as renumber()
+  settled_calls_ = 0;
+  if (filed_.empty()) return;
+  for (const int32_t t : removed) free_slot(slot_of_[size_t(t)]);
+  // Slots read before any is written: a triangle may move into the index
+  // another one moves out of.
+  std::vector<int32_t> slots;
+  for (const auto& [was, now] : moved) slots.push_back(slot_of_[size_t(was)]);
+  for (size_t i = 0; i < moved.size(); ++i) {
+    slot_of_[size_t(moved[i].second)] = slots[i];
+    triangle_of_[size_t(slots[i])] = moved[i].second;
+  }
+  slot_of_.resize(slot_of_.size() - removed.size());
+  fans_stale_ = true; // the fans hold triangle ids
+}
+
 } // namespace vm::detail

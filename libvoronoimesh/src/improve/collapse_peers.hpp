@@ -39,12 +39,18 @@ public:
   virtual bool any(bool mine) = 0;
 };
 
-/// What a collapse kept of the mesh, to follow its nodes and triangles: the
-/// old index of each node and each triangle of the edited mesh, and in a
-/// distributed run their ids now (make_merges(), improve/merges_made.hpp).
+/// What a collapse kept of the mesh, to follow its nodes and triangles
+/// (make_merges(), improve/merges_made.hpp). Made in place (one process): the
+/// nodes and triangles removed and how the others moved, sparse (a whole map
+/// of a 1M-triangle mesh cost more than the edit). Rebuilt: the old index of
+/// each node and each triangle of the edited mesh, and in a distributed run
+/// their ids now.
 struct CollapseKept {
-  std::vector<int32_t> nodes, triangles;
-  std::vector<int64_t> node_ids, triangle_ids;
+  bool in_place = false;
+  std::vector<int32_t> removed_nodes, removed_triangles; ///< in place: old ids, ascending
+  EditMoves moves;                                       ///< in place: the edit's moves
+  std::vector<int32_t> nodes, triangles;                 ///< rebuilt: the old index of each
+  std::vector<int64_t> node_ids, triangle_ids;           ///< rebuilt: the ids now
 };
 
 /// collapse_junction_slivers() agreed across ranks: `node_ids` and

@@ -76,6 +76,26 @@ void CrossingGuard::renumbered(const InterfaceMesh& mesh, std::span<const int32_
   excepted_ = std::move(kept);
 }
 
+void CrossingGuard::edited(std::span<const int32_t> removed_faces, std::span<const SlotMove> face_moves,
+                           std::span<const int32_t> removed_nodes, std::span<const SlotMove> node_moves) {
+  // As in renumbered(): old ids beyond the mesh the index saw are no edit of it.
+  auto seen = [&](int32_t f) { return size_t(f) < index_->triangles_seen(); };
+  if (index_ && !(std::all_of(removed_faces.begin(), removed_faces.end(), seen) &&
+                  std::all_of(face_moves.begin(), face_moves.end(), [&](const SlotMove& m) { return seen(m.from); })))
+    index_.reset();
+  if (index_) index_->renumber_after_removal(removed_faces, moved_by(face_moves));
+  checked_version_ = 0;
+  if (excepted_.empty()) return;
+  std::unordered_map<int32_t, FloorException> kept;
+  const std::vector<std::pair<int32_t, int32_t>> moved = moved_by(node_moves);
+  for (const auto& [n, exception] : excepted_) {
+    if (std::binary_search(removed_nodes.begin(), removed_nodes.end(), n)) continue;
+    const auto to = std::lower_bound(moved.begin(), moved.end(), std::pair{n, INT32_MIN});
+    kept.emplace(to != moved.end() && to->first == n ? to->second : n, exception);
+  }
+  excepted_ = std::move(kept);
+}
+
 void CrossingGuard::floor_exception_reverts(const InterfaceMesh& mesh, double quality_floor,
                                             std::vector<Vec3>& delta) {
   std::vector<uint8_t> below(mesh.num_nodes(), 0); // a corner of a triangle below the floor

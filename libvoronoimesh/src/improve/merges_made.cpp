@@ -69,17 +69,6 @@ Removed removed_by(const InterfaceMesh& mesh, const MeshPart& part, const NodeMe
   return r;
 }
 
-/// Where each element is after `moves` (SlotMove): the old index of each.
-std::vector<int32_t> replayed(size_t count, const std::vector<SlotMove>& moves) {
-  std::vector<int32_t> old(count);
-  std::iota(old.begin(), old.end(), 0);
-  for (const SlotMove& m : moves) {
-    old[size_t(m.to)] = old[size_t(m.from)];
-    old.pop_back();
-  }
-  return old;
-}
-
 /// The merges as one edit in place; false where edit_in_place() declines.
 bool made_in_place(InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& merged,
                    std::span<const int32_t> kept_triangles, const Removed& removed, CollapseKept& kept) {
@@ -100,11 +89,10 @@ bool made_in_place(InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& me
     edit.placed_nodes.push_back(part.whole_node(n));
     edit.placed_at.push_back(merged.points[size_t(n)]);
   }
-  const size_t faces = mesh.num_triangles(), nodes = mesh.num_nodes();
   EditMoves moves;
   if (!mesh.edit_in_place(edit, moves)) return false;
-  kept.triangles = replayed(faces, moves.faces);
-  kept.nodes = replayed(nodes, moves.nodes);
+  kept = {.in_place = true, .removed_nodes = removed.nodes, .removed_triangles = removed.triangles,
+          .moves = std::move(moves)};
   return true;
 }
 

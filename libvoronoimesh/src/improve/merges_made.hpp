@@ -41,8 +41,9 @@ std::vector<std::pair<int64_t, int64_t>> swap_removal_renames(std::vector<int64_
 /// @param peers          the ranks of a distributed run, or null in one process
 /// @param node_ids       the id of each node of `mesh`, increasing (one process: its index)
 /// @param triangle_ids   the id of each triangle of `mesh`, increasing
-/// @param kept           set to the node and triangle of `mesh` before the merges each node and triangle
-///                       of `mesh` is now, and their ids now
+/// @param kept           set to what the merges kept: in place, the nodes and triangles removed and the
+///                       moves; rebuilt, the node and triangle of `mesh` before the merges each node and
+///                       triangle of `mesh` is now, and their ids now
 void make_merges(InterfaceMesh& mesh, const MeshPart& part, NodeMesh& merged, std::span<const int32_t> kept_triangles,
                  CollapsePeers* peers, std::span<const int64_t> node_ids, std::span<const int64_t> triangle_ids,
                  CollapseKept& kept);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <numeric>
+#include <unordered_map>
 
 namespace vm {
 
@@ -116,6 +118,33 @@ void OMesh::remove_faces(std::span<const int32_t> faces, SlotMoves& moves, std::
   const size_t nv = close_up(std::move(dead_vertices), n_vertices(), moves.vertices,
                              [this](int32_t v, int32_t last) { fill_vertex_slot(v, last); });
   resize(nv, ne, nf);
+}
+
+std::vector<int32_t> replayed(size_t count, std::span<const SlotMove> moves) {
+  std::vector<int32_t> old(count);
+  std::iota(old.begin(), old.end(), 0);
+  for (const SlotMove& m : moves) {
+    old[size_t(m.to)] = old[size_t(m.from)];
+    old.pop_back();
+  }
+  return old;
+}
+
+std::vector<std::pair<int32_t, int32_t>> moved_by(std::span<const SlotMove> moves) {
+  // The index before of the element at each index the moves touched; the
+  // element at `to` goes (or, where from == to, the last one does).
+  std::unordered_map<int32_t, int32_t> was_at;
+  for (const SlotMove& m : moves) {
+    const auto at = was_at.find(m.from);
+    const int32_t was = at != was_at.end() ? at->second : m.from;
+    if (at != was_at.end()) was_at.erase(at);
+    if (m.from != m.to) was_at[m.to] = was;
+  }
+  std::vector<std::pair<int32_t, int32_t>> moved;
+  for (const auto& [now, was] : was_at)
+    if (now != was) moved.emplace_back(was, now);
+  std::sort(moved.begin(), moved.end());
+  return moved;
 }
 
 } // namespace vm

@@ -142,6 +142,14 @@ public:
   /// @param old_face the old id of each face of `mesh` (each once, in any order), or -1 for a new face
   /// @param old_node the old id of each node of `mesh` (each once, in any order), or -1 for a new node
   void renumbered(const InterfaceMesh& mesh, std::span<const int32_t> old_face, std::span<const int32_t> old_node);
+  /// renumbered() for an edit in place (InterfaceMesh::edit_in_place()) that
+  /// removed faces and nodes and added none: told sparsely, in time of the edit.
+  /// @param removed_faces the old ids of the faces that went, each once
+  /// @param face_moves    the edit's moves of faces (EditMoves::faces)
+  /// @param removed_nodes the old ids of the nodes that went, ascending
+  /// @param node_moves    the edit's moves of nodes (EditMoves::nodes)
+  void edited(std::span<const int32_t> removed_faces, std::span<const SlotMove> face_moves,
+              std::span<const int32_t> removed_nodes, std::span<const SlotMove> node_moves);
 
   /// While on, commit() leaves out its search for crossings (every other check
   /// stays) and the passes that ask defers_crossings() check none of their

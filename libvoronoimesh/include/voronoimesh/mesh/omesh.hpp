@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace vm {
@@ -34,6 +35,16 @@ struct SlotMoves {
   std::vector<SlotMove> edges;    ///< moves of edges (halfedges 2e and 2e + 1 with edge e)
   std::vector<SlotMove> vertices; ///< moves of vertices
 };
+
+/// The index before of each element of an array of `count` after `moves`
+/// (replayed as above): the whole map, for callers that need one.
+std::vector<int32_t> replayed(size_t count, std::span<const SlotMove> moves);
+
+/// The elements `moves` left at another index, as (index before, index
+/// after), ascending by the index before; every other element is where it was
+/// or was removed. Costs the moves, not the array: for what follows an edit
+/// sparsely (CrossingIndex::renumber_after_removal()).
+std::vector<std::pair<int32_t, int32_t>> moved_by(std::span<const SlotMove> moves);
 
 /// The OpenMesh triangle mesh of InterfaceMesh (double-precision points),
 /// with swap-removal of faces.
