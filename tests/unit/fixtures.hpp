@@ -15,6 +15,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -204,6 +205,17 @@ template <class Index = int32_t> std::vector<Index> identity(size_t n) {
   std::vector<Index> ids(n);
   std::iota(ids.begin(), ids.end(), 0);
   return ids;
+}
+
+/// The index before of each element of an array of `count` after `moves`
+/// (SlotMoves: `a[m.to] = a[m.from]; a.pop_back();` for each move m).
+inline std::vector<int32_t> replayed(size_t count, std::span<const SlotMove> moves) {
+  std::vector<int32_t> old = identity(count);
+  for (const SlotMove& m : moves) {
+    old[size_t(m.to)] = old[size_t(m.from)];
+    old.pop_back();
+  }
+  return old;
 }
 
 /// Run options of `n` iterations, the rest the defaults.

@@ -65,14 +65,6 @@ std::string broken_link(const OMesh& om) {
   return "";
 }
 
-/// a[m.to] = a[m.from] for each move, shrinking by one each time.
-void replay(const std::vector<SlotMove>& moves, std::vector<int32_t>& a) {
-  for (const SlotMove& m : moves) {
-    a[size_t(m.to)] = a[size_t(m.from)];
-    a.pop_back();
-  }
-}
-
 /// Removes `gone` from a copy of `before` and expects what is left to be
 /// `before` without them: each kept face on the same vertices (followed
 /// through the moves), glued to the same kept faces, its properties along;
@@ -82,9 +74,8 @@ void expect_removed(const OMesh& before, const std::vector<int32_t>& gone) {
   SlotMoves moves;
   om.remove_faces(gone, moves);
   ASSERT_EQ(broken_link(om), "");
-  std::vector<int32_t> face_was = identity(before.n_faces()), vertex_was = identity(before.n_vertices());
-  replay(moves.faces, face_was);
-  replay(moves.vertices, vertex_was);
+  const std::vector<int32_t> face_was = replayed(before.n_faces(), moves.faces);
+  const std::vector<int32_t> vertex_was = replayed(before.n_vertices(), moves.vertices);
   ASSERT_EQ(face_was.size(), om.n_faces());
   ASSERT_EQ(vertex_was.size(), om.n_vertices());
   ASSERT_EQ(om.n_faces(), before.n_faces() - gone.size());
@@ -163,8 +154,7 @@ TEST(FaceRemoval, of_every_face_at_some_nodes_leaves_holes_that_add_face_closes)
       OMesh om = im.omesh();
       SlotMoves moves;
       om.remove_faces(gone, moves);
-      std::vector<int32_t> vertex_was = identity(im.omesh().n_vertices());
-      replay(moves.vertices, vertex_was);
+      const std::vector<int32_t> vertex_was = replayed(im.omesh().n_vertices(), moves.vertices);
       std::vector<VH> vertex_now(im.omesh().n_vertices());
       for (size_t v = 0; v < vertex_was.size(); ++v) vertex_now[size_t(vertex_was[v])] = VH(int(v));
       for (int32_t f : gone) {

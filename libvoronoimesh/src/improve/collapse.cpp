@@ -281,7 +281,8 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
                                      .kept = params.kept, .peers = peers, .index = index, .part = &part};
     const size_t trial_done = merge_passing(part.mesh, trial, chosen, blame, checks, whole ? node_ids : part_ids,
                                             trial_kept, moved_to, &made);
-    if (trial_done >= done && trial_done > 0) m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
+    if (trial_done >= done && trial_done > 0)
+      m = std::move(trial), kept_triangles = std::move(trial_kept), done = trial_done;
     tried = from; // ascending, as choose() goes through the slivers in order
     bool any_failed = false;
     for (size_t c = 0; c < chosen.size(); ++c)

@@ -85,7 +85,8 @@ bool made_in_place(InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& me
     t = part.whole_triangle(kept_triangles[size_t(t)]);
   }
   edit.removed_nodes = removed.nodes;
-  for (const int32_t n : indices_where(before.num_nodes(), [&](size_t n) { return merged.points[n] != before.points[n]; })) {
+  auto placed = [&](size_t n) { return merged.points[n] != before.points[n]; };
+  for (const int32_t n : indices_where(before.num_nodes(), placed)) {
     edit.placed_nodes.push_back(part.whole_node(n));
     edit.placed_at.push_back(merged.points[size_t(n)]);
   }

@@ -277,9 +277,10 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   return true;
 }
 
-size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
-                     const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to, std::vector<uint8_t>* made, bool close_folds) {
+size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen,
+                     const Blame& blame, const MergeChecks& checks, std::span<const int64_t> node_ids,
+                     std::vector<int32_t>& kept_triangles, std::span<const Vec3> moved_to, std::vector<uint8_t>* made,
+                     bool close_folds) {
   CollapsePeers* const peers = checks.peers;
   // Ids back to this mesh's nodes (ids ascend with the nodes). Ids from 0 to
   // the last node are the nodes themselves (one process): no search, which

@@ -140,9 +140,9 @@ using Blame = std::vector<std::pair<int64_t, int32_t>>;
 /// @param made           if given, set to one flag per collapse of `chosen`: made or not
 /// @param close_folds    merge_nodes()'s: for merges of whole faces (digon faces)
 /// @return the number of collapses made (0: `merged` untouched)
-size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen, const Blame& blame,
-                     const MergeChecks& checks, std::span<const int64_t> node_ids, std::vector<int32_t>& kept_triangles,
-                     std::span<const Vec3> moved_to = {}, std::vector<uint8_t>* made = nullptr,
-                     bool close_folds = false);
+size_t merge_passing(const NodeMesh& m, NodeMesh& merged, std::span<const std::pair<int64_t, int64_t>> chosen,
+                     const Blame& blame, const MergeChecks& checks, std::span<const int64_t> node_ids,
+                     std::vector<int32_t>& kept_triangles, std::span<const Vec3> moved_to = {},
+                     std::vector<uint8_t>* made = nullptr, bool close_folds = false);
 
 } // namespace vm::detail

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <functional>
-#include <numeric>
 #include <unordered_map>
 
 namespace vm {
@@ -118,16 +117,6 @@ void OMesh::remove_faces(std::span<const int32_t> faces, SlotMoves& moves, std::
   const size_t nv = close_up(std::move(dead_vertices), n_vertices(), moves.vertices,
                              [this](int32_t v, int32_t last) { fill_vertex_slot(v, last); });
   resize(nv, ne, nf);
-}
-
-std::vector<int32_t> replayed(size_t count, std::span<const SlotMove> moves) {
-  std::vector<int32_t> old(count);
-  std::iota(old.begin(), old.end(), 0);
-  for (const SlotMove& m : moves) {
-    old[size_t(m.to)] = old[size_t(m.from)];
-    old.pop_back();
-  }
-  return old;
 }
 
 std::vector<std::pair<int32_t, int32_t>> moved_by(std::span<const SlotMove> moves) {

@@ -36,10 +36,6 @@ struct SlotMoves {
   std::vector<SlotMove> vertices; ///< moves of vertices
 };
 
-/// The index before of each element of an array of `count` after `moves`
-/// (replayed as above): the whole map, for callers that need one.
-std::vector<int32_t> replayed(size_t count, std::span<const SlotMove> moves);
-
 /// The elements `moves` left at another index, as (index before, index
 /// after), ascending by the index before; every other element is where it was
 /// or was removed. Costs the moves, not the array: for what follows an edit
