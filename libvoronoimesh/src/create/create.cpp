@@ -2,6 +2,7 @@
 
 #include "check/validate_part.hpp"
 #include "core/clock.hpp"
+#include "core/huge_pages.hpp"
 #include "core/text.hpp"
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
@@ -120,9 +121,9 @@ SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& v
   const detail::SlabNumbering numbering = detail::number_slabs(lattice, slab_keys, cut[0]);
   const size_t n = size_t(cut[1] - cut[0] + 1), points = size_t(numbering.fresh[n]);
   SlabsMesh e;
-  e.points.resize(points);
-  e.keys.resize(points);
-  e.where.assign(points, 0);
+  detail::resize_on_huge_pages(e.points, points);
+  detail::resize_on_huge_pages(e.keys, points);
+  detail::assign_on_huge_pages(e.where, points, 0);
   std::vector<size_t> first_triangle(n + 1, 0);
   for (size_t i = 0; i < n; ++i) {
     const int slab = cut[0] + int(i);
@@ -146,8 +147,8 @@ SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& v
     if (slab == owned[0]) e.owned_begin = first_triangle[i];
     if (slab == owned[1]) e.owned_end = first_triangle[i + 1];
   }
-  e.triangles.resize(first_triangle[n]);
-  e.pairs.resize(first_triangle[n]);
+  detail::resize_on_huge_pages(e.triangles, first_triangle[n]);
+  detail::resize_on_huge_pages(e.pairs, first_triangle[n]);
   // Each point is written by the slab where it first appears.
   detail::parallel_for(size_t(0), n, [&](size_t i) {
     const SlabResult& s = slabs[size_t(cut[0]) + i];

@@ -1,6 +1,7 @@
 #include "create/node_values.hpp"
 
 #include "core/atomic_lowest.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel.hpp"
 
 #include <tbb/blocked_range.h>
@@ -69,7 +70,8 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
   // How many nodes after each in its row have its key (up to 255): a run of
   // inner nodes whose neighbours' runs all hold its key is decided with two
   // loads per neighbour offset instead of one per neighbour and node.
-  std::vector<uint8_t> run_after(key.size());
+  std::vector<uint8_t> run_after;
+  resize_on_huge_pages(run_after, key.size());
   detail::parallel_for(tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), [&](const auto& rows) {
     for (int64_t r = rows.begin(); r < rows.end(); ++r) {
       const TetLattice::NodeRow row = lattice.node_row(r);
@@ -78,7 +80,8 @@ std::vector<uint8_t> held_near_interfaces(const TetLattice& lattice, const std::
           run_after[size_t(id)] = uint8_t(std::min(255, run_after[size_t(id + 1)] + 1));
     }
   });
-  std::vector<uint8_t> held(key.size());
+  std::vector<uint8_t> held;
+  resize_on_huge_pages(held, key.size());
   detail::parallel_for(tbb::blocked_range<int64_t>(0, lattice.num_node_rows(), 16), [&](const auto& rows) {
     for (int64_t r = rows.begin(); r < rows.end(); ++r) {
       const TetLattice::NodeRow row = lattice.node_row(r);
@@ -196,10 +199,11 @@ NodeValues::NodeValues(const NodeSource& source, const TetLattice& lattice, doub
       lattice_(&lattice) {
   const GridSpec& grid = source.grid();
   const size_t n_nodes = size_t(window_.size()); // the whole lattice: window index = lattice id
-  label_.resize(n_nodes);
+  resize_on_huge_pages(label_, n_nodes);
   // Every node's winner before quantizing, its lead over the second phase
   // (a float rounded down: a lead it shows is there) and the range.
-  std::vector<float> lead(n_nodes);
+  std::vector<float> lead;
+  resize_on_huge_pages(lead, n_nodes);
   // The lowest grid node index with a value that is NaN or infinite: the error is the same for any schedule.
   std::atomic<int64_t> first_bad{std::numeric_limits<int64_t>::max()};
   using Range = std::array<double, 2>;
@@ -248,7 +252,7 @@ NodeValues::NodeValues(const NodeSource& source, const TetLattice& lattice, doub
   // a node is its winner if sure, -1 if not: held nodes are those whose key or
   // a neighbour's differs from their winner.
   const double margin = hold_margin();
-  slot_.resize(n_nodes);
+  resize_on_huge_pages(slot_, n_nodes);
   std::vector<int32_t>& key = slot_;
   for (size_t id = 0; id < n_nodes; ++id) key[id] = double(lead[id]) > margin ? label_[id] : -1;
   std::vector<float>().swap(lead);

@@ -2,6 +2,7 @@
 
 #include "voronoimesh/core/errors.hpp"
 
+#include "core/huge_pages.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
 #include "fields/distance_transform.hpp"
@@ -60,8 +61,8 @@ void reduce_to_bricks(Lo lo, Hi hi, Index3& dims, size_t a, int64_t r, std::vect
   // Lines by x first where a is not x: neighbouring lines then share cache
   // lines (by z first, each step along y or z missed the cache: 27% of a load).
   const size_t b = a == 0 ? 1 : 0, c = 3 - a - b;
-  out_lo.resize(size_t(out[0] * out[1] * out[2]));
-  out_hi.resize(out_lo.size());
+  resize_on_huge_pages(out_lo, size_t(out[0] * out[1] * out[2]));
+  resize_on_huge_pages(out_hi, out_lo.size());
   parallel_for_each_index(size_t(dims[b] * dims[c]), [&](size_t line) {
     const int64_t ib = int64_t(line) % dims[b], ic = int64_t(line) / dims[b];
     const int64_t in_base = ib * in_stride[b] + ic * in_stride[c], out_base = ib * out_stride[b] + ic * out_stride[c];

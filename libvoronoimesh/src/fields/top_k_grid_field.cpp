@@ -1,6 +1,7 @@
 #include "fields/top_k_grid_field.hpp"
 
 #include "core/atomic_lowest.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel.hpp"
 #include "fields/top_k.hpp"
 
@@ -48,10 +49,10 @@ TopKGridField::TopKGridField(const GridSpec& grid, int k, std::vector<std::strin
   int32_t dense = 0;
   for (size_t b = 0; b < count; ++b) brick_[b] = uniform[b] >= 0 ? -1 - uniform[b] : dense++;
   const size_t dense_nodes = size_t(dense) * size_t(kBrickNodes);
-  ids_.assign(dense_nodes * size_t(k_), 0);
-  values_.assign(dense_nodes * size_t(k_), 0.f);
-  floor_.assign(dense_nodes, 0.f);
-  filled_.assign(dense_nodes, 0);
+  assign_on_huge_pages(ids_, dense_nodes * size_t(k_), 0);
+  assign_on_huge_pages(values_, dense_nodes * size_t(k_), 0.f);
+  assign_on_huge_pages(floor_, dense_nodes, 0.f);
+  assign_on_huge_pages(filled_, dense_nodes, 0);
 }
 
 size_t TopKGridField::slot(int64_t i, int64_t j, int64_t k) const {

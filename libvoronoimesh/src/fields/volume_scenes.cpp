@@ -3,6 +3,7 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include "core/distinct.hpp"
+#include "core/huge_pages.hpp"
 #include "core/memory.hpp"
 #include "core/parallel.hpp"
 #include "core/text.hpp"
@@ -241,7 +242,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
   for (size_t i = 0; i < present.size(); ++i)
     phase_of[i] = !target[i] ? -1 // no phase
                              : int32_t(std::lower_bound(pv.labels.begin(), pv.labels.end(), *target[i]) - pv.labels.begin());
-  pv.phase.resize(v.labels.size());
+  resize_on_huge_pages(pv.phase, v.labels.size());
   // Label value -> phase id: a table over the labels' range when it is small (8- and 16-bit files).
   const int64_t first = present.front(), span = int64_t(present.back()) - first + 1;
   std::vector<int16_t> table(span <= (1 << 20) ? size_t(span) : 0);

@@ -6,6 +6,7 @@
 
 #include "voronoimesh/io/volume.hpp"
 
+#include "core/huge_pages.hpp"
 #include "core/text.hpp"
 #include "io/voxel_data.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -202,7 +203,8 @@ Volume read_inr(const std::string& path) {
     detail::check_voxel_data_length(path, needed, file_size - header.size());
   else
     detail::check_inflatable(path, needed, file_size);
-  std::string data(size_t(needed), '\0');
+  std::string data;
+  detail::resize_on_huge_pages(data, size_t(needed));
   const size_t got = read_some(path, g.get(), data.data(), data.size());
   if (got < needed)
     throw InvalidInput(located(path, cat("truncated: the header describes ", needed, " bytes of voxel data, the file holds ",

@@ -1,5 +1,6 @@
 #include "io/voxel_data.hpp"
 
+#include "core/huge_pages.hpp"
 #include "core/text.hpp"
 #include "voronoimesh/core/errors.hpp"
 
@@ -94,7 +95,7 @@ std::string voxel_name(const io::Volume& volume, size_t n) {
 template <class T>
 void decode_labels(io::Volume& volume, const unsigned char* data, bool swap, const std::string& path) {
   const size_t n = size_t(volume.voxel_count()) * size_t(volume.components);
-  volume.labels.resize(n);
+  resize_on_huge_pages(volume.labels, n);
   for (size_t i = 0; i < n; ++i) {
     const T v = load<T>(data + i * sizeof(T), swap);
     if constexpr (std::is_same_v<T, uint32_t>)
@@ -107,7 +108,7 @@ void decode_labels(io::Volume& volume, const unsigned char* data, bool swap, con
 template <class T>
 void decode_values(io::Volume& volume, const unsigned char* data, bool swap, const std::string& path) {
   const size_t n = size_t(volume.voxel_count()) * size_t(volume.components);
-  volume.values.resize(n);
+  resize_on_huge_pages(volume.values, n);
   for (size_t i = 0; i < n; ++i) {
     const T v = load<T>(data + i * sizeof(T), swap);
     if (std::isnan(v)) throw InvalidInput(located(path, cat("value NaN at ", voxel_name(volume, i))));

@@ -1,0 +1,45 @@
+// core/huge_pages.hpp: resizing on huge pages must be an ordinary resize to
+// whoever reads the vector (the advice changes where the kernel puts the
+// pages, never the contents): old elements kept, new ones filled, strings too.
+
+#include "core/huge_pages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace {
+
+using vm::detail::assign_on_huge_pages;
+using vm::detail::resize_on_huge_pages;
+
+constexpr size_t kLarge = size_t(5) << 20; // elements: several whole huge pages to advise
+
+TEST(HugePages, resizing_keeps_the_old_elements_and_fills_the_new) {
+  std::vector<int32_t> v{4, 5, 6};
+  resize_on_huge_pages(v, kLarge, -7);
+  ASSERT_EQ(v.size(), kLarge);
+  EXPECT_EQ(v[0], 4);
+  EXPECT_EQ(v[2], 6);
+  EXPECT_EQ(v[3], -7);
+  EXPECT_EQ(v.back(), -7);
+  resize_on_huge_pages(v, 2); // shrinking is a plain resize
+  EXPECT_EQ(v, (std::vector<int32_t>{4, 5}));
+}
+
+TEST(HugePages, value_initialises_without_a_fill_and_assigns_over_old_contents) {
+  std::string s = "header";
+  resize_on_huge_pages(s, kLarge);
+  EXPECT_EQ(s.substr(0, 6), "header");
+  EXPECT_EQ(s[6], '\0');
+  EXPECT_EQ(s.back(), '\0');
+  std::vector<float> f(10, 3.f);
+  assign_on_huge_pages(f, kLarge, 0.5f);
+  ASSERT_EQ(f.size(), kLarge);
+  EXPECT_EQ(f.front(), 0.5f);
+  EXPECT_EQ(f.back(), 0.5f);
+}
+
+} // namespace
