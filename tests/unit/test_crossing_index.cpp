@@ -234,10 +234,6 @@ TEST(CrossingIndex, carries_over_a_rebuild_with_new_triangles_and_nodes) {
   }
 }
 
-// The guard's commit moves many nodes, then puts back, round by round, the
-// nodes of what crosses: after the first round only those moved, and the
-// index, told so, mends and searches from their triangles alone; likewise for
-// the faces a flip changed.
 // Random merges made in place as the collapses make them (make_merges() from
 // the part at the merges): the index, told only what the edit removed and
 // moved, keeps its lists right and answers as the whole-mesh check does,
@@ -292,6 +288,10 @@ TEST(CrossingIndex, carries_over_merges_made_in_place_told_sparsely) {
   EXPECT_GT(merges, 40u);
 }
 
+// The guard's commit moves many nodes, then puts back, round by round, the
+// nodes of what crosses: after the first round only those moved, and the
+// index, told so, mends and searches from their triangles alone; likewise for
+// the faces a flip changed.
 TEST(CrossingIndex, answers_after_local_changes_as_the_whole_mesh_check_does) {
   InterfaceMesh mesh = InterfaceMesh::from_node_mesh(test::four_spheres(16));
   CrossingIndex index;

@@ -291,10 +291,12 @@ size_t collapse(InterfaceMesh& mesh, const CollapseParams& params, CollapsePeers
   }
   if (done) {
     detail::make_merges(mesh, part, m, kept_triangles, peers, node_ids, triangle_ids, kept);
-    if (params.guard && kept.in_place)
-      params.guard->edited(kept.removed_triangles, kept.moves.faces, kept.removed_nodes, kept.moves.nodes);
-    else if (params.guard)
-      params.guard->renumbered(mesh, kept.triangles, kept.nodes);
+    if (params.guard) {
+      if (kept.in_place)
+        params.guard->edited(kept.removed_triangles, kept.moves.faces, kept.removed_nodes, kept.moves.nodes);
+      else
+        params.guard->renumbered(mesh, kept.triangles, kept.nodes);
+    }
   }
   return done;
 }
