@@ -7,6 +7,7 @@
 #include "check/self_intersections.hpp"
 #include "core/indices_where.hpp"
 #include "core/key_set.hpp"
+#include "core/morton.hpp"
 #include "core/parallel.hpp"
 
 #include <tbb/blocked_range.h>
@@ -32,6 +33,7 @@ constexpr double kCellFactor = 1.5;
 constexpr double kSkin = 0.15;
 constexpr int kAxisBits = 19;               // bits of a cell coordinate, biased
 constexpr int64_t kBias = int64_t(1) << 17; // room below the grid's origin
+static_assert(kAxisBits <= 21, "biased cell coordinates must fit a Morton key (core/morton.hpp)");
 constexpr int64_t kLimit = int64_t(1) << kAxisBits;
 constexpr int kLevels = 24;
 // A triangle searching a finer level visits at most this many cells; beyond,
@@ -237,7 +239,20 @@ void CrossingIndex::set_grid() {
   origin_ = n ? lo : Vec3::Zero();
 }
 
-void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
+std::vector<int32_t> CrossingIndex::in_space_order(std::span<const int32_t> triangles) const {
+  std::vector<std::pair<uint64_t, int32_t>> keyed(triangles.size());
+  detail::parallel_for_each_index(triangles.size(), [&](size_t i) {
+    const Bounds& b = boxes_[size_t(triangles[i])];
+    const auto c = cell_of(0.5 * (b.lo + b.hi), 0);
+    keyed[i] = {morton_key(uint64_t(c[0] + kBias), uint64_t(c[1] + kBias), uint64_t(c[2] + kBias)), triangles[i]};
+  });
+  detail::parallel_sort(keyed.begin(), keyed.end(), std::less<>());
+  std::vector<int32_t> ordered(keyed.size());
+  detail::parallel_for_each_index(keyed.size(), [&](size_t i) { ordered[i] = keyed[i].second; });
+  return ordered;
+}
+
+void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const Triangle> triangles,
                            std::span<const Triangle> corner_fans) {
   // After a flip pass a tenth of the triangles are stale, each near ~20 others
   // (on the liver 17, of which 5 share no fan with it and are on its list).
@@ -245,6 +260,11 @@ void CrossingIndex::refile(std::span<const int32_t> stale, std::span<const Trian
   // That is done in parallel (each entry is written by the task of its own
   // triangle); what comes and goes is collected per triangle and applied in
   // order, so the index never depends on the threads.
+  // Taken in space order, one triangle's search through the cells finds the
+  // cells, entries and filings the last one read still in cache: on 1,000
+  // grains, searching for the 56-355k flipped triangles' new neighbours took
+  // a quarter less time than in the order of their ids.
+  const std::vector<int32_t> stale = in_space_order(stale_by_id);
   const size_t m = stale.size();
   std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
   for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
@@ -392,7 +412,8 @@ bool CrossingIndex::refresh(std::span<const Vec3> points, std::span<const Triang
 }
 
 std::vector<BoxPair> CrossingIndex::crossings(std::span<const Vec3> points, std::span<const Triangle> triangles,
-                                              std::span<const uint8_t> involved, std::span<const Triangle> corner_fans) {
+                                              std::span<const uint8_t> involved,
+                                              std::span<const Triangle> corner_fans) {
   const size_t n = triangles.size();
   refiled_ = 0;
   rebuilt_ = false;

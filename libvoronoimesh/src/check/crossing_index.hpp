@@ -163,8 +163,10 @@ private:
   static bool share_a_fan(const Triangle& a, const Triangle& b);
 
   void rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
-  void refile(std::span<const int32_t> stale, std::span<const Triangle> triangles,
+  void refile(std::span<const int32_t> stale_by_id, std::span<const Triangle> triangles,
               std::span<const Triangle> corner_fans);
+  /// `triangles` in the Morton order of their boxes' centres (boxes_), ties by id.
+  std::vector<int32_t> in_space_order(std::span<const int32_t> triangles) const;
   void set_grid();
   Filing filing_for(const Bounds& box, const Triangle& nodes, const Triangle& fans) const;
   bool fits_grid(const Bounds& b) const;
