@@ -54,13 +54,6 @@ constexpr size_t kSettledShare = 6;
 constexpr int kSettledCalls = 2;
 constexpr size_t kDropShare = 2;
 
-/// a == b, inline (std::array's == calls memcmp: 4% of a steady-state iteration on 1M triangles).
-bool same(const Triangle& a, const Triangle& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
-
-bool contains(const Bounds& outer, const Bounds& inner) {
-  return (outer.lo.array() <= inner.lo.array()).all() && (inner.hi.array() <= outer.hi.array()).all();
-}
-
 } // namespace
 
 // ---------------------------------------------------------------------------
@@ -250,109 +243,6 @@ std::vector<int32_t> CrossingIndex::in_space_order(std::span<const int32_t> tria
   std::vector<int32_t> ordered(keyed.size());
   detail::parallel_for_each_index(keyed.size(), [&](size_t i) { ordered[i] = keyed[i].second; });
   return ordered;
-}
-
-void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const Triangle> triangles,
-                           std::span<const Triangle> corner_fans) {
-  // After a flip pass a tenth of the triangles are stale, each near ~20 others
-  // (on the liver 17, of which 5 share no fan with it and are on its list).
-  // Most of what they touch only changes in place: a cell the new filing keeps.
-  // That is done in parallel (each entry is written by the task of its own
-  // triangle); what comes and goes is collected per triangle and applied in
-  // order, so the index never depends on the threads.
-  // Taken in space order, one triangle's search through the cells finds the
-  // cells, entries and filings the last one read still in cache: on 1,000
-  // grains, searching for the 56-355k flipped triangles' new neighbours took
-  // a quarter less time than in the order of their ids.
-  const std::vector<int32_t> stale = in_space_order(stale_by_id);
-  const size_t m = stale.size();
-  std::vector<uint8_t> is_stale(filed_.size(), 0); // by slot
-  for (int32_t t : stale) is_stale[size_t(slot_of_[size_t(t)])] = 1;
-  UnsetVector<Filing> fresh(m); // each written below
-  struct Edits {
-    std::vector<uint64_t> left, entered; // cells
-    std::vector<int32_t> lost, gained; // slots that stay
-  };
-  std::vector<Edits> edits(m);
-  detail::parallel_for_each_index(m, [&](size_t i) {
-    const int32_t t = stale[i], slot = slot_of_[size_t(t)];
-    const Filing& old = filed_[size_t(slot)];
-    fresh[i] = filing_for(boxes_[size_t(t)], triangles[size_t(t)],
-                          corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)]);
-    // The cells both filings have (none across levels, none for a triangle
-    // not filed yet, level -1) keep the entry, renewed.
-    const bool same_level = old.level >= 0 && old.level == fresh[i].level;
-    std::array<int64_t, 3> lo{}, hi{};
-    if (same_level) {
-      const auto old_last = cell_of(old.box.hi, old.level), new_last = cell_of(fresh[i].box.hi, fresh[i].level);
-      for (size_t a = 0; a < 3; ++a)
-        lo[a] = std::max(old.first[a], fresh[i].first[a]), hi[a] = std::min(old_last[a], new_last[a]);
-    }
-    auto kept = [&](uint64_t k) {
-      const auto c = key_cell(k);
-      return same_level && c[0] >= lo[0] && c[0] <= hi[0] && c[1] >= lo[1] && c[1] <= hi[1] && c[2] >= lo[2] &&
-             c[2] <= hi[2];
-    };
-    for_cells(old, [&](uint64_t k) {
-      if (!kept(k)) edits[i].left.push_back(k);
-    });
-    for_cells(fresh[i], [&](uint64_t k) {
-      if (!kept(k)) {
-        edits[i].entered.push_back(k);
-        return;
-      }
-      // Other tasks read only the ids of the entries this one renews.
-      for (CellEntry& e : cells_.at(size_t(find(k))))
-        if (e.id == slot) e.first = cell_entry(slot, fresh[i]).first;
-    });
-  });
-  std::vector<int32_t> changed; // other nodes or fans: the fans around them change
-  std::vector<Triangle> old_fans;
-  for (size_t i = 0; i < m; ++i) {
-    const int32_t t = stale[i], slot = slot_of_[size_t(t)];
-    const Filing& old = filed_[size_t(slot)];
-    if (!same(fresh[i].fans, old.fans) || !same(fresh[i].nodes, old.nodes))
-      changed.push_back(t), old_fans.push_back(old.fans);
-    for (uint64_t k : edits[i].left) cells_.erase_id(size_t(find(k)), slot);
-    if (old.level >= 0) --level_count_[size_t(old.level)];
-    ++level_count_[size_t(fresh[i].level)];
-    filed_[size_t(slot)] = fresh[i];
-    for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(slot, fresh[i]));
-  }
-  if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
-
-  std::vector<std::vector<int32_t>> found(m);
-  detail::parallel_for_each_index(
-      m,
-      [&](size_t i) {
-        const int32_t slot = slot_of_[size_t(stale[i])];
-        near(slot, found[i]);
-        // The old list against the new, both sorted; stale neighbours write
-        // their own lists, the others gain or lose this slot below.
-        const auto old = near_.at(size_t(slot));
-        size_t o = 0;
-        for (int32_t s : found[i]) {
-          for (; o < old.size() && old[o] < s; ++o)
-            if (!is_stale[size_t(old[o])]) edits[i].lost.push_back(old[o]);
-          const bool kept = o < old.size() && old[o] == s;
-          o += kept;
-          if (!kept && !is_stale[size_t(s)]) edits[i].gained.push_back(s);
-        }
-        for (; o < old.size(); ++o)
-          if (!is_stale[size_t(old[o])]) edits[i].lost.push_back(old[o]);
-      },
-      16);
-  for (size_t i = 0; i < m; ++i) {
-    const int32_t slot = slot_of_[size_t(stale[i])];
-    for (int32_t s : edits[i].lost) near_.erase_id(size_t(s), slot);
-    for (int32_t s : edits[i].gained) near_.insert_by_id(size_t(s), slot);
-    near_.reserve(size_t(slot), found[i].size());
-  }
-  detail::parallel_for_each_index(m, [&](size_t i) {
-    const auto slot = size_t(slot_of_[size_t(stale[i])]);
-    near_.resize(slot, found[i].size());
-    std::copy(found[i].begin(), found[i].end(), near_.at(slot).begin());
-  });
 }
 
 std::vector<BoxPair> CrossingIndex::one_off(std::span<const Vec3> points, std::span<const Triangle> triangles,

@@ -157,6 +157,11 @@ private:
   static bool has_fan(const Triangle& fans, int32_t fan) {
     return fan >= 0 && (fan == fans[0] || fan == fans[1] || fan == fans[2]);
   }
+  /// a == b, inline (std::array's == calls memcmp: 4% of a steady-state iteration on 1M triangles).
+  static bool same(const Triangle& a, const Triangle& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+  static bool contains(const Bounds& outer, const Bounds& inner) {
+    return (outer.lo.array() <= inner.lo.array()).all() && (inner.hi.array() <= outer.hi.array()).all();
+  }
   /// Whether triangles with corner fans `a` and `b` have a fan in common.
   /// Listed pairs had none when listed; should two fans become one without
   /// either triangle filed again, crossings() leaves the pair to the fan.
@@ -165,6 +170,9 @@ private:
   void rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans);
   void refile(std::span<const int32_t> stale_by_id, std::span<const Triangle> triangles,
               std::span<const Triangle> corner_fans);
+  /// The slots a stale triangle that keeps its filing box (refile()) may have
+  /// on its list: those on its old list and those in its old fans.
+  void kept_box_candidates(int32_t slot, std::vector<int32_t>& out) const;
   /// `triangles` in the Morton order of their boxes' centres (boxes_), ties by id.
   std::vector<int32_t> in_space_order(std::span<const int32_t> triangles) const;
   void set_grid();
