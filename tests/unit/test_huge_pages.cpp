@@ -13,6 +13,7 @@
 namespace {
 
 using vm::detail::assign_on_huge_pages;
+using vm::detail::push_back_on_huge_pages;
 using vm::detail::resize_on_huge_pages;
 
 constexpr size_t kLarge = size_t(5) << 20; // elements: several whole huge pages to advise
@@ -40,6 +41,15 @@ TEST(HugePages, value_initialises_without_a_fill_and_assigns_over_old_contents) 
   ASSERT_EQ(f.size(), kLarge);
   EXPECT_EQ(f.front(), 0.5f);
   EXPECT_EQ(f.back(), 0.5f);
+}
+
+TEST(HugePages, pushing_back_keeps_every_element_in_order_as_it_grows) {
+  std::vector<int64_t> v{-1};
+  for (int64_t i = 0; i < int64_t(kLarge); ++i) push_back_on_huge_pages(v, i);
+  ASSERT_EQ(v.size(), kLarge + 1);
+  EXPECT_EQ(v[0], -1);
+  for (size_t i = 1; i < v.size(); i += 4099) ASSERT_EQ(v[i], int64_t(i) - 1);
+  EXPECT_EQ(v.back(), int64_t(kLarge) - 1);
 }
 
 } // namespace

@@ -28,6 +28,20 @@ PooledLists<int32_t> numbered(const std::vector<uint32_t>& sizes) {
   return lists;
 }
 
+TEST(PooledLists, assign_shows_the_fresh_pool_before_filling_it) {
+  PooledLists<int32_t> lists;
+  const std::vector<uint32_t> sizes{3, 0, 5};
+  const int32_t* seen = nullptr;
+  size_t room = 0;
+  lists.assign(sizes, [&](const int32_t* data, size_t count) { seen = data, room = count; });
+  ASSERT_NE(seen, nullptr);
+  EXPECT_GE(room, size_t(3 + 0 + 5));
+  ASSERT_EQ(lists.count(), 3u);
+  EXPECT_EQ(lists.at(0).data(), seen); // the lists live in the memory shown
+  EXPECT_EQ(lists.at(2).size(), 5u);
+  EXPECT_EQ(lists.at(2)[4], 0);
+}
+
 TEST(PooledLists, keep_lists_reorders_drops_and_adds_lists_that_still_grow) {
   PooledLists<int32_t> lists = numbered({2, 3, 1}); // 0 1 | 2 3 4 | 5
   const std::vector<int32_t> from{0, -1, 2}; // list 1 dropped, a new empty one in its place

@@ -5,6 +5,7 @@
 #include "check/crossing_index.hpp"
 
 #include "check/cell_sort.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel.hpp"
 #include "core/unset_vector.hpp"
 
@@ -17,6 +18,10 @@
 
 namespace vm::detail {
 
+// A rebuild fills 0.5-0.6 GB of fresh memory on 1,000 grains (filings, cell
+// entries and their sort, the pairs, the lists' pools): its large arrays ask
+// for huge pages (core/huge_pages.hpp). On 4 KiB pages its 220k page faults
+// were about half of its 4.2 s.
 void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const Triangle> corner_fans) {
   const size_t n = triangles.size();
   rebuilt_ = true;
@@ -29,7 +34,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   triangle_of_ = slot_of_;
 
   // The cells, from every triangle's (key, id) entries sorted.
-  resize_to_overwrite(filed_, n); // each written below, by the thread of its triangle
+  filed_.clear(); // each written below, by the thread of its triangle
+  resize_on_huge_pages(filed_, n);
   std::vector<uint32_t> offset(n + 1, 0);
   detail::parallel_for_each_index(n, [&](size_t t) {
     filed_[t] = filing_for(boxes_[t], triangles[t], corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t]);
@@ -49,7 +55,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     uint64_t key;
     int32_t tri;
   };
-  detail::UnsetVector<Entry> entries(offset[n]); // each written below, by the thread of its triangle
+  detail::UnsetVector<Entry> entries; // each written below, by the thread of its triangle
+  resize_on_huge_pages(entries, offset[n]);
   detail::parallel_for_each_index(n, [&](size_t t) {
     uint32_t e = offset[t];
     for_cells(filed_[t], [&](uint64_t k) { entries[e++] = {k, int32_t(t)}; });
@@ -85,7 +92,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   for (size_t c = 0; c + 1 < first.size(); ++c) find_or_add(entries[first[c]].key); // cells numbered in key order
   std::vector<uint32_t> sizes(first.size() - 1);
   for (size_t c = 0; c < sizes.size(); ++c) sizes[c] = uint32_t(first[c + 1] - first[c]);
-  cells_.assign(sizes);
+  cells_.assign(sizes, advise_huge_pages_of_items<CellEntry>);
   detail::parallel_for_each_index(sizes.size(), [&](size_t c) {
     const auto filed = cells_.at(c);
     for (size_t i = 0; i < filed.size(); ++i) {
@@ -101,16 +108,18 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   // pairs are, and are never stored), then dealt to both triangles' lists (in
   // whatever order the threads deal them) and sorted. The fans are read from
   // a compact copy: from the filings they were a cache miss each.
-  UnsetVector<Triangle> fans(n); // each written below
+  UnsetVector<Triangle> fans; // each written below
+  resize_on_huge_pages(fans, n);
   detail::parallel_for_each_index(n, [&](size_t t) { fans[t] = filed_[t].fans; });
   tbb::enumerable_thread_specific<std::vector<BoxPair>> pairs;
   {
-    UnsetVector<Bounds> filing(n); // each written below
+    UnsetVector<Bounds> filing; // each written below
+    resize_on_huge_pages(filing, n);
     detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box; });
     for_each_overlapping_box_pair(filing, {}, [&](std::span<const BoxPair> some) {
       std::vector<BoxPair>& kept = pairs.local();
       for (const BoxPair& pair : some)
-        if (!share_a_fan(fans[size_t(pair[0])], fans[size_t(pair[1])])) kept.push_back(pair);
+        if (!share_a_fan(fans[size_t(pair[0])], fans[size_t(pair[1])])) push_back_on_huge_pages(kept, pair);
     });
   }
   auto for_each_pair = [&](auto&& f) {
@@ -127,7 +136,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
     dealt[t].store(0, std::memory_order_relaxed);
   });
   near_ = {};
-  near_.assign(count);
+  near_.assign(count, advise_huge_pages_of_items<int32_t>);
   for_each_pair([&](const BoxPair& pair) {
     const auto [t, s] = pair;
     near_.at(size_t(t))[dealt[size_t(t)].fetch_add(1, std::memory_order_relaxed)] = s;

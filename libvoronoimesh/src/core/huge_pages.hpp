@@ -13,6 +13,7 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -40,6 +41,21 @@ void resize_on_huge_pages(Container& v, size_t n, const Fill&... fill) {
     advise_huge_pages(v.data() + v.size(), (n - v.size()) * sizeof(*v.data()));
   }
   v.resize(n, fill...);
+}
+
+/// advise_huge_pages() for `count` items of T from `data`.
+template <class T> void advise_huge_pages_of_items(const T* data, size_t count) {
+  advise_huge_pages(data, count * sizeof(T));
+}
+
+/// v.push_back(item), where v grows (doubling) into memory on huge pages.
+template <class Container, class Item> void push_back_on_huge_pages(Container& v, const Item& item) {
+  if (v.size() == v.capacity()) {
+    const size_t room = std::max<size_t>(2 * v.capacity(), size_t(1) << 16);
+    v.reserve(room);
+    advise_huge_pages(v.data() + v.size(), (room - v.size()) * sizeof(*v.data()));
+  }
+  v.push_back(item);
 }
 
 /// Replaces the contents of `v` by n copies of `value`, on huge pages where the memory is fresh.

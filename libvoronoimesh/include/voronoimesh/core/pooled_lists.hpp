@@ -31,6 +31,13 @@ public:
   /// Lists of the given sizes, each with room for a third more; fill them through at().
   /// @param sizes the size of each list
   void assign(std::span<const uint32_t> sizes) {
+    assign(sizes, [](const T*, size_t) {});
+  }
+  /// assign(), calling `fresh(data, count)` on the pool's memory after it is
+  /// allocated and before it is first touched (to ask for huge pages).
+  /// @param sizes the size of each list
+  /// @param fresh called with the pool's address and room, in items
+  template <class Fresh> void assign(std::span<const uint32_t> sizes, Fresh&& fresh) {
     range_.resize(sizes.size());
     uint32_t end = 0;
     for (size_t i = 0; i < sizes.size(); ++i) {
@@ -42,6 +49,7 @@ public:
     // crossing index, paid again after every rebuild).
     pool_.clear();
     pool_.reserve(end + end / 4 + 64);
+    fresh(pool_.data(), pool_.capacity());
     pool_.assign(end, T{});
   }
   /// The items of a list.
