@@ -14,9 +14,11 @@
 /// triangle's box stays inside its filing box, two triangles whose boxes
 /// overlap are in one fan or on each other's lists: a check tests the fans and
 /// lists of the triangles that changed and searches nothing. A triangle that
-/// leaves its filing box or changes nodes is filed again, and the lists it is
-/// on are mended through a hash of grid cells; a check after a few flips costs
-/// little more than those few triangles.
+/// leaves its filing box is filed again, and the lists it is on are mended
+/// through a hash of grid cells; one that changes nodes (a flip) but still
+/// lies in its filing box keeps it, and its list is mended from its old list
+/// and its old fans. A check after a few flips costs little more than those
+/// few triangles.
 /// Where most triangles change between calls (the first iterations), mending
 /// the index would cost more than checking anew, so those calls are one-off
 /// checks: no index is built until the mesh has settled (a sixth or less
