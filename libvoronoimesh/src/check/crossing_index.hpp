@@ -233,6 +233,7 @@ private:
   // the parallel loops that fill them.
   UnsetVector<Bounds> boxes_;          ///< each triangle's box now
   std::vector<int32_t> stale_;         ///< find_stale()'s answer
+  std::vector<int32_t> stale_index_;   ///< by slot: its place among refile()'s triangles; -1 between calls
   std::vector<int32_t> level_count_;   ///< triangles filed in each level
   std::vector<uint64_t> keys_;         ///< open addressing, kFreeSlot where free (core/key_set.hpp)
   std::vector<uint32_t> cell_of_key_; ///< the cells_ list of each key in keys_

@@ -33,7 +33,9 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
   // a quarter less time than in the order of their ids.
   const std::vector<int32_t> stale = in_space_order(stale_by_id);
   const size_t m = stale.size();
-  std::vector<int32_t> stale_index(filed_.size(), -1); // by slot: its place in `stale`
+  // Kept between calls (all -1 then), so that a call costs its stale triangles, not the mesh.
+  if (stale_index_.size() < filed_.size()) stale_index_.resize(filed_.size(), -1);
+  std::vector<int32_t>& stale_index = stale_index_;
   for (size_t i = 0; i < m; ++i) stale_index[size_t(slot_of_[size_t(stale[i])])] = int32_t(i);
   // A triangle that got other nodes or fans but still lies in its filing box
   // (half of those a flip pass changes on 1,000 grains) keeps that box, and
@@ -168,6 +170,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
     near_.resize(slot, found[i].size());
     std::copy(found[i].begin(), found[i].end(), near_.at(slot).begin());
   });
+  for (int32_t t : stale) stale_index[size_t(slot_of_[size_t(t)])] = -1;
 }
 
 } // namespace vm::detail
