@@ -35,8 +35,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
   const size_t m = stale.size();
   // Kept between calls (all -1 then), so that a call costs its stale triangles, not the mesh.
   if (stale_index_.size() < filed_.size()) stale_index_.resize(filed_.size(), -1);
-  std::vector<int32_t>& stale_index = stale_index_;
-  for (size_t i = 0; i < m; ++i) stale_index[size_t(slot_of_[size_t(stale[i])])] = int32_t(i);
+  for (size_t i = 0; i < m; ++i) stale_index_[size_t(slot_of_[size_t(stale[i])])] = int32_t(i);
   // A triangle that got other nodes or fans but still lies in its filing box
   // (half of those a flip pass changes on 1,000 grains) keeps that box, and
   // with it its cells and the slots its box meets: only which of those share
@@ -104,7 +103,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
     filed_[size_t(slot)] = fresh[i];
     for (uint64_t k : edits[i].entered) cells_.push(find_or_add(k), cell_entry(slot, fresh[i]));
   }
-  if (!fans_stale_ && !corner_fans.empty()) fans_.update(changed, old_fans, triangles, corner_fans);
+  if (fans_known) fans_.update(changed, old_fans, triangles, corner_fans);
 
   // The lists as the filings are now: searched through the cells, or, for a
   // kept box, its candidates whose filing meets it and that share no fan with it.
@@ -117,7 +116,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
         if (!keeps_box[i]) {
           near(slot, list);
           for (int32_t s : list)
-            if (const int32_t j = stale_index[size_t(s)]; j >= 0 && keeps_box[size_t(j)]) meets_kept[i].push_back(j);
+            if (const int32_t j = stale_index_[size_t(s)]; j >= 0 && keeps_box[size_t(j)]) meets_kept[i].push_back(j);
           return;
         }
         const Filing& f = filed_[size_t(slot)];
@@ -150,13 +149,13 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
         size_t o = 0;
         for (int32_t s : found[i]) {
           for (; o < old.size() && old[o] < s; ++o)
-            if (stale_index[size_t(old[o])] < 0) edits[i].lost.push_back(old[o]);
+            if (stale_index_[size_t(old[o])] < 0) edits[i].lost.push_back(old[o]);
           const bool kept = o < old.size() && old[o] == s;
           o += kept;
-          if (!kept && stale_index[size_t(s)] < 0) edits[i].gained.push_back(s);
+          if (!kept && stale_index_[size_t(s)] < 0) edits[i].gained.push_back(s);
         }
         for (; o < old.size(); ++o)
-          if (stale_index[size_t(old[o])] < 0) edits[i].lost.push_back(old[o]);
+          if (stale_index_[size_t(old[o])] < 0) edits[i].lost.push_back(old[o]);
       },
       16);
   for (size_t i = 0; i < m; ++i) {
@@ -170,7 +169,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
     near_.resize(slot, found[i].size());
     std::copy(found[i].begin(), found[i].end(), near_.at(slot).begin());
   });
-  for (int32_t t : stale) stale_index[size_t(slot_of_[size_t(t)])] = -1;
+  for (int32_t t : stale) stale_index_[size_t(slot_of_[size_t(t)])] = -1;
 }
 
 } // namespace vm::detail
