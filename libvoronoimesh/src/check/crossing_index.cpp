@@ -96,11 +96,25 @@ bool CrossingIndex::fits_grid(const Bounds& b) const {
 CrossingIndex::Filing CrossingIndex::filing_for(const Bounds& box, const Triangle& nodes, const Triangle& fans) const {
   const double skin = kSkin * std::ldexp(cell_size_, level_of(box));
   Filing f;
-  f.box = {box.lo.array() - skin, box.hi.array() + skin};
+  f.box = FilingBox::around({box.lo.array() - skin, box.hi.array() + skin});
   f.nodes = nodes;
   f.fans = fans;
-  f.level = int8_t(level_of(f.box));
-  f.first = cell_of(f.box.lo, f.level);
+  const Bounds grown = f.box.bounds();
+  f.level = int8_t(level_of(grown));
+  // Beyond the grid (fits_grid() says so before the filing is used) the cells are not wanted.
+  const auto first = cell_of(grown.lo, f.level);
+  for (size_t a = 0; a < 3; ++a) f.first[a] = int32_t(std::clamp<int64_t>(first[a], INT32_MIN, INT32_MAX));
+  return f;
+}
+
+CrossingIndex::FilingBox CrossingIndex::FilingBox::around(const Bounds& b) {
+  FilingBox f;
+  for (int a = 0; a < 3; ++a) {
+    f.lo[size_t(a)] = float(b.lo[a]);
+    if (double(f.lo[size_t(a)]) > b.lo[a]) f.lo[size_t(a)] = std::nextafter(f.lo[size_t(a)], -INFINITY);
+    f.hi[size_t(a)] = float(b.hi[a]);
+    if (double(f.hi[size_t(a)]) < b.hi[a]) f.hi[size_t(a)] = std::nextafter(f.hi[size_t(a)], INFINITY);
+  }
   return f;
 }
 
@@ -144,7 +158,7 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
     const int64_t visits = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
     if (visits > kMaxCellsVisited) { // a large box over a fine level: every triangle of it
       for (size_t s = 0; s < filed_.size(); ++s)
-        if (filed_[s].level == l && int32_t(s) != skip && box.overlaps(filed_[s].box)) f(int32_t(s));
+        if (filed_[s].level == l && int32_t(s) != skip && filed_[s].box.overlaps(box)) f(int32_t(s));
       continue;
     }
     for (int64_t i = lo[0]; i <= hi[0]; ++i)
@@ -157,7 +171,7 @@ template <class F> void CrossingIndex::for_filed_meeting(const Bounds& box, int3
             // every cell of `box`: s is taken in the cell of the overlap's lower corner.
             if (s.id == skip || std::max(lo[0], int64_t(s.first[0])) != i ||
                 std::max(lo[1], int64_t(s.first[1])) != j || std::max(lo[2], int64_t(s.first[2])) != k ||
-                !box.overlaps(filed_[size_t(s.id)].box))
+                !filed_[size_t(s.id)].box.overlaps(box))
               continue;
             f(s.id);
           }
@@ -172,7 +186,7 @@ bool CrossingIndex::share_a_fan(const Triangle& a, const Triangle& b) {
 void CrossingIndex::near(int32_t slot, std::vector<int32_t>& out) const {
   const Filing& f = filed_[size_t(slot)];
   const size_t before = out.size();
-  for_filed_meeting(f.box, slot, [&](int32_t s) {
+  for_filed_meeting(f.box.bounds(), slot, [&](int32_t s) {
     if (!share_a_fan(f.fans, filed_[size_t(s)].fans)) out.push_back(s);
   });
   std::sort(out.begin() + ptrdiff_t(before), out.end());
@@ -281,13 +295,13 @@ const std::vector<int32_t>& CrossingIndex::find_stale(std::span<const Vec3> poin
   auto is_stale = [&](size_t t) {
     const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[t];
     const Filing& f = filed_[size_t(slot_of_[t])];
-    return !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !contains(f.box, boxes_[t]);
+    return !same(f.nodes, triangles[t]) || !same(f.fans, fans) || !f.box.contains(boxes_[t]);
   };
   if (only.empty()) detail::indices_where(n, is_stale, stale_);
   else
     std::copy_if(only.begin(), only.end(), std::back_inserter(stale_), [&](int32_t t) { return is_stale(size_t(t)); });
   for (size_t i = 0; i < stale_.size() && !anew; ++i)
-    anew = !fits_grid(filing_for(boxes_[size_t(stale_[i])], triangles[size_t(stale_[i])], {}).box);
+    anew = !fits_grid(filing_for(boxes_[size_t(stale_[i])], triangles[size_t(stale_[i])], {}).box.bounds());
   return stale_;
 }
 

@@ -49,7 +49,8 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
                Vec3::Constant(-std::numeric_limits<double>::infinity())};
   for (const Filing& f : filed_) {
     ++level_count_[size_t(f.level)];
-    reach = {reach.lo.cwiseMin(f.box.lo), reach.hi.cwiseMax(f.box.hi)};
+    const Bounds box = f.box.bounds();
+    reach = {reach.lo.cwiseMin(box.lo), reach.hi.cwiseMax(box.hi)};
   }
   struct Entry {
     uint64_t key;
@@ -115,7 +116,7 @@ void CrossingIndex::rebuild(std::span<const Triangle> triangles, std::span<const
   {
     UnsetVector<Bounds> filing; // each written below
     resize_on_huge_pages(filing, n);
-    detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box; });
+    detail::parallel_for_each_index(n, [&](size_t t) { filing[t] = filed_[t].box.bounds(); });
     for_each_overlapping_box_pair(filing, {}, [&](std::span<const BoxPair> some) {
       std::vector<BoxPair>& kept = pairs.local();
       for (const BoxPair& pair : some)

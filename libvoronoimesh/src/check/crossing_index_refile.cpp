@@ -54,7 +54,7 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
     const int32_t t = stale[i], slot = slot_of_[size_t(t)];
     const Filing& old = filed_[size_t(slot)];
     const Triangle fans = corner_fans.empty() ? Triangle{-1, -1, -1} : corner_fans[size_t(t)];
-    keeps_box[i] = fans_known && old.level >= 0 && contains(old.box, boxes_[size_t(t)]);
+    keeps_box[i] = fans_known && old.level >= 0 && old.box.contains(boxes_[size_t(t)]);
     if (keeps_box[i]) {
       kept_box_candidates(slot, found[i]); // read before any list or fan changes
       fresh[i] = old;
@@ -68,7 +68,8 @@ void CrossingIndex::refile(std::span<const int32_t> stale_by_id, std::span<const
     const bool same_level = old.level >= 0 && old.level == fresh[i].level;
     std::array<int64_t, 3> lo{}, hi{};
     if (same_level) {
-      const auto old_last = cell_of(old.box.hi, old.level), new_last = cell_of(fresh[i].box.hi, fresh[i].level);
+      const auto old_last = cell_of(old.box.bounds().hi, old.level),
+                 new_last = cell_of(fresh[i].box.bounds().hi, fresh[i].level);
       for (size_t a = 0; a < 3; ++a)
         lo[a] = std::max(old.first[a], fresh[i].first[a]), hi[a] = std::min(old_last[a], new_last[a]);
     }
