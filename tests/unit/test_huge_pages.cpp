@@ -14,6 +14,7 @@ namespace {
 
 using vm::detail::assign_on_huge_pages;
 using vm::detail::push_back_on_huge_pages;
+using vm::detail::reserve_on_huge_pages;
 using vm::detail::resize_on_huge_pages;
 
 constexpr size_t kLarge = size_t(5) << 20; // elements: several whole huge pages to advise
@@ -50,6 +51,17 @@ TEST(HugePages, pushing_back_keeps_every_element_in_order_as_it_grows) {
   EXPECT_EQ(v[0], -1);
   for (size_t i = 1; i < v.size(); i += 4099) ASSERT_EQ(v[i], int64_t(i) - 1);
   EXPECT_EQ(v.back(), int64_t(kLarge) - 1);
+}
+
+TEST(HugePages, reserving_makes_room_and_changes_nothing_else) {
+  std::vector<int32_t> v{1, 2};
+  reserve_on_huge_pages(v, kLarge);
+  EXPECT_GE(v.capacity(), kLarge);
+  EXPECT_EQ(v, (std::vector<int32_t>{1, 2}));
+  const int32_t* room = v.data();
+  reserve_on_huge_pages(v, 3); // room enough already: the memory stays
+  EXPECT_EQ(v.data(), room);
+  EXPECT_EQ(v, (std::vector<int32_t>{1, 2}));
 }
 
 } // namespace

@@ -31,15 +31,21 @@ inline void advise_huge_pages(const void* data, size_t bytes) {
 #endif
 }
 
-/// Resizes `v` (a std::vector or std::basic_string) to n elements (`fill`s
-/// past its old size) with its new elements on huge pages where the memory is
-/// fresh: reserve() allocates without touching, so the advice comes first.
-template <class Container, class... Fill>
-void resize_on_huge_pages(Container& v, size_t n, const Fill&... fill) {
+/// Makes room in `v` (a std::vector or std::basic_string) for n elements, the
+/// room past its size on huge pages where the memory is fresh: reserve()
+/// allocates without touching, so the advice comes first.
+template <class Container> void reserve_on_huge_pages(Container& v, size_t n) {
   if (n > v.capacity()) {
     v.reserve(n);
     advise_huge_pages(v.data() + v.size(), (n - v.size()) * sizeof(*v.data()));
   }
+}
+
+/// Resizes `v` to n elements (`fill`s past its old size) with its new
+/// elements on huge pages where the memory is fresh (reserve_on_huge_pages()).
+template <class Container, class... Fill>
+void resize_on_huge_pages(Container& v, size_t n, const Fill&... fill) {
+  reserve_on_huge_pages(v, n);
   v.resize(n, fill...);
 }
 

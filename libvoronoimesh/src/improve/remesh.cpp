@@ -7,6 +7,7 @@
 #include "core/unset_vector.hpp"
 #include "improve/curve_overshoots.hpp"
 #include "improve/digon_faces.hpp"
+#include "improve/edge_splits.hpp"
 #include "improve/node_merge.hpp"
 #include "mesh/node_rings.hpp"
 
@@ -28,6 +29,7 @@ namespace vm {
 namespace {
 
 using detail::constraint_order;
+using detail::kLongEdge;
 using detail::NodeRings;
 
 /// Collapses edges shorter than this share of their target (Botsch and Kobbelt's 4/5).
@@ -55,8 +57,6 @@ constexpr int kSplitRounds = 4;
 /// mean 0.9452 -> 0.9451); the shipped scenes and bench/junction_scenes.sh
 /// the same worst triangles.
 constexpr double kFewCollapses = 0.01;
-/// Splits edges longer than this share of their target, and lets no collapse make one (their 4/3).
-constexpr double kLongEdge = 4.0 / 3.0;
 
 /// The unit normal of the level set of phi_j - phi_i through y, or zero.
 Vec3 level_set_normal(const PhaseField& field, int i, int j, const Vec3& y) {
@@ -188,7 +188,10 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
                                                           std::span<const uint8_t> small, const RemeshParams& params,
                                                           detail::Blame& blame,
                                                           std::vector<Vec3>& moved_to) {
-  std::vector<std::optional<Candidate>> found(mesh.num_nodes());
+  // Fresh memory at every round (20 MB on 1M triangles, 0.08 s of page faults
+  // in this thread), as is `blame` below: on huge pages.
+  std::vector<std::optional<Candidate>> found;
+  detail::resize_on_huge_pages(found, mesh.num_nodes());
   detail::parallel_for_each_index(mesh.num_nodes(),
                                   [&](size_t b) { found[b] = best_collapse(mesh, target, int32_t(b), params); });
   // Gathered and sorted in parallel (a node is b of one candidate at most, so
@@ -201,6 +204,9 @@ std::vector<std::pair<int64_t, int64_t>> choose_collapses(const NodeRings& mesh,
   });
   std::vector<std::pair<int64_t, int64_t>> chosen;
   std::vector<uint8_t> near_b(mesh.num_nodes(), 0), is_b(mesh.num_nodes(), 0);
+  // Room for a collapse of every candidate with rings of 6 (most collapses are
+  // of fewer): only what is used is touched.
+  detail::reserve_on_huge_pages(blame, blame.size() + 14 * candidates.size());
   const auto& pos = mesh.positions();
   for (const Candidate& c : candidates) {
     if (small[size_t(c.b)] || near_b[size_t(c.b)] || is_b[size_t(c.a)] || (c.merge && near_b[size_t(c.a)])) continue;
@@ -253,143 +259,6 @@ std::vector<uint8_t> in_small_pieces(const NodeMesh& m) {
   std::vector<uint8_t> small(m.num_nodes());
   for (size_t v = 0; v < m.num_nodes(); ++v) small[v] = nodes[size_t(pieces.find(int32_t(v)))] < kSmallPiece;
   return small;
-}
-
-/// The triangles of a mesh before split_long_edges() cut them, with their
-/// pairs and origins: with its nodes (the first ones after the splits), the mesh.
-struct Unsplit {
-  std::vector<std::array<int32_t, 3>> triangles;
-  std::vector<PhasePair> pairs;
-  std::vector<int32_t> origin;
-};
-
-/// Splits, in `m`, every edge longer than kLongEdge of the smaller target of
-/// its nodes and with neither node `held` (one flag per node, extended for the
-/// new ones; `parents` gets each new node's edge) at its midpoint (whose target, appended to `target`, is the mean
-/// of its ends'), in every triangle that has it; each triangle is
-/// cut by the pattern of its split edges (two split edges: the shorter diagonal
-/// of the remaining quad). `origin` (one entry per triangle) follows the
-/// triangles: an uncut one keeps its entry, the pieces of a cut one get -1.
-/// With `replaced`, the triangles, pairs and origins that the cut ones replace
-/// are moved there (the nodes are only appended to). Returns the number of
-/// edges split.
-size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<uint8_t>& held,
-                        std::vector<std::array<int32_t, 2>>& parents, std::vector<int32_t>& origin,
-                        Unsplit* replaced) {
-  const size_t nt = m.num_triangles(), old_nodes = m.num_nodes();
-  // Side 3 t + k of triangle t runs from its corner k to the next.
-  auto ends = [&](size_t side) {
-    const auto& t = m.triangles[side / 3];
-    return std::pair{t[side % 3], t[(side + 1) % 3]};
-  };
-  std::vector<uint8_t> is_long(3 * nt);
-  detail::parallel_for_each_index(3 * nt, [&](size_t side) {
-    const auto [u, v] = ends(side);
-    const double len = (m.points[size_t(u)] - m.points[size_t(v)]).norm();
-    is_long[side] =
-        len > kLongEdge * std::min(target[size_t(u)], target[size_t(v)]) && !held[size_t(u)] && !held[size_t(v)];
-  });
-  // The long sides by edge, then by place: each edge's first side leads its
-  // group. Midpoints are numbered in the order of their edges' first sides,
-  // as a scan of the triangles meets them (the same mesh for any thread count).
-  struct Side {
-    uint64_t edge;
-    uint32_t at;
-  };
-  const std::vector<int32_t> long_sides =
-      detail::indices_where(3 * nt, [&](size_t side) { return is_long[side] != 0; });
-  if (long_sides.empty()) return 0;
-  std::vector<Side> sides(long_sides.size());
-  detail::parallel_for_each_index(sides.size(), [&](size_t i) {
-    const auto [u, v] = ends(size_t(long_sides[i]));
-    sides[i] = {uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)), uint32_t(long_sides[i])};
-  });
-  detail::parallel_sort(sides.begin(), sides.end(),
-                        [](const Side& x, const Side& y) { return std::tie(x.edge, x.at) < std::tie(y.edge, y.at); });
-  std::vector<std::pair<uint32_t, uint32_t>> leads; // (first side, its group's start in `sides`)
-  for (size_t i = 0; i < sides.size(); ++i)
-    if (i == 0 || sides[i].edge != sides[i - 1].edge) leads.push_back({sides[i].at, uint32_t(i)});
-  detail::parallel_sort(leads.begin(), leads.end(), std::less<std::pair<uint32_t, uint32_t>>());
-  // This call's arrays are fresh memory (on 1M triangles 50 MB, 0.1 s of page
-  // faults in one thread): on huge pages.
-  std::vector<int32_t> mid; // the midpoint on each side, or -1
-  detail::assign_on_huge_pages(mid, 3 * nt, -1);
-  const size_t made = leads.size();
-  m.points.resize(old_nodes + made);
-  target.resize(old_nodes + made);
-  held.resize(old_nodes + made, 0);
-  parents.resize(parents.size() + made);
-  const size_t first_parent = parents.size() - made;
-  detail::parallel_for_each_index(made, [&](size_t r) {
-    const auto [u, v] = ends(leads[r].first);
-    const auto node = int32_t(old_nodes + r);
-    m.points[size_t(node)] = 0.5 * (m.points[size_t(u)] + m.points[size_t(v)]);
-    target[size_t(node)] = 0.5 * (target[size_t(u)] + target[size_t(v)]);
-    parents[first_parent + r] = {u, v};
-    for (size_t i = leads[r].second; i < sides.size() && sides[i].edge == sides[leads[r].second].edge; ++i)
-      mid[sides[i].at] = node;
-  });
-  // Each triangle's pieces (one, or one more than its split sides), at their
-  // place in the new list (in triangle order).
-  auto splits = [&](size_t t) { return (mid[3 * t] >= 0) + (mid[3 * t + 1] >= 0) + (mid[3 * t + 2] >= 0); };
-  std::vector<size_t> first_piece(nt + 1, 0);
-  for (size_t t = 0; t < nt; ++t) {
-    const int split = splits(t);
-    first_piece[t + 1] = first_piece[t] + size_t(split == 0 ? 1 : split + 1);
-  }
-  std::vector<std::array<int32_t, 3>> triangles;
-  std::vector<PhasePair> pairs;
-  std::vector<int32_t> origins;
-  detail::resize_on_huge_pages(triangles, first_piece[nt]);
-  detail::resize_on_huge_pages(pairs, first_piece[nt]);
-  detail::resize_on_huge_pages(origins, first_piece[nt], -1);
-  detail::parallel_for_each_index(nt, [&](size_t i) {
-    const auto t = m.triangles[i];
-    const PhasePair p = m.pairs[i];
-    size_t at = first_piece[i];
-    auto add = [&](int32_t a, int32_t b, int32_t c) {
-      triangles[at] = {a, b, c};
-      pairs[at++] = p;
-    };
-    const std::array<int32_t, 3> on{mid[3 * i], mid[3 * i + 1], mid[3 * i + 2]};
-    const int split = splits(i);
-    if (split == 0) {
-      add(t[0], t[1], t[2]);
-      origins[first_piece[i]] = origin[i];
-    } else if (split == 3) {
-      add(t[0], on[0], on[2]);
-      add(on[0], t[1], on[1]);
-      add(on[2], on[1], t[2]);
-      add(on[0], on[1], on[2]);
-    } else {
-      // Rotate so that edge (r0, r1) is split, and with two splits also (r1, r2).
-      int k = 0;
-      while (!(on[size_t(k)] >= 0 && (split == 1 || on[size_t((k + 1) % 3)] >= 0))) ++k;
-      const int32_t r0 = t[size_t(k)], r1 = t[size_t((k + 1) % 3)], r2 = t[size_t((k + 2) % 3)];
-      const int32_t m01 = on[size_t(k)];
-      if (split == 1) {
-        add(r0, m01, r2);
-        add(m01, r1, r2);
-      } else {
-        const int32_t m12 = on[size_t((k + 1) % 3)];
-        add(m01, r1, m12);
-        // The quad r0, m01, m12, r2 by its shorter diagonal.
-        const auto& x = m.points;
-        if ((x[size_t(r0)] - x[size_t(m12)]).squaredNorm() <= (x[size_t(m01)] - x[size_t(r2)]).squaredNorm()) {
-          add(r0, m01, m12);
-          add(r0, m12, r2);
-        } else {
-          add(r0, m01, r2);
-          add(m01, m12, r2);
-        }
-      }
-    }
-  });
-  if (replaced) *replaced = {std::move(m.triangles), std::move(m.pairs), std::move(origin)};
-  m.triangles = std::move(triangles);
-  m.pairs = std::move(pairs);
-  origin = std::move(origins);
-  return made;
 }
 
 /// target_edge_lengths() of nodes at `positions` with phase sets `phases`.
@@ -527,7 +396,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     // What a retry puts back: the first round's replaced arrays (moved out,
     // not copied: 35 MB of fresh memory on 1M triangles, 0.1 s in one thread)
     // and the old nodes, the first ones.
-    Unsplit unsplit;
+    detail::Unsplit unsplit;
     const size_t old_nodes = m.num_nodes();
     std::vector<uint8_t> held(old_nodes, 0);
     size_t done = 0;
@@ -538,7 +407,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
       for (int round = 0; round < kSplitRounds; ++round) {
         if (params.max_triangles > 0 && m.num_triangles() >= params.max_triangles) break;
         const size_t splits =
-            split_long_edges(m, target, now_held, parents, triangle_was, round == 0 ? &unsplit : nullptr);
+            detail::split_long_edges(m, target, now_held, parents, triangle_was, round == 0 ? &unsplit : nullptr);
         if (splits == 0) break;
         done += splits;
       }
