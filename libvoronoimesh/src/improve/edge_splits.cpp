@@ -44,7 +44,7 @@ size_t split_long_edges(NodeMesh& m, std::vector<double>& target, std::vector<ui
     sides[i] = {uint64_t(uint32_t(std::min(u, v))) << 32 | uint32_t(std::max(u, v)), uint32_t(long_sides[i])};
   });
   parallel_sort(sides.begin(), sides.end(),
-                        [](const Side& x, const Side& y) { return std::tie(x.edge, x.at) < std::tie(y.edge, y.at); });
+                [](const Side& x, const Side& y) { return std::tie(x.edge, x.at) < std::tie(y.edge, y.at); });
   std::vector<std::pair<uint32_t, uint32_t>> leads; // (first side, its group's start in `sides`)
   for (size_t i = 0; i < sides.size(); ++i)
     if (i == 0 || sides[i].edge != sides[i - 1].edge) leads.push_back({sides[i].at, uint32_t(i)});

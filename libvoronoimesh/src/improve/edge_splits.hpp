@@ -28,8 +28,9 @@ struct Unsplit {
 /// new ones; `parents` gets each new node's edge) at its midpoint (whose
 /// target, appended to `target`, is the mean of its ends'), in every triangle
 /// that has it; each triangle is cut by the pattern of its split edges (two
-/// split edges: the shorter diagonal of the remaining quad). `origin` (one entry per triangle) follows the
-/// triangles: an uncut one keeps its entry, the pieces of a cut one get -1.
+/// split edges: the shorter diagonal of the remaining quad). `origin` (one
+/// entry per triangle) follows the triangles: an uncut one keeps its entry, the
+/// pieces of a cut one get -1.
 /// With `replaced`, the triangles, pairs and origins that the cut ones replace
 /// are moved there (the nodes are only appended to). Returns the number of
 /// edges split.

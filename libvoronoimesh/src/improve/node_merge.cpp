@@ -131,14 +131,26 @@ void close_folds_at_targets(const std::vector<int32_t>& into, NodeMesh& out, std
   moved.resize(kept);
 }
 
-/// Flags (in parallel) the corners of those triangles `of` m for which keep(t) holds.
-template <class Keep>
-void flag_corners(const NodeMesh& m, std::span<const int32_t> of, std::vector<uint8_t>& flags, const Keep& keep) {
-  parallel_for_each_index(of.size(), [&](size_t i) {
-    const auto t = size_t(of[i]);
-    if (keep(t))
-      for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(flags[size_t(v)]).store(1, std::memory_order_relaxed);
+/// Makes the nodes of m's triangles, which name nodes of `points`, m's own:
+/// those used, in the order of their ids in `points`, renamed from 0. Appends
+/// each one's id in `points` to `kept`.
+void keep_used_nodes(std::span<const Vec3> points, NodeMesh& m, std::vector<int32_t>& kept) {
+  std::vector<uint8_t> used(points.size(), 0);
+  parallel_for_each_index(m.num_triangles(), [&](size_t t) {
+    for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(used[size_t(v)]).store(1, std::memory_order_relaxed);
   });
+  const std::vector<int32_t> now_kept = indices_where(points.size(), [&](size_t v) { return used[v] != 0; });
+  std::vector<int32_t> id(points.size(), -1);
+  std::vector<Vec3> kept_points(now_kept.size());
+  parallel_for_each_index(now_kept.size(), [&](size_t i) {
+    id[size_t(now_kept[i])] = int32_t(i);
+    kept_points[i] = points[size_t(now_kept[i])];
+  });
+  parallel_for_each_index(m.num_triangles(), [&](size_t t) {
+    for (int32_t& v : m.triangles[t]) v = id[size_t(v)];
+  });
+  m.points = std::move(kept_points); // `points` may be m's: read to the end first
+  kept.insert(kept.end(), now_kept.begin(), now_kept.end());
 }
 
 } // namespace
@@ -184,24 +196,7 @@ void merge_nodes(const NodeMesh& m, const std::vector<int32_t>& into, NodeMesh& 
   if (reshaped) *reshaped = std::move(moved);
 }
 
-void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) {
-  std::vector<uint8_t> used(m.num_nodes(), 0);
-  parallel_for_each_index(m.num_triangles(), [&](size_t t) {
-    for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(used[size_t(v)]).store(1, std::memory_order_relaxed);
-  });
-  const std::vector<int32_t> now_kept = indices_where(m.num_nodes(), [&](size_t v) { return used[v] != 0; });
-  std::vector<int32_t> id(m.num_nodes(), -1);
-  std::vector<Vec3> points(now_kept.size());
-  parallel_for_each_index(now_kept.size(), [&](size_t i) {
-    id[size_t(now_kept[i])] = int32_t(i);
-    points[i] = m.points[size_t(now_kept[i])];
-  });
-  parallel_for_each_index(m.num_triangles(), [&](size_t t) {
-    for (int32_t& v : m.triangles[t]) v = id[size_t(v)];
-  });
-  m.points = std::move(points);
-  kept.insert(kept.end(), now_kept.begin(), now_kept.end());
-}
+void drop_unused_nodes(NodeMesh& m, std::vector<int32_t>& kept) { keep_used_nodes(m.points, m, kept); }
 
 bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into, const MergeChecks& checks,
                          std::vector<int32_t>& nodes, std::span<const uint8_t> changed, const NodeMesh* before,
@@ -222,7 +217,11 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   // node's triangles change only next to a changed node, and a target's
   // problems are those of its ring's triangles: the targets within two rings.
   const std::vector<uint8_t> validated = changed.empty() ? target : targets_near(trial, target, changed, 2);
-  flag_corners(trial, at_target, core, [&](size_t t) { return touches(trial, validated, t); });
+  parallel_for_each_index(at_target.size(), [&](size_t i) {
+    const auto t = size_t(at_target[i]);
+    if (!touches(trial, validated, t)) return;
+    for (int32_t v : trial.triangles[t]) std::atomic_ref<uint8_t>(core[size_t(v)]).store(1, std::memory_order_relaxed);
+  });
   // The cut-out has its own nodes: validating it with all the trial's (a
   // copy of every point, tables over every node) cost more than the merge on
   // 1.4M triangles.
@@ -232,24 +231,17 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   NodeMesh local = trial.empty_like();
   const std::vector<int32_t> cut =
       indices_where(trial.num_triangles(), [&](size_t t) { return touches(trial, core, t); });
-  std::vector<uint8_t> used(trial.num_nodes(), 0);
-  flag_corners(trial, cut, used, [](size_t) { return true; });
-  const std::vector<int32_t> trial_id = indices_where(used.size(), [&](size_t v) { return used[v] != 0; });
-  std::vector<int32_t> local_id(trial.num_nodes(), -1);
-  local.points.resize(trial_id.size());
-  parallel_for_each_index(trial_id.size(), [&](size_t i) {
-    local_id[size_t(trial_id[i])] = int32_t(i);
-    local.points[i] = trial.points[size_t(trial_id[i])];
-  });
   local.triangles.resize(cut.size());
   local.pairs.resize(cut.size());
   std::vector<uint8_t> local_at_target(cut.size());
   parallel_for_each_index(cut.size(), [&](size_t i) {
-    const auto& tri = trial.triangles[size_t(cut[i])];
-    local.triangles[i] = {local_id[size_t(tri[0])], local_id[size_t(tri[1])], local_id[size_t(tri[2])]};
-    local.pairs[i] = trial.pairs[size_t(cut[i])];
-    local_at_target[i] = touches(trial, validated, size_t(cut[i]));
+    const auto t = size_t(cut[i]);
+    local.triangles[i] = trial.triangles[t];
+    local.pairs[i] = trial.pairs[t];
+    local_at_target[i] = touches(trial, validated, t);
   });
+  std::vector<int32_t> trial_id; // the trial's id of each node of the cut-out
+  keep_used_nodes(trial.points, local, trial_id);
   const ValidationReport report = validate(local);
   if (!report.ok() && report.nodes.empty()) return false;
   for (int32_t n : report.nodes)
