@@ -88,7 +88,8 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
       ->capture_default_str()->group(labels);
   cmd->add_option("--voxels-per-cell", o.input.voxels_per_cell,
                   "Mesh a volume on cells of about F voxels (of the smallest spacing) per axis (2: about a quarter of "
-                  "the triangles of the voxel grid; 1: the voxel grid); --grid overrides it. Default: the voxel grid, "
+                  "the triangles of the voxel grid, in about half the time, but structures thinner than a cell merge "
+                  "into their neighbours; 1: the voxel grid); --grid overrides it. Default: the voxel grid, "
                   "but for flat voxels (slices over 1.2 times thicker than their pixels) cubic cells of the voxels' "
                   "volume, as many as the voxels (bcc tetrahedra on flat cells cut the surfaces into slivers); with "
                   "--voxel-faithful the voxel grid")
