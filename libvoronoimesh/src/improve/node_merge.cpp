@@ -30,6 +30,12 @@ bool touches(const NodeMesh& m, std::span<const uint8_t> flags, size_t t) {
   return (flags[size_t(tri[0])] | flags[size_t(tri[1])] | flags[size_t(tri[2])]) != 0;
 }
 
+/// Flags the corners of triangle t of `m` (one flag per node), from any
+/// thread: several triangles share a corner.
+void flag_corners(const NodeMesh& m, size_t t, std::vector<uint8_t>& flags) {
+  for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(flags[size_t(v)]).store(1, std::memory_order_relaxed);
+}
+
 /// The flags of `target` that lie within `rings` rings of a node flagged in
 /// `seeds` (one flag per node of `m`).
 std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>& target, std::span<const uint8_t> seeds,
@@ -38,8 +44,7 @@ std::vector<uint8_t> targets_near(const NodeMesh& m, const std::vector<uint8_t>&
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<uint8_t> wider = near;
     parallel_for_each_index(m.num_triangles(), [&](size_t t) {
-      if (touches(m, near, t))
-        for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(wider[size_t(v)]).store(1, std::memory_order_relaxed);
+      if (touches(m, near, t)) flag_corners(m, t, wider);
     });
     near = std::move(wider);
   }
@@ -136,9 +141,7 @@ void close_folds_at_targets(const std::vector<int32_t>& into, NodeMesh& out, std
 /// each one's id in `points` to `kept`.
 void keep_used_nodes(std::span<const Vec3> points, NodeMesh& m, std::vector<int32_t>& kept) {
   std::vector<uint8_t> used(points.size(), 0);
-  parallel_for_each_index(m.num_triangles(), [&](size_t t) {
-    for (int32_t v : m.triangles[t]) std::atomic_ref<uint8_t>(used[size_t(v)]).store(1, std::memory_order_relaxed);
-  });
+  parallel_for_each_index(m.num_triangles(), [&](size_t t) { flag_corners(m, t, used); });
   const std::vector<int32_t> now_kept = indices_where(points.size(), [&](size_t v) { return used[v] != 0; });
   std::vector<int32_t> id(points.size(), -1);
   std::vector<Vec3> kept_points(now_kept.size());
@@ -219,8 +222,7 @@ bool find_merge_failures(const NodeMesh& trial, const std::vector<int32_t>& into
   const std::vector<uint8_t> validated = changed.empty() ? target : targets_near(trial, target, changed, 2);
   parallel_for_each_index(at_target.size(), [&](size_t i) {
     const auto t = size_t(at_target[i]);
-    if (!touches(trial, validated, t)) return;
-    for (int32_t v : trial.triangles[t]) std::atomic_ref<uint8_t>(core[size_t(v)]).store(1, std::memory_order_relaxed);
+    if (touches(trial, validated, t)) flag_corners(trial, t, core);
   });
   // The cut-out has its own nodes: validating it with all the trial's (a
   // copy of every point, tables over every node) cost more than the merge on
