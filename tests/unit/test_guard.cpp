@@ -413,7 +413,7 @@ TEST(Guard, windows_wait_twice_as_long_after_each_that_ended_crossed) {
   crossed.move_nodes(jump);
   CrossingGuard guard;
   const RunOptions options;
-  detail::RunState state{detail::Convergence(options, 0, 0), 0, 0};
+  detail::RunState state{detail::Convergence(options, 0, 0, 1), 0, 0};
   detail::CrossingWindows windows(3);
   // Runs iterations from `it` on, each finding a crossing if `finds` says so,
   // until one ends a window; returns the first iteration of that window.

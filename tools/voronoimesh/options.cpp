@@ -142,9 +142,10 @@ void add_improve_options(CLI::App* cmd, ImproveOptions& o, int default_iteration
   add_plugin_option(cmd, o.plugins);
   auto* converged = cmd->add_flag(
       "--stop-when-converged", o.stop_when_converged,
-      "Stop once quality stops improving (min q by 1e-3 and mean q by 2e-3 for 2 iterations), after one more "
-      "iteration run as the last; --iterations is then the most. The default for label volumes meshed with their "
-      "default pipeline");
+      "Stop once quality stops improving (min q by 1e-3 and mean q by 2e-3 for 2 iterations, counted once the "
+      "passes' schedules settled: from iteration 6 in the default pipelines, after the remesh calls, the flip "
+      "pass's early collapses and the polish pass's start), after one more iteration run as the last; "
+      "--iterations is then the most. The default for label volumes meshed with their default pipeline");
   cmd->add_flag("--all-iterations", o.all_iterations,
                 "Run every one of --iterations, label volumes included (they stop when converged by default)")
       ->excludes(converged);

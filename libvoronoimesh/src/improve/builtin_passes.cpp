@@ -115,6 +115,12 @@ PassInfo make_info(std::string name, std::string summary, std::vector<ParamSpec>
   return info;
 }
 
+/// `info` with PassInfo::scheduled_until.
+PassInfo scheduled(PassInfo info, std::function<int(const ParamValues&)> until) {
+  info.scheduled_until = std::move(until);
+  return info;
+}
+
 } // namespace
 
 void register_builtin_passes(PassRegistry& registry) {
@@ -127,7 +133,7 @@ void register_builtin_passes(PassRegistry& registry) {
         const double rms = c.parts ? c.parts->rms_edge_length(c.mesh) : rms_edge_length(c.mesh);
         add_smoothing_forces_with_rest_length(c.mesh, *c.field, p.at("rest_factor") * rms, c.displacement());
       }));
-  registry.add(make_info(
+  registry.add(scheduled(make_info(
       "polish",
       "move nodes of the worst triangles (surface nodes in their plane, curve nodes along their curve) where the "
       "smallest quality around them rises most, back onto their interface by Newton steps (not in the paper)",
@@ -138,7 +144,7 @@ void register_builtin_passes(PassRegistry& registry) {
         "triangle of 5 of 38 scenes)"}},
       true, true, false, [](PassContext& c, const ParamValues& p) {
         if (c.iteration >= p.at("first")) add_polish_moves(c.mesh, *c.field, PolishParams{p.at("below")}, c.displacement());
-      }));
+      }), [](const ParamValues& p) { return int(p.at("first")) - 1; }));
   registry.add(make_info(
       "floor",
       "if the iteration's worst triangle is now worse than when it began, take back the moves that brought nodes "
@@ -168,7 +174,7 @@ void register_builtin_passes(PassRegistry& registry) {
       false, true, [](PassContext& c, const ParamValues& p) {
         if (c.pending) clamp_displacements(c.mesh, ClampParams{p.at("factor")}, c.delta);
       }));
-  registry.add(make_info(
+  registry.add(scheduled(make_info(
       "flip", "flip edges inside a surface when it raises the pair's smaller quality (Alg. 5, sect. 4.3)",
       {{"skip_quality", FlipParams{}.skip_quality, 0.0, 1.0, false, "leave pairs of at least this quality (Alg. 5, line 7)"},
        {"max_rounds", double(FlipParams{}.max_rounds), 1, 1000, true, "rounds of node-disjoint flips per iteration"},
@@ -208,7 +214,7 @@ void register_builtin_passes(PassRegistry& registry) {
             c.floor_pass ? c.guard.floor_exception_nodes() : std::vector<int32_t>{};
         params.keep_triangles_at = let_through;
         c.flips += (c.parts ? detail::flip_edges(c.mesh, params, *c.parts) : flip_edges(c.mesh, params)).flips;
-      }));
+      }), [](const ParamValues& p) { return p.at("collapse_below") > 0 ? int(p.at("collapse_last")) : 0; }));
   const RemeshParams remesh;
   registry.add(PassInfo{
       "remesh",
@@ -235,7 +241,8 @@ void register_builtin_passes(PassRegistry& registry) {
         "up to this iteration it splits long edges before collapsing short ones, not after (on the mesh as "
         "created, collapsing first leaves short edges beside long ones and splits the long: a surplus of "
         "triangles, half as many again on 1,000 grains, that the next call collapses; 0: collapse first)"}},
-      false, false, false, [](const ParamValues& p) { return std::make_unique<RemeshPass>(p); }});
+      false, false, false, [](const ParamValues& p) { return std::make_unique<RemeshPass>(p); },
+      [](const ParamValues& p) { return int(p.at("last")); }});
   registry.add(make_info("stats", "measure the current mesh: counts, quality, angles, edge lengths (check/stats.hpp)", {},
                          false, false, false,
                          [](PassContext& c, const ParamValues&) { c.stats = compute_stats(c.mesh.to_node_mesh()); }));

@@ -91,6 +91,13 @@ std::string Pipeline::describe() const {
   return out;
 }
 
+int Pipeline::settled_from() const {
+  int settled = 1;
+  for (const Step& s : steps_)
+    if (s.info.scheduled_until) settled = std::max(settled, s.info.scheduled_until(s.params) + 1);
+  return settled;
+}
+
 std::pair<double, double> quality_summary(const InterfaceMesh& mesh) {
   const OMesh& om = mesh.omesh();
   const size_t n = om.n_faces(), chunk = 8192, chunks = (n + chunk - 1) / chunk;
@@ -156,7 +163,7 @@ int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions
   const auto [first_min, first_mean] = quality_summary(mesh);
   if (options.observer)
     options.observer({0, first_min, first_mean, 0, 0, 0, std::nullopt, {}, options.iterations}, mesh);
-  detail::RunState state{detail::Convergence(options, first_min, first_mean), first_min, 0};
+  detail::RunState state{detail::Convergence(options, first_min, first_mean, settled_from()), first_min, 0};
   detail::CrossingWindows windows(options.guard_crossings ? options.check_crossings_every : 1);
   auto crossed = [&] { return !context.guard.crossings(mesh, {}).empty(); };
   for (int it = 1; it <= state.convergence.last(); ++it) {

@@ -337,7 +337,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
     rule.iterations = iterations;
     rule.stop_when_converged = stop_when_converged;
     auto [worst, mean] = global_quality(comm, sending); // worst: Pipeline::run's quality floor
-    vm::detail::Convergence convergence(rule, worst, mean);
+    vm::detail::Convergence convergence(rule, worst, mean, pipeline.settled_from());
     for (int it = 1; it <= convergence.last(); ++it) {
       run.iterations = convergence.last();
       const double edge = comm.max(detail::longest_edge(sending));

@@ -117,6 +117,12 @@ struct PassInfo {
   bool distributed = false;
   /// Makes a configured pass from a value for every parameter (PassRegistry::resolve()).
   std::function<std::unique_ptr<Pass>(const ParamValues&)> make;
+  /// For a pass whose work changes on a schedule (one that stops after some
+  /// iteration, or starts at one): given its parameters, the last iteration in
+  /// which it works otherwise than in every later one. A run that stops once
+  /// quality converges (RunOptions::stop_when_converged) judges only the
+  /// iterations after it. Empty: the pass works alike in every iteration.
+  std::function<int(const ParamValues&)> scheduled_until;
 };
 
 } // namespace vm

@@ -186,6 +186,9 @@ public:
   bool distributes() const;
   /// "smooth(rest_factor=1.2), project(...), ..." with every parameter.
   std::string describe() const;
+  /// The first iteration whose quality a run that stops once converged
+  /// judges: the one after every pass's schedule settled (PassInfo::scheduled_until), or 1.
+  int settled_from() const;
 
   /// Runs the pipeline on `mesh` (paper Algorithm 1).
   /// @param mesh    the mesh to improve, changed in place
