@@ -12,10 +12,12 @@
 #include "voronoimesh/run/meshing.hpp"
 
 #include "mpi_test_helpers.hpp"
+#include "tiny_loop_volume.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -88,6 +90,23 @@ TEST(MpiCreate, label_volume_is_the_one_process_mesh) { expect_same_as_one_proce
 
 // Integer values tie everywhere: create needs repair rounds, and every rank
 // must make the repairs one process makes (test_create_ties.cpp).
+// Closed triple curves far smaller than a cell are snapped away on every rank
+// as in one process: tiny_loop_labels(), its edge slices
+// repeated (as smoothing repeats them) to 16 slices, for slabs enough.
+TEST(MpiCreate, tiny_loops_snapped_away_as_in_one_process) {
+  const std::vector<int32_t> crop = tiny_loop_labels();
+  GridSpec grid;
+  grid.cells = {5, 5, 15};
+  grid.domain.max = Vec3(5, 5, 15);
+  std::vector<int32_t> labels;
+  for (int z = 0; z <= 15; ++z) { // 4 slices below, 6 above: the lattice's parity kept
+    const auto slice = crop.begin() + 36 * std::clamp(z - 4, 0, 5);
+    labels.insert(labels.end(), slice, slice + 36);
+  }
+  const mpi::DistributedStats stats = expect_same_as_one_process(scene_from_labels(grid, labels), {});
+  EXPECT_GT(stats.create.wide_snapped_nodes, 0u);
+}
+
 TEST(MpiCreate, repairs_of_tied_data_are_those_of_one_process) {
   std::mt19937_64 rng(20261121);
   int repaired = 0;

@@ -68,8 +68,11 @@ constexpr std::array<size_t, kShards> kAgainstAtMost = {668, 876, 105, 1333, 770
 /// up to an eighth as many collapses as it has candidates), 5140 -> 4953, every
 /// shard down: by 56, 14, 1, 15, 53, 22, 1, 25. Since the flip pass undoes only
 /// the flips that crossed and their dependents (above), 4953 -> 4802: shards 0,
-/// 1 up by 7, 6, shards 2-7 down by 70, 20, 17, 33, 6, 18.
-constexpr std::array<size_t, kShards> kFoldsAtMost = {904, 1029, 213, 666, 699, 501, 340, 450};
+/// 1 up by 7, 6, shards 2-7 down by 70, 20, 17, 33, 6, 18. Since create snaps
+/// closed triple curves far smaller than a cell away (create/tiny_loops.hpp),
+/// 4802 -> 4804: shard 3 up by 2 (seed 1, case 108, a label field at grid 10:
+/// 29 -> 32, 50 more triangles; case 130 152 -> 151).
+constexpr std::array<size_t, kShards> kFoldsAtMost = {904, 1029, 213, 668, 699, 501, 340, 450};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

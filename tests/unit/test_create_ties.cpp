@@ -5,9 +5,13 @@
 
 #include "create/lattice.hpp"
 #include "create/node_values.hpp"
+#include "create/tiny_loops.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/array_input.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
+
+#include "tiny_loop_volume.hpp"
 
 #include <gtest/gtest.h>
 
@@ -182,6 +186,29 @@ TEST(Create, integer_valued_data_with_ties_everywhere_is_valid) {
   }
   EXPECT_GT(meshed, 20);
   EXPECT_GT(repaired, 12); // the repair is what these cases exercise
+}
+
+// Create snaps away closed triple curves far smaller than a cell: on
+// tiny_loop_labels() it left one, with triangles of q 0.010.
+TEST(Create, snaps_away_closed_triple_curves_far_smaller_than_a_cell) {
+  const std::vector<int32_t> labels = test::tiny_loop_labels();
+  GridSpec grid;
+  grid.cells = {5, 5, 5};
+  grid.domain.max = Vec3::Constant(5);
+  const Scene scene = scene_from_labels(grid, labels);
+  const GridSpec g = grid_for_lattice(scene.grid, Lattice::bcc);
+  NodeMesh mesh;
+  const CreateStats stats = create_initial_mesh(SampledField::sample(*scene.field, g), CreateParams{}, mesh);
+  EXPECT_GT(stats.wide_snapped_nodes, 0u);
+  const ValidationReport report = validate(mesh);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  EXPECT_TRUE(detail::tiny_loop_vertices(mesh.points, mesh.triangles, mesh.pairs, g.h()).empty());
+  double worst = 1;
+  for (const auto& t : mesh.triangles) {
+    const auto& p = mesh.points;
+    worst = std::min(worst, triangle_quality(p[size_t(t[0])], p[size_t(t[1])], p[size_t(t[2])]));
+  }
+  EXPECT_GT(worst, 0.1);
 }
 
 } // namespace

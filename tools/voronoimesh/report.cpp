@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 namespace vmcli {
 
@@ -48,7 +49,11 @@ void Report::created(const vm::CreateReport& r) {
                 r.nodes, r.triangles, r.sampling_seconds, r.stats.seconds, (unsigned long long)r.stats.tets_visited,
                 (unsigned long long)r.stats.tets_cut, (unsigned long long)r.stats.held_nodes, r.stats.check_seconds,
                 (unsigned long long)r.stats.unsnapped_nodes);
-  say(line);
+  std::string text = line;
+  if (r.stats.wide_snapped_nodes > 0)
+    text += ", snapped twice as far at " + std::to_string(r.stats.wide_snapped_nodes) +
+            " nodes around closed triple curves far smaller than a cell";
+  say(text);
 }
 
 void Report::iteration(const vm::IterationReport& r, const vm::InterfaceMesh&) {

@@ -394,7 +394,7 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
     for (; e > 0 && ids[by_id[e - 1]] > ids[s]; --e) by_id[e] = by_id[e - 1];
     by_id[e] = s;
   }
-  if (level >= kFirstUntie) {
+  if (level >= kFirstUntie && level != kWideSnap) {
     // A phase with r lower ids tied with it drops by r untie, so the
     // symbolic order of tied phases survives, plus the pseudo-random
     // part below untie that every phase drops by. Stored phases stay
@@ -425,12 +425,14 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   };
   std::array<Vec3, 16> grad;
   uint32_t known = 0;
+  const bool wide = level == kWideSnap;
+  const int64_t eps = wide ? wide_eps_ : eps_;
   auto threshold = [&](int s, int t) {
-    if (!field_) return eps_;
+    if (!field_) return eps;
     for (const int u : {s, t})
       if (!(known >> u & 1u)) grad[size_t(u)] = field_->gradient(ids[size_t(u)], node_at()), known |= 1u << u;
     const double rate = (grad[size_t(s)] - grad[size_t(t)]).norm();
-    return rate < kSlowRate ? int64_t(double(eps_) * rate / kSlowRate) : eps_; // NaN: by value
+    return rate < kSlowRate ? int64_t(double(eps) * rate / kSlowRate) : eps; // NaN: by value
   };
   // A kept point of the field (a voxel-faithful volume's centre of a voxel in
   // a structure one voxel thin) at this node must stay in its label: nothing
@@ -452,13 +454,13 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
     }
     return kept == 1;
   };
-  if (eps_ > 0 && level == kSnap)
+  if (eps > 0 && (level == kSnap || wide))
     for (int a = 0; a < k_; ++a)
       for (int b = a + 1; b < k_; ++b) {
         const int32_t vi = q[by_id[a]];
         int32_t& vj = q[by_id[b]];
         const int64_t gap = std::llabs(int64_t(vi) - vj);
-        if (vi != vj && gap < eps_ && gap < threshold(by_id[a], by_id[b]) && !is_kept()) {
+        if (vi != vj && gap < eps && gap < threshold(by_id[a], by_id[b]) && !is_kept()) {
           vj = vi;
           changed = true;
         }

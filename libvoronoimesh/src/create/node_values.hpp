@@ -15,7 +15,9 @@
 #include "create/node_source.hpp"
 #include "voronoimesh/fields/sampled_field.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -90,8 +92,10 @@ public:
   /// the lattice edges, faces and tets around it: the coincidences the symbolic
   /// perturbation separates only infinitesimally, whose limit points merge into
   /// a pinched phase. Each level draws anew, so a draw that ties again is redrawn.
+  /// kWideSnap snaps within widen_snap()'s distance instead (create/tiny_loops.hpp);
+  /// a node at it that offends goes on to kFirstUntie.
   using RepairLevel = uint8_t;
-  static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2;
+  static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2, kWideSnap = 254;
 
   /// Quantizes and snaps `field` at every node of `lattice`, indexed by lattice
   /// node id. `snap_eps` and `untie_eps` are in the field's value units. `repair`
@@ -123,6 +127,10 @@ public:
   /// `repair` (kSnap where it is empty), so that snapped() answers for them.
   void hold(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
             std::span<const int64_t> nodes);
+
+  /// The snapping distance of nodes at kWideSnap (the field's value units;
+  /// below the one given at construction, that one). Before redo() of them.
+  void widen_snap(double eps) { wide_eps_ = std::max<int64_t>(eps_, std::llround(eps * scale_)); }
 
   /// The nodes of the window.
   const NodeWindow& window() const { return window_; }
@@ -187,7 +195,7 @@ private:
   const TetLattice* lattice_ = nullptr;
   // The affine map to integers (v - lo_) * scale_ and the snap and untie distances in its units.
   double lo_ = 0, scale_ = 1;
-  int64_t eps_ = 0, untie_ = 0;
+  int64_t eps_ = 0, untie_ = 0, wide_eps_ = 0;
   std::vector<int32_t> label_;   // by window index, every node
   std::vector<int32_t> slot_;    // by window index: where its values are, -1 if not held; empty: all held in order
   std::vector<int32_t> ids_;     // k_ per held node

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The worst triangle of `voronoimesh mesh` at its defaults on 36 small random
+# label volumes (issue 18's label targets): ellipsoids in 32^3 (4 labels) and
+# 48^3 (6), and grain maps in 32^3 (8 grains), seeds 1-12 each, made by
+# bench/make_label_volume. Prints a Markdown table (min q, mean q, iterations,
+# and what meets at the worst triangle's corners), then how many are below q 0.3
+# and the mean min q. The volumes are the same every run (fixed seeds).
+# Usage: bench/label_survey.sh [extra mesh options, e.g. --snap 0.3]
+#        (after scripts/build.sh; BUILD=DIR, OUT=DIR; VM=PATH for another voronoimesh)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${BUILD:-build}
+vm=${VM:-$build/tools/voronoimesh/voronoimesh}
+out=${OUT:-out}/label_survey
+mkdir -p "$out"
+echo "| volume | triangles | min q | mean q | iterations | worst triangle's corners |"
+echo "|---|---|---|---|---|---|"
+for kind in e32 e48 g32; do
+  for seed in $(seq 1 12); do
+    name=${kind}_$seed
+    case $kind in
+      e32) "$build/bench/make_label_volume" ellipsoids 32 4 "$out/$name.nrrd" "$seed" > /dev/null ;;
+      e48) "$build/bench/make_label_volume" ellipsoids 48 6 "$out/$name.nrrd" "$seed" > /dev/null ;;
+      g32) "$build/bench/make_label_volume" grains 32 8 "$out/$name.nrrd" "$seed" > /dev/null ;;
+    esac
+    log=$("$vm" mesh "$out/$name.nrrd" -o "$out/$name.ply" --threads 2 "$@" 2>&1)
+    iterations=$(grep -o 'improve: [0-9]* iterations' <<< "$log" | awk '{print $2}')
+    stats=$("$vm" stats "$out/$name.ply" --worst 1)
+    triangles=$(awk '/^triangles/ {print $2}' <<< "$stats")
+    read -r min mean < <(awk '/^quality min/ {print $3, $7}' <<< "$stats")
+    corners=$(grep -A3 '^triangle' <<< "$stats" | tail -3 | sed -E 's/.*\): //; s/ of .*//; s/, on a box.*//' |
+      sort | uniq -c | awk '{n=$1; $1=""; printf "%s%d%s", (NR>1 ? ", " : ""), n, $0}')
+    echo "| $name | $triangles | $min | $mean | $iterations | $corners |"
+  done
+done | tee "$out/table.md"
+awk -F'|' '{n++; q = $4 + 0; s += q; if (q < 0.3) below++} END {
+  printf "%d volumes: %d below min q 0.3, mean min q %.3f\n", n, below, s / n }' "$out/table.md"
