@@ -441,16 +441,16 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
     std::tie(nodes, problems) = offending_nodes(part, grid.domain, whole, !every_slab_cut);
     check_seconds += detail::seconds_since(check_start);
     nodes = peers.merge_nodes(std::move(nodes));
-    if (repair.empty()) repair.assign(size_t(window.size()), NodeValues::kSnap);
     if (peers.sum(problems) == 0) {
       // Valid: closed triple curves far smaller than a cell are snapped away
       // at their lattice nodes, once (create/tiny_loops.hpp), and checked again.
-      if (wide_snapped) {
+      if (!wide_snapped) nodes = peers.merge_nodes(tiny_loop_nodes(part, kTinyLoopCells * grid.h()));
+      if (wide_snapped || nodes.empty()) {
         stats.validated = true;
         break;
       }
       wide_snapped = true;
-      nodes = peers.merge_nodes(tiny_loop_nodes(part, kTinyLoopCells * grid.h()));
+      if (repair.empty()) repair.assign(size_t(window.size()), NodeValues::kSnap);
       values.hold(field, lattice, repair, nodes);
       std::fill(recut.begin(), recut.end(), 0);
       size_t widened = 0; // nodes[0..widened): those whose level changes, for values.redo()
@@ -474,6 +474,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
       values.redo(field, lattice, repair, std::span<const int64_t>(nodes.data(), widened));
       continue;
     }
+    if (repair.empty()) repair.assign(size_t(window.size()), NodeValues::kSnap);
     std::fill(recut.begin(), recut.end(), 0);
     uint64_t unsnapped = 0, untied = 0;
     // Repairs that stay at the offending nodes can move the problem to the next
