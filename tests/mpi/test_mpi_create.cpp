@@ -88,11 +88,9 @@ TEST(MpiCreate, voronoi30_is_the_one_process_mesh) { expect_same_as_one_process(
 
 TEST(MpiCreate, label_volume_is_the_one_process_mesh) { expect_same_as_one_process(grains(), {}); }
 
-// Integer values tie everywhere: create needs repair rounds, and every rank
-// must make the repairs one process makes (test_create_ties.cpp).
 // Closed triple curves far smaller than a cell are snapped away on every rank
-// as in one process: tiny_loop_labels(), its edge slices
-// repeated (as smoothing repeats them) to 16 slices, for slabs enough.
+// as in one process: tiny_loop_labels(), its edge slices repeated (as
+// smoothing repeats them) to 16 slices, for slabs enough.
 TEST(MpiCreate, tiny_loops_snapped_away_as_in_one_process) {
   const std::vector<int32_t> crop = tiny_loop_labels();
   GridSpec grid;
@@ -107,6 +105,8 @@ TEST(MpiCreate, tiny_loops_snapped_away_as_in_one_process) {
   EXPECT_GT(stats.create.wide_snapped_nodes, 0u);
 }
 
+// Integer values tie everywhere: create needs repair rounds, and every rank
+// must make the repairs one process makes (test_create_ties.cpp).
 TEST(MpiCreate, repairs_of_tied_data_are_those_of_one_process) {
   std::mt19937_64 rng(20261121);
   int repaired = 0;

@@ -418,6 +418,11 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
   CreateStats stats;
   double check_seconds = 0;
   bool wide_snapped = false;
+  // Marks the cut slabs that hold a repaired node's tetrahedra, to cut again.
+  auto recut_around = [&](int64_t node) {
+    const auto [first, last] = lattice.slabs_of_node(node);
+    for (int slab = std::max(first, cut[0]); slab <= std::min(last, cut[1]); ++slab) recut[size_t(slab)] = 1;
+  };
   for (int round = 0;; ++round) {
     CreateStats round_stats;
     const bool every_slab_cut =
@@ -462,8 +467,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
         level = NodeValues::kWideSnap;
         nodes[widened++] = node;
         counted_widened += is_counted(node);
-        const auto [first, last] = lattice.slabs_of_node(node);
-        for (int slab = std::max(first, cut[0]); slab <= std::min(last, cut[1]); ++slab) recut[size_t(slab)] = 1;
+        recut_around(node);
       }
       stats.wide_snapped_nodes = peers.sum(counted_widened);
       if (peers.sum(uint64_t(widened)) == 0) {
@@ -509,11 +513,11 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
         level = NodeValues::kUnsnap;
         unsnapped += is_counted(node);
       } else {
-        level = level == NodeValues::kWideSnap ? NodeValues::kFirstUntie : std::max<Level>(level + 1, NodeValues::kFirstUntie);
+        level = level == NodeValues::kWideSnap ? NodeValues::kFirstUntie
+                                               : std::max<Level>(level + 1, NodeValues::kFirstUntie);
         untied += is_counted(node);
       }
-      const auto [first, last] = lattice.slabs_of_node(node);
-      for (int slab = std::max(first, cut[0]); slab <= std::min(last, cut[1]); ++slab) recut[size_t(slab)] = 1;
+      recut_around(node);
     }
     unsnapped = peers.sum(unsnapped);
     untied = peers.sum(untied);

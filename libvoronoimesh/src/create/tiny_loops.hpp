@@ -12,19 +12,17 @@
 /// leads where they cross (or falls back from the edge): the loop goes.
 
 #include "create/create_slabs.hpp"
+#include "mesh/topology.hpp"
 
-#include <array>
 #include <cstdint>
-#include <span>
 #include <vector>
 
 namespace vm::detail {
 
-/// The vertices of every closed triple curve (a cycle of curve edges, those of
-/// three triangles or more, through no vertex of more than two) whose vertices
-/// lie within `extent` of each other along every axis; ascending.
-std::vector<int32_t> tiny_loop_vertices(std::span<const Vec3> points, std::span<const std::array<int32_t, 3>> triangles,
-                                        std::span<const PhasePair> pairs, double extent);
+/// The vertices of every closed triple curve (find_junctions()'s TripleCurve::closed())
+/// whose vertices lie within `extent` of each other along every axis; ascending.
+std::vector<int32_t> tiny_loop_vertices(const std::vector<Vec3>& points, const Triangles& triangles,
+                                        const std::vector<PhasePair>& pairs, double extent);
 
 /// The lattice nodes of the tiny_loop_vertices() of `mesh`; sorted, no repeats.
 std::vector<int64_t> tiny_loop_nodes(const SlabsMesh& mesh, double extent);
