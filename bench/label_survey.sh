@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The worst triangle of `voronoimesh mesh` at its defaults on 36 small random
-# label volumes (issue 18's label targets): ellipsoids in 32^3 (4 labels) and
-# 48^3 (6), and grain maps in 32^3 (8 grains), seeds 1-12 each, made by
-# bench/make_label_volume. Prints a Markdown table (min q, mean q, iterations,
+# The worst triangle of `voronoimesh mesh` at its defaults on 60 small random
+# label volumes (issue 18's label targets): ellipsoids in 32^3 (4 labels), 48^3
+# (6) and 64^3 (8), and grain maps in 32^3 (8 grains) and 64^3 (16), seeds 1-12
+# each, made by bench/make_label_volume. Prints a Markdown table (min q, mean q, iterations,
 # and what meets at the worst triangle's corners), then how many are below q 0.3
 # and the mean min q. The volumes are the same every run (fixed seeds).
 # Usage: bench/label_survey.sh [extra mesh options, e.g. --snap 0.3]
@@ -15,13 +15,15 @@ out=${OUT:-out}/label_survey
 mkdir -p "$out"
 echo "| volume | triangles | min q | mean q | iterations | worst triangle's corners |"
 echo "|---|---|---|---|---|---|"
-for kind in e32 e48 g32; do
+for kind in e32 e48 e64 g32 g64; do
   for seed in $(seq 1 12); do
     name=${kind}_$seed
     case $kind in
       e32) "$build/bench/make_label_volume" ellipsoids 32 4 "$out/$name.nrrd" "$seed" > /dev/null ;;
       e48) "$build/bench/make_label_volume" ellipsoids 48 6 "$out/$name.nrrd" "$seed" > /dev/null ;;
+      e64) "$build/bench/make_label_volume" ellipsoids 64 8 "$out/$name.nrrd" "$seed" > /dev/null ;;
       g32) "$build/bench/make_label_volume" grains 32 8 "$out/$name.nrrd" "$seed" > /dev/null ;;
+      g64) "$build/bench/make_label_volume" grains 64 16 "$out/$name.nrrd" "$seed" > /dev/null ;;
     esac
     log=$("$vm" mesh "$out/$name.nrrd" -o "$out/$name.ply" --threads 2 "$@" 2>&1)
     iterations=$(grep -o 'improve: [0-9]* iterations' <<< "$log" | awk '{print $2}')

@@ -71,8 +71,12 @@ constexpr std::array<size_t, kShards> kAgainstAtMost = {668, 876, 105, 1333, 770
 /// 1 up by 7, 6, shards 2-7 down by 70, 20, 17, 33, 6, 18. Since create snaps
 /// closed triple curves far smaller than a cell away (create/tiny_loops.hpp),
 /// 4802 -> 4804: shard 3 up by 2 (seed 1, case 108, a label field at grid 10:
-/// 29 -> 32, 50 more triangles; case 130 152 -> 151).
-constexpr std::array<size_t, kShards> kFoldsAtMost = {904, 1029, 213, 668, 699, 501, 340, 450};
+/// 29 -> 32, 50 more triangles; case 130 152 -> 151). Since the nodes of closed
+/// triple curves of three nodes spread round their loop (improve/smooth.hpp),
+/// 4804 -> 4798: shards 1, 3 up by 1 (case 43, tied values at grid 10:
+/// 22 -> 23; case 130: 151 -> 152), shards 0, 4, 5, 6 down by 1, 3, 1, 1 (the
+/// triangles against their pair unchanged in every case).
+constexpr std::array<size_t, kShards> kFoldsAtMost = {903, 1030, 213, 669, 695, 500, 339, 449};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 

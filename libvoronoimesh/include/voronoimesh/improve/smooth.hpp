@@ -46,7 +46,10 @@ void constrain_to_box(Vec3& d, uint8_t box_faces);
 ///  - order > 3: none (quadruple and higher points are not moved by forces);
 ///  - order 3, or a neighbour of order >= 3: the half-Laplacian attraction
 ///    f_L = (y - x)/2 averaged over neighbours of the same or a higher type
-///    (phases and box faces of x contained in y's);
+///    (phases and box faces of x contained in y's); except on a closed triple
+///    curve of three nodes, where each node moves along the curve toward
+///    the farther of its two neighbours there, by a quarter of the difference
+///    (the Laplacian would bunch them; not in the paper);
 ///  - otherwise the DistMesh repulsion f_D = (x-y)/|x-y| max(l0 - |x-y|, 0),
 ///    averaged over all neighbours;
 ///  every force is kept along the node's surface or curve: its components
