@@ -74,8 +74,9 @@ constexpr std::array<size_t, kShards> kAgainstAtMost = {668, 876, 105, 1333, 770
 /// 29 -> 32, 50 more triangles; case 130 152 -> 151). Since the nodes of closed
 /// triple curves of three nodes spread round their loop (improve/smooth.hpp),
 /// 4804 -> 4798: shards 1, 3 up by 1 (case 43, tied values at grid 10:
-/// 22 -> 23; case 130: 151 -> 152), shards 0, 4, 5, 6 down by 1, 3, 1, 1 (the
-/// triangles against their pair unchanged in every case).
+/// 22 -> 23; case 130: 151 -> 152), shards 0, 4, 5, 6 down by 1, 3, 1, 1, and
+/// the bounds of shards 4 and 7 without the 1 they had to spare (the triangles
+/// against their pair unchanged in every case).
 constexpr std::array<size_t, kShards> kFoldsAtMost = {903, 1030, 213, 669, 695, 500, 339, 449};
 
 class PropertyQuickTier : public testing::TestWithParam<int> {};

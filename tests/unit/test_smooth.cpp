@@ -1,11 +1,13 @@
 /// @file test_smooth.cpp
 /// Smoothing forces on closed triple curves of few nodes (improve/smooth.hpp).
 
+#include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
 #include "fixtures.hpp"
+#include "mesh_checks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -87,12 +89,15 @@ TEST(Smooth, nodes_of_a_loop_of_three_move_apart_not_together) {
   for (const Vec3& d : {first, second}) EXPECT_EQ(d.z(), 0);
 }
 
-// Iterated with projection and clamping, the three spread round the loop and
-// stay on it.
+// Iterated with projection, clamping and flips, the three spread round the
+// loop and stay on it, in a valid mesh whose triangles face as their phases do.
 TEST(Smooth, a_loop_of_three_ends_evenly_spread_on_its_curve) {
   EquatorLoop e = equator_loop({0, 25, 180});
   const Pipeline pipeline = Pipeline::parse("smooth,project,clamp,flip", builtin_registry());
   pipeline.run(e.mesh, e.scene.field.get(), test::iterations(40));
+  const NodeMesh after = e.mesh.to_node_mesh();
+  EXPECT_TRUE(validate(after).ok()) << validate(after).summary();
+  EXPECT_EQ(test::inverted_triangles(after, *e.scene.field), 0u);
   std::array<double, 3> angles;
   for (size_t i = 0; i < 3; ++i) {
     const Vec3& p = e.mesh.positions()[size_t(e.loop[i])];
