@@ -11,11 +11,15 @@
 /// 109k page faults -> 29k, reading 0.8-1.0 -> 0.54-0.67 s, sampling and
 /// creating 1.0-1.25 -> 0.75-0.92 s.
 
+#include "core/parallel.hpp"
+
 #include <sys/mman.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 
 namespace vm::detail {
 
@@ -41,11 +45,35 @@ template <class Container> void reserve_on_huge_pages(Container& v, size_t n) {
   }
 }
 
+/// Fresh memory past this many bytes is first touched by every thread
+/// (touch_in_parallel()).
+constexpr size_t kTouchInParallel = size_t(16) << 20;
+
+/// Writes zeros over [data, data + bytes) from every thread, a 2 MiB block a
+/// task: the kernel clears each fresh page in the thread that first touches it,
+/// and a resize() that fills a large vector does that in one thread. On the
+/// liver (its voxels, 100 MB, and its label field's arrays) "read and phase
+/// functions" took 0.20-0.36 s, median 0.32, and now 0.19-0.27 s, median 0.21
+/// (10 alternated runs; the CT-like volume's the same either way).
+inline void touch_in_parallel(void* data, size_t bytes) {
+  constexpr size_t kBlock = size_t(2) << 20;
+  auto* begin = static_cast<unsigned char*>(data);
+  parallel_for(size_t(0), (bytes + kBlock - 1) / kBlock, [&](size_t b) {
+    std::memset(begin + b * kBlock, 0, std::min(kBlock, bytes - b * kBlock));
+  });
+}
+
 /// Resizes `v` to n elements (`fill`s past its old size) with its new
-/// elements on huge pages where the memory is fresh (reserve_on_huge_pages()).
+/// elements on huge pages where the memory is fresh (reserve_on_huge_pages()),
+/// first touched by every thread where they are many (touch_in_parallel(); for
+/// elements that bytes may stand for before they are made).
 template <class Container, class... Fill>
 void resize_on_huge_pages(Container& v, size_t n, const Fill&... fill) {
+  const bool fresh = n > v.capacity();
   reserve_on_huge_pages(v, n);
+  using Item = std::remove_cvref_t<decltype(*v.data())>;
+  if (fresh && std::is_trivially_copyable_v<Item> && (n - v.size()) * sizeof(Item) >= kTouchInParallel)
+    touch_in_parallel(v.data() + v.size(), (n - v.size()) * sizeof(Item));
   v.resize(n, fill...);
 }
 
