@@ -110,7 +110,7 @@ private:
 
 PassInfo make_info(std::string name, std::string summary, std::vector<ParamSpec> params, bool moves, bool field,
                    bool distributed, FunctionPass::Body body) {
-  PassInfo info{std::move(name), std::move(summary), std::move(params), moves, field, distributed, {}};
+  PassInfo info{std::move(name), std::move(summary), std::move(params), moves, field, distributed, {}, {}};
   info.make = [body](const ParamValues& p) { return std::make_unique<FunctionPass>(body, p); };
   return info;
 }

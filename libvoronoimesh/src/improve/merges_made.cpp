@@ -92,8 +92,11 @@ bool made_in_place(InterfaceMesh& mesh, const MeshPart& part, const NodeMesh& me
   }
   EditMoves moves;
   if (!mesh.edit_in_place(edit, moves)) return false;
-  kept = {.in_place = true, .removed_nodes = removed.nodes, .removed_triangles = removed.triangles,
-          .moves = std::move(moves)};
+  kept = CollapseKept{};
+  kept.in_place = true;
+  kept.removed_nodes = removed.nodes;
+  kept.removed_triangles = removed.triangles;
+  kept.moves = std::move(moves);
   return true;
 }
 
