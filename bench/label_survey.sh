@@ -2,9 +2,10 @@
 # The worst triangle of `voronoimesh mesh` at its defaults on 60 small random
 # label volumes (issue 18's label targets): ellipsoids in 32^3 (4 labels), 48^3
 # (6) and 64^3 (8), and grain maps in 32^3 (8 grains) and 64^3 (16), seeds 1-12
-# each, made by bench/make_label_volume. Prints a Markdown table (min q, mean q, iterations,
-# and what meets at the worst triangle's corners), then how many are below q 0.3
-# and the mean min q. The volumes are the same every run (fixed seeds).
+# each, made by bench/make_label_volume. Prints a Markdown table (min q, mean q,
+# iterations, what meets at the worst triangle's corners, and whether its
+# smallest angle is a junction's corner), then how many are below q 0.3 and the
+# mean min q. The volumes are the same every run (fixed seeds).
 # Usage: bench/label_survey.sh [extra mesh options, e.g. --snap 0.3]
 #        (after scripts/build.sh; BUILD=DIR, OUT=DIR; VM=PATH for another voronoimesh)
 set -euo pipefail
@@ -13,8 +14,8 @@ build=${BUILD:-build}
 vm=${VM:-$build/tools/voronoimesh/voronoimesh}
 out=${OUT:-out}/label_survey
 mkdir -p "$out"
-echo "| volume | triangles | min q | mean q | iterations | worst triangle's corners |"
-echo "|---|---|---|---|---|---|"
+echo "| volume | triangles | min q | mean q | iterations | worst triangle's corners | at a junction's corner |"
+echo "|---|---|---|---|---|---|---|"
 for kind in e32 e48 e64 g32 g64; do
   for seed in $(seq 1 12); do
     name=${kind}_$seed
@@ -32,8 +33,12 @@ for kind in e32 e48 e64 g32 g64; do
     read -r min mean < <(awk '/^quality min/ {print $3, $7}' <<< "$stats")
     corners=$(grep -A3 '^triangle' <<< "$stats" | tail -3 | sed -E 's/.*\): //; s/ of .*//; s/, on a box.*//' |
       sort | uniq -c | awk '{n=$1; $1=""; printf "%s%d%s", (NR>1 ? ", " : ""), n, $0}')
-    echo "| $name | $triangles | $min | $mean | $iterations | $corners |"
+    # Whether its smallest angle is its surface's whole corner at a junction
+    # point (`stats` says so): no triangulation keeping the junctions beats it.
+    bound=$(grep -q 'whole corner' <<< "$stats" && echo yes || echo no)
+    echo "| $name | $triangles | $min | $mean | $iterations | $corners | $bound |"
   done
 done | tee "$out/table.md"
-awk -F'|' '{n++; q = $4 + 0; s += q; if (q < 0.3) below++} END {
-  printf "%d volumes: %d below min q 0.3, mean min q %.3f\n", n, below, s / n }' "$out/table.md"
+awk -F'|' '{n++; q = $4 + 0; s += q; if (q < 0.3) { below++; if ($8 ~ /yes/) bound++ } } END {
+  printf "%d volumes: %d below min q 0.3 (%d of them at a junction'"'"'s corner), mean min q %.3f\n",
+    n, below, bound, s / n }' "$out/table.md"
