@@ -26,7 +26,12 @@ for kind in e32 e48 e64 g32 g64; do
       g32) "$build/bench/make_label_volume" grains 32 8 "$out/$name.nrrd" "$seed" > /dev/null ;;
       g64) "$build/bench/make_label_volume" grains 64 16 "$out/$name.nrrd" "$seed" > /dev/null ;;
     esac
-    log=$("$vm" mesh "$out/$name.nrrd" -o "$out/$name.ply" --threads 2 "$@" 2>&1)
+    # The mesher's own message when it fails (a bad option, say), not a silent stop.
+    log=$("$vm" mesh "$out/$name.nrrd" -o "$out/$name.ply" --threads 2 "$@" 2>&1) || {
+      status=$?
+      echo "label_survey.sh: $name: $log" >&2
+      exit "$status"
+    }
     iterations=$(grep -o 'improve: [0-9]* iterations' <<< "$log" | awk '{print $2}')
     stats=$("$vm" stats "$out/$name.ply" --worst 1)
     triangles=$(awk '/^triangles/ {print $2}' <<< "$stats")
