@@ -10,6 +10,7 @@
 #include "voronoimesh/improve/guard.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/improve/project.hpp"
+#include "voronoimesh/mesh/triangle_quality.hpp"
 
 #include "improve/crossing_windows.hpp"
 
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <random>
+#include <tuple>
 
 namespace {
 
@@ -152,6 +154,52 @@ TEST(Guard, quality_floor_undoes_moves_that_spoil_the_worst_triangle_unless_they
   InterfaceMesh blind = initial_mesh(scene);
   std::vector<Vec3> blind_delta = free_delta;
   EXPECT_EQ(CrossingGuard().commit(blind, blind_delta, nullptr, {}, 1.0).undone_nodes, 2u);
+}
+
+// A triple-curve node's eq. 4 step closes about a third of the way per
+// iteration, so its moves never halve it: the floor lets such a move through
+// when it leaves at most 0.9 of the step and every triangle below the floor at
+// q 0.4 or better, without remembering it for the floor pass. Here a third of
+// each node's step, with floor 1 (every moved triangle below it).
+TEST(Guard, quality_floor_lets_curve_nodes_approach_their_curve_down_to_q_0_4) {
+  const Scene scene = test::example_scene("four_spheres.json", 16);
+  const PhaseField& field = *scene.field;
+  const InterfaceMesh start = initial_mesh(scene);
+  // The least quality of n's triangles once n has moved to x.
+  auto worst_at = [&](int32_t n, const Vec3& x) {
+    double worst = 1;
+    for (int32_t f : start.faces_at(std::span<const int32_t>(&n, 1))) {
+      std::array<Vec3, 3> p;
+      for (int k = 0; k < 3; ++k) {
+        const int32_t c = start.triangles()[size_t(f)][size_t(k)];
+        p[size_t(k)] = c == n ? x : start.positions()[size_t(c)];
+      }
+      worst = std::min(worst, triangle_quality(p[0], p[1], p[2]));
+    }
+    return worst;
+  };
+  int32_t fine = -1, spoilt = -1; // curve nodes visibly off whose move leaves q >= 0.45, < 0.35
+  for (size_t n = 0; n < start.num_nodes(); ++n) {
+    if (phase_count(start.phases()[n]) != 3 || start.box_faces()[n]) continue;
+    const Vec3 step = node_projection_step(start, field, int32_t(n), start.positions()[n]);
+    if (step.norm() < 0.1 * scene.grid.h()) continue;
+    const double worst = worst_at(int32_t(n), start.positions()[n] + step / 3);
+    if (fine < 0 && worst >= 0.45) fine = int32_t(n);
+    if (spoilt < 0 && worst < 0.35) spoilt = int32_t(n);
+  }
+  ASSERT_GE(fine, 0);
+  ASSERT_GE(spoilt, 0);
+  for (const auto& [n, fraction, goes] : {std::tuple{fine, 1.0 / 3, true}, std::tuple{fine, 0.05, false},
+                                          std::tuple{spoilt, 1.0 / 3, false}}) {
+    SCOPED_TRACE(testing::Message() << "node " << n << ", a fraction " << fraction << " of its step");
+    InterfaceMesh mesh = start;
+    CrossingGuard guard;
+    std::vector<Vec3> delta(mesh.num_nodes(), Vec3::Zero());
+    delta[size_t(n)] = fraction * node_projection_step(mesh, field, n, start.positions()[size_t(n)]);
+    EXPECT_EQ(guard.commit(mesh, delta, &field, {}, 1.0).undone_nodes, goes ? 0u : 1u);
+    EXPECT_EQ(mesh.positions()[size_t(n)] != start.positions()[size_t(n)], goes);
+    EXPECT_TRUE(guard.floor_exception_nodes().empty());
+  }
 }
 
 // The floor pass takes back the moves the floor let through where they left a

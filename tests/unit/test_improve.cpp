@@ -177,6 +177,32 @@ TEST(Improve, triple_curve_nodes_converge_onto_their_curves) {
   }
 }
 
+// The quality floor no longer holds triple-curve nodes off their curves for a
+// triangle that stays at q 0.4 or better (improve/guard.cpp): eq. 4 takes a
+// curve node a third of the way per iteration, so its moves never halved its
+// step, which was the floor's only way through. On this scene of four random
+// balls (bench/junction_scenes.sh's balls_5), 20 iterations: a curve node
+// stayed 0.60 h off (0.064 h RMS over the curves), the worst triangle at q
+// 0.522 beside it; released, every curve node ends within 0.031 h (0.0026 h
+// RMS), and min q is 0.658.
+TEST(Improve, the_quality_floor_lets_curve_nodes_reach_their_curves) {
+  const Scene scene = parse_scene(R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 48, "phases": [
+    {"name": "outside", "kind": "constant", "value": 0},
+    {"name": "ball0", "kind": "sphere", "center": [0.6512, 0.4396, 0.6163], "radius": 0.2927},
+    {"name": "ball1", "kind": "sphere", "center": [0.4249, 0.6073, 0.4339], "radius": 0.1746},
+    {"name": "ball2", "kind": "sphere", "center": [0.4393, 0.6005, 0.359], "radius": 0.2489},
+    {"name": "ball3", "kind": "sphere", "center": [0.4405, 0.3676, 0.472], "radius": 0.208}]})",
+                                  "balls_5");
+  InterfaceMesh mesh = initial_mesh(scene);
+  Pipeline::parse(kScenePipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(20));
+  const auto [rms, worst] = curve_offsets_in_h(mesh, *scene.field, scene.grid.h());
+  std::printf("balls_5: triple-curve nodes off their curve %.4f h RMS, max %.4f h; min q %.3f\n", rms, worst,
+              quality_summary(mesh).first);
+  EXPECT_LT(worst, 0.05); // issue 18's bar
+  EXPECT_GT(quality_summary(mesh).first, 0.6);
+  EXPECT_TRUE(validate(mesh).ok());
+}
+
 // Quadruple points reach their closed-form place. Four random balls (the
 // fourth of bench/junction_scenes.sh's): eq. 4's mean of the pairs' steps left
 // the point of the outside, ball0, ball2 and ball3 0.59 h off after 20 iterations
@@ -236,10 +262,14 @@ TEST(Improve, fifty_iterations_leave_the_worst_triangle_no_worse_than_twenty) {
 // (0.487). The remesh pass (iterations 1-3) may still lower it: it changes
 // triangles, not moves (here 0.407 -> 0.406 in iteration 3, since the default
 // takes the least-squares step at quadruple points), so only the iterations
-// after it count.
+// after it count. A triple-curve node far off its curve may take the worst
+// triangle down to q 0.4 (improve/guard.hpp): here from 0.433 to 0.406 in
+// iteration 5, a fall that does not count (without the floor pass it falls on
+// to 0.372 in iteration 6).
 TEST(Improve, the_floor_pass_keeps_the_worst_triangle_from_getting_worse) {
   const Scene scene = example("voronoi30.json", 64);
   constexpr int kRemeshLast = 3; // the remesh pass's default `last`
+  constexpr double kCurveNodesMayTakeItTo = 0.4;
   const std::string with_floor = kScenePipeline;
   ASSERT_TRUE(with_floor.ends_with(",floor"));
   const std::string without_floor = with_floor.substr(0, with_floor.size() - 6);
@@ -250,7 +280,7 @@ TEST(Improve, the_floor_pass_keeps_the_worst_triangle_from_getting_worse) {
     int drops = 0;
     double previous = 0;
     run.observer = [&](const IterationReport& r, const InterfaceMesh&) {
-      if (r.iteration > kRemeshLast && r.min_quality < previous) ++drops;
+      if (r.iteration > kRemeshLast && r.min_quality < std::min(previous, kCurveNodesMayTakeItTo)) ++drops;
       previous = r.min_quality;
     };
     Pipeline::parse(spec, builtin_registry()).run(mesh, scene.field.get(), run);

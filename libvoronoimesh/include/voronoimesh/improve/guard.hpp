@@ -84,6 +84,11 @@ public:
   /// worse except to bring a node visibly off its interface onto it. Such moves
   /// are remembered until forget_floor_exceptions(), so that they can be taken
   /// back (floor_exception_reverts()); with `floor_holds_all` none is made.
+  /// A triple-curve node's move (eq. 4 takes it about a third of the way per
+  /// iteration, never half) goes ahead when its step was over 2% of the
+  /// triangle's longest edge, the move leaves at most 0.9 of it and the
+  /// triangle at quality 0.4 or better; it is not remembered: the floor never
+  /// holds a curve node visibly off its curve for a triangle above 0.4.
   ///
   /// With a `field` that keeps points (PhaseField::kept_points(): a
   /// voxel-faithful label volume's centres of voxels in thin structures), so
