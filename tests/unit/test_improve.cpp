@@ -22,6 +22,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -82,7 +83,8 @@ std::vector<double> distances_in_h(const InterfaceMesh& m, const PhaseField& f, 
     for (int i = 0; i < phase_count(s); ++i)
       for (int j = i + 1; j < phase_count(s); ++j) {
         const Vec3 g = f.gradient(s[size_t(i)], x) - f.gradient(s[size_t(j)], x);
-        if (g.norm() > 0.1) worst = std::max(worst, std::abs(f.value(s[size_t(i)], x) - f.value(s[size_t(j)], x)) / g.norm());
+        if (g.norm() > 0.1)
+          worst = std::max(worst, std::abs(f.value(s[size_t(i)], x) - f.value(s[size_t(j)], x)) / g.norm());
       }
     d.push_back(worst / h);
   }
@@ -145,6 +147,20 @@ std::pair<double, double> curve_offsets_in_h(const InterfaceMesh& m, const Phase
   return {std::sqrt(sum / double(count)), worst};
 }
 
+/// Four balls (x, y, z, radius) in the unit box over an outside phase, grid 48:
+/// a scene of bench/junction_scenes.sh's kind.
+Scene four_balls(const std::array<std::array<double, 4>, 4>& balls, const char* name) {
+  std::string json = R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 48, "phases": [)"
+                     R"({"name": "outside", "kind": "constant", "value": 0})";
+  for (size_t i = 0; i < balls.size(); ++i) {
+    char ball[160];
+    std::snprintf(ball, sizeof ball, R"(, {"name": "ball%zu", "kind": "sphere", "center": [%g, %g, %g], "radius": %g})",
+                  i, balls[i][0], balls[i][1], balls[i][2], balls[i][3]);
+    json += ball;
+  }
+  return parse_scene(json + "]}", name);
+}
+
 // Triple curves converge onto the closed-form curves and stay there. The
 // paper's half-Laplacian on a curve node pulls it toward the curve's centre of
 // curvature; projection undid only part of that each iteration, so curve nodes
@@ -186,13 +202,11 @@ TEST(Improve, triple_curve_nodes_converge_onto_their_curves) {
 // 0.522 beside it; released, every curve node ends within 0.031 h (0.0026 h
 // RMS), and min q is 0.658.
 TEST(Improve, the_quality_floor_lets_curve_nodes_reach_their_curves) {
-  const Scene scene = parse_scene(R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 48, "phases": [
-    {"name": "outside", "kind": "constant", "value": 0},
-    {"name": "ball0", "kind": "sphere", "center": [0.6512, 0.4396, 0.6163], "radius": 0.2927},
-    {"name": "ball1", "kind": "sphere", "center": [0.4249, 0.6073, 0.4339], "radius": 0.1746},
-    {"name": "ball2", "kind": "sphere", "center": [0.4393, 0.6005, 0.359], "radius": 0.2489},
-    {"name": "ball3", "kind": "sphere", "center": [0.4405, 0.3676, 0.472], "radius": 0.208}]})",
-                                  "balls_5");
+  const Scene scene = four_balls({{{0.6512, 0.4396, 0.6163, 0.2927},
+                                   {0.4249, 0.6073, 0.4339, 0.1746},
+                                   {0.4393, 0.6005, 0.359, 0.2489},
+                                   {0.4405, 0.3676, 0.472, 0.208}}},
+                                 "balls_5");
   InterfaceMesh mesh = initial_mesh(scene);
   Pipeline::parse(kScenePipeline, builtin_registry()).run(mesh, scene.field.get(), iterations(20));
   const auto [rms, worst] = curve_offsets_in_h(mesh, *scene.field, scene.grid.h());
@@ -209,13 +223,11 @@ TEST(Improve, the_quality_floor_lets_curve_nodes_reach_their_curves) {
 // and after 60, though the balls meet at 87-131 degrees there; the scenes'
 // default takes the least-squares step at points and puts every point there.
 TEST(Improve, quadruple_points_reach_their_place_under_the_scene_default) {
-  const Scene scene = parse_scene(R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "grid": 48, "phases": [
-    {"name": "outside", "kind": "constant", "value": 0},
-    {"name": "ball0", "kind": "sphere", "center": [0.6916, 0.4825, 0.5875], "radius": 0.2602},
-    {"name": "ball1", "kind": "sphere", "center": [0.386, 0.3312, 0.5411], "radius": 0.1683},
-    {"name": "ball2", "kind": "sphere", "center": [0.4529, 0.6559, 0.6489], "radius": 0.1678},
-    {"name": "ball3", "kind": "sphere", "center": [0.3329, 0.389, 0.6312], "radius": 0.1537}]})",
-                                  "four balls");
+  const Scene scene = four_balls({{{0.6916, 0.4825, 0.5875, 0.2602},
+                                   {0.386, 0.3312, 0.5411, 0.1683},
+                                   {0.4529, 0.6559, 0.6489, 0.1678},
+                                   {0.3329, 0.389, 0.6312, 0.1537}}},
+                                 "four balls");
   const double h = scene.grid.h();
   const std::string least_squares = "project:least_squares_from=4", default_spec = kScenePipeline;
   const std::string eq4 =
