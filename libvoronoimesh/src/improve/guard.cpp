@@ -10,6 +10,7 @@
 #include "improve/kept_points.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace vm {
 namespace {
@@ -172,18 +173,17 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
   // whose step never halves, goes ahead when it closes a tenth of its step and
   // leaves the triangle at kCurveNodeFloor or better; the floor pass does not
   // take that back (on four random balls a curve node stayed 0.52 h off).
-  auto closes_in = [&](int32_t n, const std::array<int32_t, 3>& tri, double far, double leaving_at_most) {
-    if (!field || floor_holds_all) return false;
+  // The share of its eq. 4 step that n's move leaves, or infinity when n was not
+  // visibly off (or nothing tells): both exceptions below ask it.
+  auto step_left = [&](int32_t n, const std::array<int32_t, 3>& tri) {
+    constexpr double kNotOff = std::numeric_limits<double>::infinity();
+    if (!field || floor_holds_all) return kNotOff;
     const double was = node_projection_step(mesh, *field, n, before[size_t(n)]).norm();
     double longest = 0;
     for (int k = 0; k < 3; ++k)
       longest = std::max(longest, (points[size_t(tri[size_t(k)])] - points[size_t(tri[size_t((k + 1) % 3)])]).norm());
-    return was > far * longest &&
-           node_projection_step(mesh, *field, n, points[size_t(n)]).norm() < leaving_at_most * was;
-  };
-  auto curve_node_closes_in = [&](int32_t n, size_t t, const std::vector<double>& quality) {
-    return quality[t] >= kCurveNodeFloor && phase_count(mesh.phases()[size_t(n)]) == 3 &&
-           closes_in(n, triangles[t], kFarFromInterface, kCurveNodeClosing);
+    if (was <= kFarFromInterface * longest) return kNotOff;
+    return node_projection_step(mesh, *field, n, points[size_t(n)]).norm() / was;
   };
   auto moved_by = [&](int32_t n) { return (points[size_t(n)] - before[size_t(n)]).squaredNorm(); };
   auto normal = [&](const std::vector<Vec3>& p, const std::array<int32_t, 3>& t) {
@@ -270,8 +270,12 @@ GuardReport CrossingGuard::commit(InterfaceMesh& mesh, std::vector<Vec3>& delta,
       for (int32_t t : involved_list)
         if (quality[size_t(t)] < quality_floor)
           for (int32_t n : triangles[size_t(t)])
-            if (moved[size_t(n)] && !curve_node_closes_in(n, size_t(t), quality)) {
-              if (closes_in(n, triangles[size_t(t)], kFarFromInterface, 0.5)) excepted[size_t(n)] = 1;
+            if (moved[size_t(n)]) {
+              const double left = step_left(n, triangles[size_t(t)]);
+              const bool curve_node_closes_in = phase_count(mesh.phases()[size_t(n)]) == 3 &&
+                                                quality[size_t(t)] >= kCurveNodeFloor && left < kCurveNodeClosing;
+              if (curve_node_closes_in) continue;
+              if (left < 0.5) excepted[size_t(n)] = 1;
               else put_back(n);
             }
     }
