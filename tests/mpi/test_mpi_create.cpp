@@ -88,10 +88,10 @@ TEST(MpiCreate, voronoi30_is_the_one_process_mesh) { expect_same_as_one_process(
 
 TEST(MpiCreate, label_volume_is_the_one_process_mesh) { expect_same_as_one_process(grains(), {}); }
 
-// Closed triple curves far smaller than a cell are snapped away on every rank
+// Closed triple curves far smaller than a cell are closed on every rank
 // as in one process: tiny_loop_labels(), its edge slices repeated (as
 // smoothing repeats them) to 16 slices, for slabs enough.
-TEST(MpiCreate, tiny_loops_snapped_away_as_in_one_process) {
+TEST(MpiCreate, tiny_loops_closed_as_in_one_process) {
   const std::vector<int32_t> crop = tiny_loop_labels();
   GridSpec grid;
   grid.cells = {5, 5, 15};

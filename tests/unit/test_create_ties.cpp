@@ -188,7 +188,7 @@ TEST(Create, integer_valued_data_with_ties_everywhere_is_valid) {
   EXPECT_GT(repaired, 12); // the repair is what these cases exercise
 }
 
-// Create snaps away closed triple curves far smaller than a cell: on
+// Create closes closed triple curves far smaller than a cell: on
 // tiny_loop_labels() it left one, with triangles of q 0.010.
 TEST(Create, snaps_away_closed_triple_curves_far_smaller_than_a_cell) {
   const std::vector<int32_t> labels = test::tiny_loop_labels();

@@ -51,8 +51,8 @@ void Report::created(const vm::CreateReport& r) {
                 (unsigned long long)r.stats.unsnapped_nodes);
   std::string text = line;
   if (r.stats.wide_snapped_nodes > 0)
-    text += ", snapped twice as far at " + std::to_string(r.stats.wide_snapped_nodes) +
-            " nodes around closed triple curves far smaller than a cell";
+    text += ", triple-curve loops far smaller than a cell closed (at " +
+            std::to_string(r.stats.wide_snapped_nodes) + " nodes)";
   say(text);
 }
 

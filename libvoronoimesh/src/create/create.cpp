@@ -27,10 +27,9 @@
 namespace vm {
 namespace {
 
-/// The largest closed triple curve snapped away, in cells along each axis (create/tiny_loops.hpp).
+/// The largest closed triple curve closed, in cells along each axis (create/tiny_loops.hpp).
 constexpr double kTinyLoopCells = 0.1;
-/// How much farther the nodes around one snap, up to kMaxSnap: at 2, two random label volumes'
-/// loops went (global snaps of 0.25 and 0.3 h did too, but lowered the liver's worst triangle).
+/// How far below the leader, in snaps, a tiny loop's phase rises, up to kMaxSnap.
 constexpr double kTinyLoopSnap = 2;
 /// The farthest snap: CreateParams::snap's largest.
 constexpr double kMaxSnap = 0.5;
@@ -447,9 +446,10 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
     check_seconds += detail::seconds_since(check_start);
     nodes = peers.merge_nodes(std::move(nodes));
     if (peers.sum(problems) == 0) {
-      // Valid: closed triple curves far smaller than a cell are snapped away
-      // at their lattice nodes, once (create/tiny_loops.hpp), and checked again.
-      if (!wide_snapped) nodes = peers.merge_nodes(tiny_loop_nodes(part, kTinyLoopCells * grid.h()));
+      // Valid: closed triple curves far smaller than a cell are closed at
+      // their lattice nodes, once (create/tiny_loops.hpp), and checked again.
+      if (!wide_snapped)
+        nodes = values.close_loops(peers.merge_closings(tiny_loop_closings(part, kTinyLoopCells * grid.h())));
       if (wide_snapped || nodes.empty()) {
         stats.validated = true;
         break;

@@ -25,6 +25,8 @@ public:
   virtual ~CreatePeers() = default;
   /// The lattice nodes every rank found at fault, merged: sorted, no repeats.
   virtual std::vector<int64_t> merge_nodes(std::vector<int64_t> nodes) { return nodes; }
+  /// The tiny loops' closings every rank found, merged: sorted, no repeats.
+  virtual std::vector<LoopClosing> merge_closings(std::vector<LoopClosing> closings) { return closings; }
   /// The sum of `value` over every rank.
   virtual uint64_t sum(uint64_t value) { return value; }
 };

@@ -299,6 +299,14 @@ double NodeValues::hold_margin() const {
   return double(std::max(eps_, untie_ * (k_ + 1)) + 2) / scale_;
 }
 
+std::vector<int64_t> NodeValues::close_loops(std::vector<LoopClosing> closings) {
+  closings_ = std::move(closings);
+  std::vector<int64_t> nodes;
+  for (const LoopClosing& c : closings_)
+    if (nodes.empty() || nodes.back() != c.node) nodes.push_back(c.node);
+  return nodes;
+}
+
 void NodeValues::add_slots(std::span<const int64_t> nodes) {
   const size_t kk = size_t(k_), first = floor_.size();
   for (size_t i = 0; i < nodes.size(); ++i) slot_[size_t(nodes[i])] = int32_t(first + i);
@@ -425,14 +433,13 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   };
   std::array<Vec3, 16> grad;
   uint32_t known = 0;
-  const bool wide = level == kWideSnap;
-  const int64_t eps = wide ? wide_eps_ : eps_;
-  auto threshold = [&](int s, int t) {
-    if (!field_) return eps;
+  const int64_t eps = eps_;
+  auto threshold = [&](int s, int t, int64_t within) {
+    if (!field_) return within;
     for (const int u : {s, t})
       if (!(known >> u & 1u)) grad[size_t(u)] = field_->gradient(ids[size_t(u)], node_at()), known |= 1u << u;
     const double rate = (grad[size_t(s)] - grad[size_t(t)]).norm();
-    return rate < kSlowRate ? int64_t(double(eps) * rate / kSlowRate) : eps; // NaN: by value
+    return rate < kSlowRate ? int64_t(double(within) * rate / kSlowRate) : within; // NaN: by value
   };
   // A kept point of the field (a voxel-faithful volume's centre of a voxel in
   // a structure one voxel thin) at this node must stay in its label: nothing
@@ -454,21 +461,40 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
     }
     return kept == 1;
   };
-  if (eps > 0 && (level == kSnap || wide))
+  if (eps > 0 && (level == kSnap || level == kWideSnap))
     for (int a = 0; a < k_; ++a)
       for (int b = a + 1; b < k_; ++b) {
         const int32_t vi = q[by_id[a]];
         int32_t& vj = q[by_id[b]];
         const int64_t gap = std::llabs(int64_t(vi) - vj);
-        if (vi != vj && gap < eps && gap < threshold(by_id[a], by_id[b]) && !is_kept()) {
+        if (vi != vj && gap < eps && gap < threshold(by_id[a], by_id[b], eps) && !is_kept()) {
           vj = vi;
           changed = true;
         }
       }
+  auto leader = [&] {
+    int best = 0;
+    for (int s = 1; s < k_; ++s)
+      if (beats(q[s], ids[s], q[best], ids[best])) best = s;
+    return best;
+  };
+  int best = leader();
+  // A tiny loop's phase off its window rises to a tie with the leader, which
+  // it then beats or not by phase id alone (create/tiny_loops.hpp).
+  if (level == kWideSnap) {
+    const auto at_node = std::equal_range(closings_.begin(), closings_.end(), LoopClosing{id, 0},
+                                          [](const LoopClosing& x, const LoopClosing& y) { return x.node < y.node; });
+    for (auto c = at_node.first; c != at_node.second; ++c)
+      for (int s = 0; s < k_; ++s) {
+        const int64_t gap = int64_t(q[best]) - q[s];
+        if (ids[s] == c->phase && gap > 0 && gap < threshold(s, best, wide_eps_) && !is_kept()) {
+          q[s] = q[best];
+          changed = true;
+        }
+      }
+    best = leader();
+  }
   snapped_[n] = changed;
-  int best = 0;
-  for (int s = 1; s < k_; ++s)
-    if (beats(q[s], ids[s], q[best], ids[best])) best = s;
   label_[size_t(local)] = ids[best];
   return changed;
 }

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <compare>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,6 +31,14 @@ constexpr int kValueBits = 29;
 /// True when phase `a` with value `va` beats phase `b` with value `vb` in the
 /// perturbed order.
 inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb || (va == vb && a < b); }
+
+/// A lattice node where create raises `phase` up to a tie with the node's
+/// leader, to close a tiny loop (create/tiny_loops.hpp).
+struct LoopClosing {
+  int64_t node;
+  int32_t phase;
+  auto operator<=>(const LoopClosing&) const = default;
+};
 
 /// The part of the field a NodeValues holds, for one rank of a distributed
 /// create: the lattice nodes of a window of grid layers, and the range of
@@ -92,8 +101,10 @@ public:
   /// the lattice edges, faces and tets around it: the coincidences the symbolic
   /// perturbation separates only infinitesimally, whose limit points merge into
   /// a pinched phase. Each level draws anew, so a draw that ties again is redrawn.
-  /// kWideSnap snaps within widen_snap()'s distance instead (create/tiny_loops.hpp);
-  /// a node at it that offends goes on to kFirstUntie.
+  /// kWideSnap snaps as kSnap, then raises the phases close_loops() gives the
+  /// node to a tie with its leader where they are within widen_snap()'s
+  /// distance of it (create/tiny_loops.hpp); a node at it that offends goes on
+  /// to kFirstUntie.
   using RepairLevel = uint8_t;
   static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2, kWideSnap = 254;
 
@@ -128,9 +139,14 @@ public:
   void hold(const NodeSource& source, const TetLattice& lattice, const std::vector<RepairLevel>& repair,
             std::span<const int64_t> nodes);
 
-  /// The snapping distance of nodes at kWideSnap (the field's value units;
-  /// below the one given at construction, that one). Before redo() of them.
+  /// How far below its leader a phase rises at a node of kWideSnap (the
+  /// field's value units; below the snapping distance given at construction,
+  /// that one). Before redo() of them.
   void widen_snap(double eps) { wide_eps_ = std::max<int64_t>(eps_, std::llround(eps * scale_)); }
+
+  /// Sets the phases that rise at nodes of kWideSnap (sorted, no repeats), before
+  /// redo() of them; returns their nodes (sorted, no repeats).
+  std::vector<int64_t> close_loops(std::vector<LoopClosing> closings);
 
   /// The nodes of the window.
   const NodeWindow& window() const { return window_; }
@@ -196,6 +212,7 @@ private:
   // The affine map to integers (v - lo_) * scale_ and the snap and untie distances in its units.
   double lo_ = 0, scale_ = 1;
   int64_t eps_ = 0, untie_ = 0, wide_eps_ = 0;
+  std::vector<LoopClosing> closings_; // close_loops()'s
   std::vector<int32_t> label_;   // by window index, every node
   std::vector<int32_t> slot_;    // by window index: where its values are, -1 if not held; empty: all held in order
   std::vector<int32_t> ids_;     // k_ per held node

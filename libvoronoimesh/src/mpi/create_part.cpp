@@ -42,6 +42,16 @@ public:
     all.erase(std::unique(all.begin(), all.end()), all.end());
     return all;
   }
+  std::vector<vm::detail::LoopClosing> merge_closings(std::vector<vm::detail::LoopClosing> closings) override {
+    std::vector<int64_t> flat;
+    for (const auto& c : closings) flat.insert(flat.end(), {c.node, int64_t(c.phase)});
+    const std::vector<int64_t> all = comm_.all_gather(std::span<const int64_t>(flat));
+    closings.clear();
+    for (size_t i = 0; i + 1 < all.size(); i += 2) closings.push_back({all[i], int32_t(all[i + 1])});
+    std::sort(closings.begin(), closings.end());
+    closings.erase(std::unique(closings.begin(), closings.end()), closings.end());
+    return closings;
+  }
   uint64_t sum(uint64_t value) override { return comm_.sum(value); }
 
 private:

@@ -44,9 +44,10 @@ struct CreateStats {
   uint64_t snapped_nodes = 0;      ///< lattice nodes near interfaces whose values snapping changed
   uint64_t unsnapped_nodes = 0;    ///< nodes where snapping was undone because it pinched a phase
   uint64_t untied_nodes = 0;       ///< nodes whose ties in the data were broken because they pinched a phase
-  /// Nodes snapped twice as far, to take away closed triple curves far smaller
-  /// than a cell (around a lattice edge where a third phase nearly ties the two
-  /// crossing it), whose triangles no improvement could make better than slivers.
+  /// Nodes around closed triple curves far smaller than a cell (around a
+  /// lattice edge where a third phase nearly ties the two crossing it), at
+  /// which the third phase rose to close them: no improvement could make their
+  /// triangles better than slivers.
   uint64_t wide_snapped_nodes = 0;
   int repair_rounds = 0;           ///< extra extractions that undoing snapping and ties needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
