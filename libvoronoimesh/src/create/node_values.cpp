@@ -433,7 +433,15 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   };
   std::array<Vec3, 16> grad;
   uint32_t known = 0;
-  const int64_t eps = eps_;
+  // The closings of tiny loops at this node (create/tiny_loops.hpp).
+  const auto closing = level == kWideSnap ? std::equal_range(closings_.begin(), closings_.end(), LoopClosing{id, 0},
+                                                             [](const LoopClosing& x, const LoopClosing& y) {
+                                                               return x.node < y.node;
+                                                             })
+                                          : std::pair{closings_.end(), closings_.end()};
+  const bool tie_all = std::any_of(closing.first, closing.second,
+                                   [](const LoopClosing& c) { return c.phase == LoopClosing::kTieAll; });
+  const int64_t eps = tie_all ? wide_eps_ : eps_;
   auto threshold = [&](int s, int t, int64_t within) {
     if (!field_) return within;
     for (const int u : {s, t})
@@ -481,13 +489,11 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   int best = leader();
   // A tiny loop's phase off its window rises to a tie with the leader, which
   // it then beats or not by phase id alone (create/tiny_loops.hpp).
-  if (level == kWideSnap) {
-    const auto at_node = std::equal_range(closings_.begin(), closings_.end(), LoopClosing{id, 0},
-                                          [](const LoopClosing& x, const LoopClosing& y) { return x.node < y.node; });
-    for (auto c = at_node.first; c != at_node.second; ++c)
+  if (closing.first != closing.second) {
+    for (auto c = closing.first; c != closing.second; ++c)
       for (int s = 0; s < k_; ++s) {
         const int64_t gap = int64_t(q[best]) - q[s];
-        if (ids[s] == c->phase && gap > 0 && gap < threshold(s, best, wide_eps_) && !is_kept()) {
+        if (c->phase >= 0 && ids[s] == c->phase && gap > 0 && gap < threshold(s, best, wide_eps_) && !is_kept()) {
           q[s] = q[best];
           changed = true;
         }

@@ -35,6 +35,8 @@ inline bool beats(int64_t va, int32_t a, int64_t vb, int32_t b) { return va > vb
 /// A lattice node where create raises `phase` up to a tie with the node's
 /// leader, to close a tiny loop (create/tiny_loops.hpp).
 struct LoopClosing {
+  /// For `phase`: tie every phase within the wider snap instead.
+  static constexpr int32_t kTieAll = -1;
   int64_t node;
   int32_t phase;
   auto operator<=>(const LoopClosing&) const = default;
@@ -103,8 +105,9 @@ public:
   /// a pinched phase. Each level draws anew, so a draw that ties again is redrawn.
   /// kWideSnap snaps as kSnap, then raises the phases close_loops() gives the
   /// node to a tie with its leader where they are within widen_snap()'s
-  /// distance of it (create/tiny_loops.hpp); a node at it that offends goes on
-  /// to kFirstUntie.
+  /// distance of it (create/tiny_loops.hpp); given LoopClosing::kTieAll, it
+  /// snaps within that distance instead. A node at it that offends goes on to
+  /// kFirstUntie.
   using RepairLevel = uint8_t;
   static constexpr RepairLevel kSnap = 0, kUnsnap = 1, kFirstUntie = 2, kWideSnap = 254;
 

@@ -41,12 +41,12 @@ std::vector<TripleCurve> tiny_loops(const std::vector<Vec3>& points, const Trian
 /// The phase of a tiny loop of three phases that is not on its window: the one
 /// surface whose triangles at the loop all lie within the loop's box grown by
 /// its size (`window_of`'s bits per pair: 1 a triangle beyond, 2 one within);
-/// -1 if not one.
+/// LoopClosing::kTieAll if not one.
 int32_t phase_off_the_window(const TripleCurve& loop, const std::array<uint8_t, 3>& window_of) {
-  int32_t off = -1;
+  int32_t off = LoopClosing::kTieAll;
   for (size_t k = 0; k < 3; ++k) {
     if (window_of[k] != 2) continue;
-    if (off >= 0) return -1;
+    if (off >= 0) return LoopClosing::kTieAll;
     off = loop.phases[2 - k]; // pair k of (0,1), (0,2), (1,2) leaves out phase 2, 1, 0
   }
   return off;
@@ -64,8 +64,7 @@ std::vector<int32_t> tiny_loop_vertices(const std::vector<Vec3>& points, const T
 }
 
 std::vector<LoopClosing> tiny_loop_closings(const SlabsMesh& mesh, double extent) {
-  std::vector<TripleCurve> loops = tiny_loops(mesh.points, mesh.triangles, mesh.pairs, extent);
-  std::erase_if(loops, [](const TripleCurve& loop) { return loop.phases.size() != 3; });
+  const std::vector<TripleCurve> loops = tiny_loops(mesh.points, mesh.triangles, mesh.pairs, extent);
   if (loops.empty()) return {};
   std::vector<int32_t> loop_of(mesh.points.size(), -1);
   std::vector<Vec3> lo(loops.size()), hi(loops.size());
@@ -90,6 +89,7 @@ std::vector<LoopClosing> tiny_loop_closings(const SlabsMesh& mesh, double extent
       const int32_t l = loop_of[size_t(v)];
       if (l < 0) continue;
       const std::vector<int32_t>& p = loops[size_t(l)].phases;
+      if (p.size() != 3) continue;
       const PhasePair pair = mesh.pairs[t];
       const size_t k = pair == PhasePair{p[0], p[1]} ? 0 : pair == PhasePair{p[0], p[2]} ? 1 : 2;
       if (k == 2 && pair != PhasePair{p[1], p[2]}) continue; // not the loop's (no vertex of it has another)
@@ -102,8 +102,8 @@ std::vector<LoopClosing> tiny_loop_closings(const SlabsMesh& mesh, double extent
   }
   std::vector<LoopClosing> closings;
   for (size_t l = 0; l < loops.size(); ++l) {
-    const int32_t phase = phase_off_the_window(loops[l], window_of[l]);
-    if (phase < 0) continue;
+    const int32_t phase =
+        loops[l].phases.size() == 3 ? phase_off_the_window(loops[l], window_of[l]) : LoopClosing::kTieAll;
     for (const int32_t v : loops[l].nodes) {
       const LimitKey& key = mesh.keys[size_t(v)];
       for (int i = 0; i < key.count; ++i) closings.push_back({key.nodes[size_t(i)], phase});

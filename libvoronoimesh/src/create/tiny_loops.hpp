@@ -37,7 +37,10 @@ std::vector<int32_t> tiny_loop_vertices(const std::vector<Vec3>& points, const T
 /// the lattice nodes of each loop's vertices, the loop's phase that is not on
 /// its window (the surface of the loop's triangles that lie within the loop's
 /// size of its box, and only of one phase pair). A loop of more than three
-/// phases, or without one such window, is left. Sorted, no repeats.
+/// phases, or without one such window (a tiny lens of a phase on the surface of
+/// two others, where two of its surfaces lie within, or none), gets
+/// LoopClosing::kTieAll: every phase there ties within the wider snap, as
+/// before 2026-12-07. Sorted, no repeats.
 std::vector<LoopClosing> tiny_loop_closings(const SlabsMesh& mesh, double extent);
 
 } // namespace vm::detail
