@@ -489,17 +489,17 @@ bool NodeValues::fill(const SampledField::NodeSamples& at, int64_t id, int64_t l
   int best = leader();
   // A tiny loop's phase off its window rises to a tie with the leader, which
   // it then beats or not by phase id alone (create/tiny_loops.hpp).
-  if (closing.first != closing.second) {
-    for (auto c = closing.first; c != closing.second; ++c)
-      for (int s = 0; s < k_; ++s) {
-        const int64_t gap = int64_t(q[best]) - q[s];
-        if (c->phase >= 0 && ids[s] == c->phase && gap > 0 && gap < threshold(s, best, wide_eps_) && !is_kept()) {
-          q[s] = q[best];
-          changed = true;
-        }
+  for (auto c = closing.first; c != closing.second; ++c) {
+    if (c->phase == LoopClosing::kTieAll) continue; // tied by the snap above
+    for (int s = 0; s < k_; ++s) {
+      const int64_t gap = int64_t(q[best]) - q[s];
+      if (ids[s] == c->phase && gap > 0 && gap < threshold(s, best, wide_eps_) && !is_kept()) {
+        q[s] = q[best];
+        changed = true;
       }
-    best = leader();
+    }
   }
+  if (closing.first != closing.second) best = leader();
   snapped_[n] = changed;
   label_[size_t(local)] = ids[best];
   return changed;
