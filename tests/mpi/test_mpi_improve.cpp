@@ -42,6 +42,7 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterati
   run.guard_crossings = guard_crossings;
   run.stop_when_converged = stop_when_converged;
   EXPECT_EQ(stats.iterations, pipeline.run(alone, scene.field.get(), run));
+  EXPECT_GT(alone.num_triangles(), 0u);
   expect_same_mesh(together, alone.to_node_mesh());
   return stats;
 }
