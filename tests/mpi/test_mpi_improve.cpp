@@ -7,6 +7,7 @@
 
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/improve/registry.hpp"
 #include "voronoimesh/mpi/distributed.hpp"
 #include "voronoimesh/run/meshing.hpp"
@@ -32,7 +33,9 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterati
   const Pipeline pipeline = Pipeline::parse(passes, builtin_registry());
   mpi::MeshPart part = mpi::create_part(MPI_COMM_WORLD, scene, o);
   mpi::DistributedStats stats;
-  mpi::improve_part(MPI_COMM_WORLD, part, *scene.field, pipeline, iterations, guard_crossings, &stats,
+  // A closed mesh's phase outside the box needs its function too.
+  const auto phases = part.outside_phase >= 0 ? with_outside_phase(scene.field, part.domain) : scene.field;
+  mpi::improve_part(MPI_COMM_WORLD, part, *phases, pipeline, iterations, guard_crossings, &stats,
                     stop_when_converged);
   const NodeMesh together = mpi::assemble(MPI_COMM_WORLD, part);
   if (rank() != 0) return stats;
@@ -41,7 +44,7 @@ mpi::DistributedStats expect_same_as_one_process(const Scene& scene, int iterati
   run.iterations = iterations;
   run.guard_crossings = guard_crossings;
   run.stop_when_converged = stop_when_converged;
-  EXPECT_EQ(stats.iterations, pipeline.run(alone, scene.field.get(), run));
+  EXPECT_EQ(stats.iterations, pipeline.run(alone, phases.get(), run));
   EXPECT_GT(alone.num_triangles(), 0u);
   expect_same_mesh(together, alone.to_node_mesh());
   return stats;

@@ -4,6 +4,7 @@
 // are listed with their parameters.
 
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
 #include "voronoimesh/check/validate.hpp"
@@ -50,6 +51,26 @@ TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {
   Scene scene = example_scene("four_spheres.json", 16);
   InterfaceMesh mesh = initial_mesh(scene);
   EXPECT_THROW(Pipeline::parse("smooth", builtin_registry()).run(mesh, nullptr, iterations(1)), InvalidInput);
+}
+
+// A closed mesh's phase outside the box, with the scene's field alone: refused
+// by name, not read out of bounds; with_outside_phase() runs.
+TEST(Pipeline, refuses_a_field_without_a_phase_of_the_mesh) {
+  const Scene scene = example_scene("four_spheres.json", 12);
+  CreateParams closed;
+  closed.close = true;
+  NodeMesh created = test::created_mesh(scene, closed);
+  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(created);
+  const Pipeline smooth = Pipeline::parse("smooth", builtin_registry());
+  try {
+    smooth.run(mesh, scene.field.get(), iterations(1));
+    ADD_FAILURE() << "ran with a field that lacks the mesh's outside phase";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the mesh has phase 5, but its phase functions only 5 phases"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(smooth.run(mesh, phases_of_mesh(created, scene.field).get(), iterations(1)), 1);
 }
 
 TEST(Pipeline, stops_when_quality_stops_improving_after_one_last_iteration_told_that_it_is_the_last) {

@@ -1,5 +1,5 @@
 /// @file improve/field_checks.cpp
-/// refuse_not_finite() (field_checks.hpp).
+/// refuse_not_finite() and require_phases() (field_checks.hpp).
 
 #include "improve/field_checks.hpp"
 
@@ -29,6 +29,32 @@ void refuse_not_finite(const InterfaceMesh& mesh, const PhaseField& field, const
   // Evaluated again, every function was finite: it is not a function of the point alone.
   throw InvalidInput(cat("the phase functions at node ", n, at, " gave a value or gradient that is not finite once, "
                          "and finite values when asked again"));
+}
+
+namespace {
+
+void require_phase(const PhaseField& field, int32_t top) {
+  if (top >= field.num_phases())
+    throw InvalidInput(cat("the mesh has phase ", top, ", but its phase functions only ", field.num_phases(),
+                           " phases (0 to ", field.num_phases() - 1, ")",
+                           top == field.num_phases() ? ": a closed mesh's phase outside the box needs "
+                                                       "with_outside_phase() or phases_of_mesh()"
+                                                     : ": give the input the mesh was made from"));
+}
+
+} // namespace
+
+void require_phases(const PhaseField& field, std::span<const PhasePair> pairs) {
+  int32_t top = -1;
+  for (const PhasePair& p : pairs) top = std::max({top, p[0], p[1]});
+  require_phase(field, top);
+}
+
+void require_phases(const PhaseField& field, const InterfaceMesh& mesh) {
+  int32_t top = -1;
+  for (const PhaseSet& set : mesh.phases())
+    for (const int16_t p : set) top = std::max(top, int32_t(p));
+  require_phase(field, top);
 }
 
 } // namespace vm::detail

@@ -10,6 +10,7 @@
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace vm::detail {
@@ -18,5 +19,13 @@ namespace vm::detail {
 /// point and the value or gradient that is not finite, for the lowest node with
 /// flagged[n] set; returns when none is.
 void refuse_not_finite(const InterfaceMesh& mesh, const PhaseField& field, const std::vector<uint8_t>& flagged);
+
+/// Throws InvalidInput unless `field` has phase `top`, the largest of a mesh's
+/// phases (those of its triangles' `pairs`, or of `mesh`'s nodes): the passes
+/// would evaluate a phase it lacks out of bounds. A closed mesh's phase outside
+/// the box comes with with_outside_phase() (phases_of_mesh()); a mesh made from
+/// another input has other phases.
+void require_phases(const PhaseField& field, std::span<const PhasePair> pairs);
+void require_phases(const PhaseField& field, const InterfaceMesh& mesh);
 
 } // namespace vm::detail

@@ -7,6 +7,7 @@
 #include "core/parallel.hpp"
 #include "improve/convergence.hpp"
 #include "improve/crossing_windows.hpp"
+#include "improve/field_checks.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -156,6 +157,7 @@ std::vector<double> Pipeline::iterate(PassContext& context, const std::vector<st
 int Pipeline::run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions& options) const {
   if (needs_field() && !field)
     throw InvalidInput(located("pipeline", "'" + describe() + "' needs the phase functions (give --field)"));
+  if (field) detail::require_phases(*field, mesh);
   const std::vector<std::unique_ptr<Pass>> passes = make_passes();
   PassContext context(mesh, field);
   context.guard_crossings = options.guard_crossings;

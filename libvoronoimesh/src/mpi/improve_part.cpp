@@ -19,6 +19,7 @@
 
 #include "improve/convergence.hpp"
 #include "improve/edge_lengths.hpp"
+#include "improve/field_checks.hpp"
 #include "improve/part_agreement.hpp"
 #include "mpi/window.hpp"
 #include "mpi/window_collapse_peers.hpp"
@@ -319,6 +320,7 @@ void improve_part(MPI_Comm c, MeshPart& part, const PhaseField& field, const Pip
                            "' does not run on parts of a distributed mesh (of the built-in passes, smooth, project, "
                            "clamp and flip do)");
     if (iterations <= 0) return;
+    vm::detail::require_phases(field, part.pairs);
     std::vector<double> own_z;
     for (size_t v = 0; v < part.points.size(); ++v)
       if (part.owners[v] == comm.rank()) own_z.push_back(part.points[v].z());

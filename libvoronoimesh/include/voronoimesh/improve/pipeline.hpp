@@ -196,6 +196,7 @@ public:
   /// @param options iterations, stopping rules, the crossing guard and the observer
   /// @return the number of iterations done
   /// @throws InvalidInput if a pass needs the phase functions and `field` is null
+  ///         or lacks a phase of the mesh (a closed mesh's outside phase: phases_of_mesh())
   int run(InterfaceMesh& mesh, const PhaseField* field, const RunOptions& options) const;
 
   /// The configured passes, made once for a run of iterate() calls.

@@ -141,7 +141,8 @@ MeshPart create_part(MPI_Comm comm, const SampledField& block, const CreateParam
 /// @param stop_when_converged stop once quality stops improving, by Pipeline::run()'s rule
 ///                        (RunOptions::stop_when_converged, with its default tolerances), after the
 ///                        same iteration as one process; `iterations` is then the most
-/// @throws InvalidInput for a pass that does not run on parts of a distributed mesh
+/// @throws InvalidInput for a pass that does not run on parts of a distributed mesh, and when
+///                      `field` lacks a phase of the mesh (a closed mesh's outside phase)
 void improve_part(MPI_Comm comm, MeshPart& part, const PhaseField& field, const Pipeline& pipeline, int iterations,
                   bool guard_crossings = true, DistributedStats* stats = nullptr, bool stop_when_converged = false);
 
