@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <span>
 #include <tuple>
@@ -242,23 +243,38 @@ std::vector<std::array<int32_t, 2>> culprits_of(const InterfaceMesh& mesh, const
 /// edge's nodes are among `culprits`, and those that must be undone with them
 /// (FlipLog::with_dependents()). With peers, a flip is flagged as one process
 /// flags it once every rank has heard of the others' flags: each rank says
-/// which flips it flagged that it decides (improve/flip_peers.hpp), until no
-/// rank flags one more.
+/// which flips it flagged since, each by its edge and how many flips of that
+/// edge came before it (improve/flip_peers.hpp), until no rank flags one more.
+/// (By its edge alone, an earlier flip of it would be undone too, as a culprit
+/// is, where one process keeps it.)
 std::vector<uint8_t> to_undo(const InterfaceMesh& mesh, const detail::FlipLog& log,
                              std::vector<std::array<int32_t, 2>> culprits, const std::vector<uint8_t>& undone,
                              FlipPeers* peers) {
+  std::sort(culprits.begin(), culprits.end());
   std::vector<uint8_t> undo(log.size(), 0);
+  for (size_t i = 0; i < log.size(); ++i)
+    undo[i] = !undone[i] && std::binary_search(culprits.begin(), culprits.end(), log.edge_nodes(i));
+  std::map<detail::FlipInstance, size_t> flip_of; // with peers: each flip by its name across ranks
+  std::vector<int32_t> earlier(peers ? log.size() : 0);
+  if (peers) {
+    std::map<std::array<int32_t, 2>, int32_t> flips_of_edge;
+    for (size_t i = 0; i < log.size(); ++i) {
+      earlier[i] = flips_of_edge[log.edge_nodes(i)]++;
+      flip_of[{log.edge_nodes(i), earlier[i]}] = i;
+    }
+  }
   while (true) {
-    std::sort(culprits.begin(), culprits.end());
     const std::vector<uint8_t> before = undo;
-    for (size_t i = 0; i < log.size(); ++i)
-      undo[i] = undo[i] || (!undone[i] && std::binary_search(culprits.begin(), culprits.end(), log.edge_nodes(i)));
     log.with_dependents(undo, undone, mesh.num_nodes());
     if (!peers) return undo;
-    culprits.clear();
+    std::vector<detail::FlipInstance> flagged;
     for (size_t i = 0; i < log.size(); ++i)
-      if (undo[i] && !before[i] && peers->decides(log.edge_nodes(i))) culprits.push_back(log.edge_nodes(i));
-    if (!peers->agree_on_culprits(culprits)) return undo;
+      if (undo[i] && !before[i]) flagged.push_back({log.edge_nodes(i), earlier[i]});
+    if (!peers->agree_on_flips(flagged)) return undo;
+    for (const detail::FlipInstance& f : flagged) {
+      const auto found = flip_of.find(f);
+      if (found != flip_of.end() && !undone[found->second]) undo[found->second] = 1;
+    }
   }
 }
 

@@ -21,6 +21,16 @@ struct FlipCandidate {
   std::array<int32_t, 4> nodes;
 };
 
+/// A flip of a call's log, named alike on every rank whose window holds it:
+/// its edge's nodes before the flip, and how many flips of that edge came
+/// before it in the call (a window that holds an edge makes all its flips, in
+/// the order one process makes them).
+struct FlipInstance {
+  std::array<int32_t, 2> edge;
+  int32_t earlier;
+  auto operator<=>(const FlipInstance&) const = default;
+};
+
 class FlipPeers {
 public:
   virtual ~FlipPeers() = default;
@@ -34,14 +44,17 @@ public:
   /// True when this rank answers for the crossings of the triangle with these
   /// nodes (the windows of the others hold what this one may lack).
   virtual bool answers_for(const std::array<int32_t, 3>& triangle) = 0;
-  /// True when this rank decides the flip of the edge with these nodes (i < j)
-  /// as one process would: the owner of the lower node, as in choose().
-  virtual bool decides(const std::array<int32_t, 2>& edge) = 0;
   /// Replaces `culprits` (flipped edges, as their nodes before the flip) with
   /// every rank's, those whose nodes are in this window; returns whether any
   /// rank had one (then every rank undoes those flips and the ones after them
   /// that share a node, improve/flip_log.hpp).
   virtual bool agree_on_culprits(std::vector<std::array<int32_t, 2>>& culprits) = 0;
+  /// Replaces `flips` (flips this rank must undo with the culprits') with every
+  /// rank's, those whose nodes are in this window; returns whether any rank had
+  /// one. Unlike a culprit, which names every flip of its edge, each names one
+  /// flip: one process undoes only the flips after an undone one
+  /// (FlipLog::with_dependents()), not the earlier flips of their edges.
+  virtual bool agree_on_flips(std::vector<FlipInstance>& flips) = 0;
 };
 
 } // namespace vm::detail

@@ -88,4 +88,19 @@ bool WindowFlipPeers::agree_on_culprits(std::vector<std::array<int32_t, 2>>& cul
   return !all.empty();
 }
 
+bool WindowFlipPeers::agree_on_flips(std::vector<vm::detail::FlipInstance>& flips) {
+  std::vector<std::array<int64_t, 3>> ids;
+  for (const auto& f : flips)
+    ids.push_back({window_.vertex_ids[size_t(f.edge[0])], window_.vertex_ids[size_t(f.edge[1])], f.earlier});
+  std::vector<std::array<int64_t, 3>> all = comm_.all_gather(std::span<const std::array<int64_t, 3>>(ids));
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  flips.clear();
+  for (const auto& [a, b, earlier] : all) {
+    const int32_t la = window_.local(a), lb = window_.local(b);
+    if (la >= 0 && lb >= 0) flips.push_back({{la, lb}, int32_t(earlier)});
+  }
+  return !all.empty();
+}
+
 } // namespace vm::mpi::detail

@@ -29,8 +29,8 @@ public:
   bool answers_for(const std::array<int32_t, 3>& triangle) override {
     return own_[size_t(std::min({triangle[0], triangle[1], triangle[2]}))]; // local order is id order
   }
-  bool decides(const std::array<int32_t, 2>& edge) override { return own_[size_t(std::min(edge[0], edge[1]))] != 0; }
   bool agree_on_culprits(std::vector<std::array<int32_t, 2>>& culprits) override;
+  bool agree_on_flips(std::vector<vm::detail::FlipInstance>& flips) override;
 
 private:
   Comm& comm_;
