@@ -320,3 +320,24 @@ TEST(NodeRings, answers_as_the_interface_mesh_does) {
     EXPECT_GT(box_nodes, 0u); // the box faces were compared where they are set
   }
 }
+
+// The box faces a node lies on follow its moves and placements, as a mesh
+// built from the moved positions finds them (distributed improvement builds its
+// windows afresh every iteration and must make the one-process mesh).
+TEST(InterfaceMesh, box_faces_follow_the_nodes) {
+  InterfaceMesh im = InterfaceMesh::from_node_mesh(test::created_mesh(test::example_scene("four_spheres.json", 12)));
+  const Box box = im.domain();
+  int32_t inner = -1;
+  for (int32_t n = 0; n < int32_t(im.num_nodes()) && inner < 0; ++n)
+    if (im.box_faces()[size_t(n)] == 0) inner = n;
+  ASSERT_GE(inner, 0);
+  std::vector<Vec3> delta(im.num_nodes(), Vec3::Zero());
+  delta[size_t(inner)].x() = box.min.x() - im.positions()[size_t(inner)].x(); // onto the min-x face
+  im.move_nodes(delta);
+  EXPECT_EQ(im.box_faces()[size_t(inner)], 1u);
+  const Vec3 inside = (box.min + box.max) / 2;
+  im.place_nodes(std::vector<int32_t>{inner}, std::vector<Vec3>{inside});
+  EXPECT_EQ(im.box_faces()[size_t(inner)], 0u);
+  const InterfaceMesh rebuilt = InterfaceMesh::from_node_mesh(im.to_node_mesh());
+  EXPECT_EQ(rebuilt.box_faces(), im.box_faces());
+}

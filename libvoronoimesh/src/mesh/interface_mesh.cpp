@@ -213,6 +213,11 @@ void InterfaceMesh::find_box_faces() {
 void InterfaceMesh::mirror_position(size_t n) {
   const OMesh::Point p(pos_[n].x(), pos_[n].y(), pos_[n].z());
   for (int32_t c : copies(int32_t(n))) mesh_->set_point(OMesh::VertexHandle(c), p);
+  // The box faces a node lies on follow it, as a mesh built from the moved
+  // positions finds them: distributed improvement builds its windows afresh
+  // every iteration, and one process must make the same mesh (a node clamped
+  // onto a face stays on it, and one that leaves is free).
+  box_[n] = detail::box_faces_at(pos_[n], domain_);
 }
 
 void InterfaceMesh::move_nodes(const std::vector<Vec3>& delta) {

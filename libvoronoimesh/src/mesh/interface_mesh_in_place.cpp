@@ -150,12 +150,10 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
   // The edit: nodes placed (before the faces that come read their points),
   // faces out of OpenMesh, our arrays by face after them.
   version_ = next_version();
-  const std::vector<uint8_t> placed_box = detail::box_faces_of(edit.placed_at, domain_);
   for (size_t i = 0; i < edit.placed_nodes.size(); ++i) {
     const auto n = size_t(edit.placed_nodes[i]);
     pos_[n] = edit.placed_at[i];
-    box_[n] = placed_box[i];
-    mirror_position(n);
+    mirror_position(n); // and its box faces
   }
   std::vector<std::pair<int32_t, int32_t>> node_of_copy; // of the copies at removed faces
   for (const int32_t f : going)
@@ -198,11 +196,10 @@ bool InterfaceMesh::edit_in_place(const LocalEdit& edit, EditMoves& moves) {
     }
 
   // New nodes, then new copies, then the added faces on them.
-  const std::vector<uint8_t> new_box = detail::box_faces_of(edit.new_nodes, domain_);
   for (size_t i = 0; i < edit.new_nodes.size(); ++i) {
     pos_.push_back(edit.new_nodes[i]);
     phases_.emplace_back();
-    box_.push_back(new_box[i]);
+    box_.push_back(detail::box_faces_at(edit.new_nodes[i], domain_));
     adj_.add_list();
     copies_.add_list();
   }

@@ -7,15 +7,19 @@
 
 namespace vm::detail {
 
-std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain) {
+uint8_t box_faces_at(const Vec3& point, const Box& domain) {
   const double tol = 1e-9 * (domain.max - domain.min).norm();
+  uint8_t box = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(point[a] - domain.min[a]) <= tol) box |= uint8_t(1u << (2 * a));
+    if (std::abs(point[a] - domain.max[a]) <= tol) box |= uint8_t(1u << (2 * a + 1));
+  }
+  return box;
+}
+
+std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain) {
   std::vector<uint8_t> box(points.size(), 0);
-  parallel_for_each_index(points.size(), [&](size_t n) {
-    for (int a = 0; a < 3; ++a) {
-      if (std::abs(points[n][a] - domain.min[a]) <= tol) box[n] |= uint8_t(1u << (2 * a));
-      if (std::abs(points[n][a] - domain.max[a]) <= tol) box[n] |= uint8_t(1u << (2 * a + 1));
-    }
-  });
+  parallel_for_each_index(points.size(), [&](size_t n) { box[n] = box_faces_at(points[n], domain); });
   return box;
 }
 

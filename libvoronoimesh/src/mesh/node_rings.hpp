@@ -21,6 +21,8 @@ namespace vm::detail {
 /// Faces of `domain` each point lies on, as InterfaceMesh::box_faces(): bit 2a
 /// for the min side of axis a, bit 2a+1 for the max (within 1e-9 of the box diagonal).
 std::vector<uint8_t> box_faces_of(const std::vector<Vec3>& points, const Box& domain);
+/// box_faces_of() for one point.
+uint8_t box_faces_at(const Vec3& point, const Box& domain);
 
 /// The number of phases and box faces at a node (junction_order() of improve/smooth.hpp).
 inline int junction_order(const PhaseSet& phases, uint8_t box_faces) {

@@ -270,7 +270,7 @@ private:
   void refresh_phases(size_t n);
   /// The last node takes node n's id (n has no copies left); returns its old id.
   int32_t fill_node_slot(int32_t n);
-  void mirror_position(size_t n); ///< node n's position into the points of its copies
+  void mirror_position(size_t n); ///< node n's position into the points of its copies, and its box faces
   void find_box_faces();
 
   detail::HeapMesh mesh_;
