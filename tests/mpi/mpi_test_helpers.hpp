@@ -1,14 +1,16 @@
 #pragma once
-// What the MPI tests share: the rank, examples at a grid, and a check that a
-// failure reaches every rank.
+// What the MPI tests share: the rank, examples at a grid, whether a grid has
+// slabs for every rank, and a check that a failure reaches every rank.
 
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/array_input.hpp"
 #include "voronoimesh/fields/scene.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -25,6 +27,13 @@ inline int ranks() {
   int n = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &n);
   return n;
+}
+
+/// True when `grid` on `lattice` (bcc when unset) has a lattice slab for every
+/// rank: create_part() refuses fewer (more_ranks_than_slabs_are_refused).
+inline bool has_a_slab_per_rank(const GridSpec& grid, std::optional<Lattice> lattice) {
+  const Lattice kind = lattice.value_or(Lattice::bcc);
+  return grid_for_lattice(grid, kind).cells[2] / (kind == Lattice::bcc ? 2 : 1) >= ranks();
 }
 
 inline Scene example(const std::string& name, int grid) {

@@ -120,9 +120,7 @@ TEST(MpiCreate, random_cases_are_the_one_process_mesh) {
   int closed = 0, run = 0;
   for (uint64_t index = 0; index < kCases; ++index) {
     const RandomCase c = random_case(kSeed, index);
-    const Lattice lattice = c.options.lattice.value_or(Lattice::bcc);
-    if (grid_for_lattice(c.scene.grid, lattice).cells[2] / (lattice == Lattice::bcc ? 2 : 1) < ranks())
-      continue; // fewer slabs than ranks: refused (more_ranks_than_slabs_are_refused)
+    if (!has_a_slab_per_rank(c.scene.grid, c.options.lattice)) continue;
     SCOPED_TRACE(c.description());
     ++run;
     closed += expect_same_as_one_process(c.scene, c.options, true).create.wide_snapped_nodes > 0;

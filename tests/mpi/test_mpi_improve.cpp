@@ -110,8 +110,7 @@ TEST(MpiImprove, random_cases_are_the_one_process_mesh) {
   int compared = 0;
   for (uint64_t index = 0; index < 24; ++index) {
     const RandomCase c = random_case(104, index);
-    const Lattice lattice = c.options.lattice.value_or(Lattice::bcc);
-    if (grid_for_lattice(c.scene.grid, lattice).cells[2] / (lattice == Lattice::bcc ? 2 : 1) < ranks()) continue;
+    if (!has_a_slab_per_rank(c.scene.grid, c.options.lattice)) continue;
     MeshOptions o = c.options;
     o.threads = 1;
     const NodeMesh created = create_mesh(c.scene, o);
