@@ -129,7 +129,10 @@ TEST(Collapse, a_merge_that_folds_a_surface_fails_when_folds_are_refused) {
   NodeMesh trial;
   detail::merge_nodes(m, into, trial, turned, kept);
   ASSERT_TRUE(turned.empty());
-  ASSERT_TRUE(validate(trial).ok()) << validate(trial).summary();
+  NodeMesh compacted = trial; // the merged-away apex stays behind, a node of no triangle
+  std::vector<int32_t> kept_nodes;
+  detail::drop_unused_nodes(compacted, kept_nodes);
+  ASSERT_TRUE(validate(compacted).ok()) << validate(compacted).summary();
   ASSERT_GT(count_folds(trial), 0u);
   std::vector<int32_t> failed;
   EXPECT_TRUE(detail::find_merge_failures(trial, into, {}, failed));

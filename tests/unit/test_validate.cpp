@@ -96,6 +96,17 @@ TEST(Validate, missing_triangle_leaves_an_open_boundary) {
   EXPECT_EQ(r.nodes, std::vector<int32_t>(hole.begin(), hole.end())); // the hole's rim
 }
 
+// A node of no triangle is a point of no surface in every file written from
+// the mesh (create once left the corners of cancelled coincident triangles).
+TEST(Validate, a_node_no_triangle_uses_is_reported) {
+  NodeMesh m = test::tetrahedron();
+  m.points.push_back(Vec3(0.25, 0.25, 0.25));
+  const auto r = validate(m);
+  EXPECT_EQ(r.problem_count, 1u) << r.summary();
+  EXPECT_TRUE(reports(r, "unused node", "is a corner of no triangle")) << r.summary();
+  EXPECT_EQ(r.nodes, std::vector<int32_t>{int32_t(m.points.size()) - 1});
+}
+
 TEST(Validate, duplicate_triangle_is_reported_in_any_corner_order) {
   NodeMesh m = test::tetrahedron();
   auto t = m.triangles[1];

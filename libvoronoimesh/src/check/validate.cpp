@@ -155,6 +155,8 @@ public:
       : t_(tables), m_(tables.m), duplicates_(duplicates), edges_log_(edges), fans_(fans) {}
 
   void check(size_t n) {
+    if (t_.nt.of(n).empty())
+      fans_.add({int32_t(n)}, [&] { return cat("unused node: ", n, " is a corner of no triangle"); });
     duplicates_at(n);
     if (closed_fan(n)) return;
     edges_at(n);

@@ -4,6 +4,7 @@
 #include "core/clock.hpp"
 #include "core/huge_pages.hpp"
 #include "core/text.hpp"
+#include "create/coincident_triangles.hpp"
 #include "create/create_slabs.hpp"
 #include "create/lattice.hpp"
 #include "create/limit_key_index.hpp"
@@ -175,80 +176,6 @@ SlabsMesh extract(const detail::TetLattice& lattice, const detail::NodeValues& v
   e.first_owned_slab = numbering.global[size_t(owned[0] - cut[0])];
   if (cut[1] > owned[1]) e.slab_above = numbering.global[n - 1];
   return e;
-}
-
-/// Two triangles on the same three points are a phase squeezed to zero thickness
-/// between them (it won only on a face, by an exact tie). Seen from the first
-/// triangle's vertex order, each has a back and a front phase; the squeezed phase
-/// is the one they share, and what remains is the interface between the outer two
-/// (nothing, if those are the same phase). Couples that do not stack that way, and
-/// stacks of three or more, are left for the validator to report.
-void resolve_coincident_triangles(SlabsMesh& e, CreateStats& stats) {
-  auto& tris = e.triangles;
-  auto& pairs = e.pairs;
-  // Two polygons from different tets can only coincide on the face between them,
-  // so only triangles whose corners all lie in one lattice face (three lattice
-  // nodes between them) are candidates: a small fraction.
-  auto in_one_face = [&](const std::array<int32_t, 3>& tri) {
-    std::array<int64_t, 12> nodes;
-    int n = 0;
-    for (int32_t v : tri) {
-      const LimitKey& k = e.keys[size_t(v)];
-      for (int c = 0; c < k.count; ++c)
-        if (std::find(nodes.begin(), nodes.begin() + n, k.nodes[c]) == nodes.begin() + n) nodes[n++] = k.nodes[c];
-    }
-    return n <= 3;
-  };
-  std::vector<std::array<int32_t, 3>> sorted(tris.size());
-  std::vector<uint32_t> order;
-  for (size_t t = 0; t < tris.size(); ++t)
-    if (in_one_face(tris[t])) {
-      sorted[t] = tris[t];
-      std::sort(sorted[t].begin(), sorted[t].end());
-      order.push_back(uint32_t(t));
-    }
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b;
-  });
-  std::vector<char> removed(tris.size(), 0);
-  for (size_t g = 0; g < order.size();) {
-    size_t end = g + 1;
-    while (end < order.size() && sorted[order[end]] == sorted[order[g]]) ++end;
-    if (end - g == 2) {
-      const uint32_t a = order[g], b = order[g + 1];
-      bool same_orientation = false;
-      for (int r = 0; r < 3; ++r)
-        if (tris[b][r] == tris[a][0] && tris[b][(r + 1) % 3] == tris[a][1]) same_orientation = true;
-      const int32_t a_back = pairs[a][0], a_front = pairs[a][1];
-      const int32_t b_back = same_orientation ? pairs[b][0] : pairs[b][1];
-      const int32_t b_front = same_orientation ? pairs[b][1] : pairs[b][0];
-      int32_t back = -1, front = -1;
-      if (a_front == b_back) back = a_back, front = b_front; // a below b
-      else if (a_back == b_front) back = b_back, front = a_front; // b below a
-      if (back >= 0) {
-        ++stats.coincident_pairs;
-        removed[b] = 1;
-        removed[a] = back == front;
-        if (back > front) std::swap(tris[a][1], tris[a][2]);
-        pairs[a] = {std::min(back, front), std::max(back, front)};
-      }
-    }
-    g = end;
-  }
-  size_t w = 0, owned_begin = 0, owned_end = 0;
-  for (size_t t = 0; t < tris.size(); ++t) {
-    if (t == e.owned_begin) owned_begin = w;
-    if (t == e.owned_end) owned_end = w;
-    if (!removed[t]) {
-      tris[w] = tris[t];
-      pairs[w] = pairs[t];
-      ++w;
-    }
-  }
-  e.owned_begin = e.owned_begin < tris.size() ? owned_begin : w;
-  e.owned_end = e.owned_end < tris.size() ? owned_end : w;
-  tris.resize(w);
-  pairs.resize(w);
 }
 
 } // namespace

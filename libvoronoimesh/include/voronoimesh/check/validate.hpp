@@ -35,6 +35,7 @@ bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c);
 /// Checks a node-level interface mesh:
 ///  - node ids in range; no triangle with a repeated node; no zero-area triangle
 ///    (area <= 1e-12 x longest edge squared); no two triangles on the same three nodes;
+///  - every node is a corner of a triangle;
 ///  - every pair (p, q) has p < q, both in [0, num_phases);
 ///  - for every phase, its boundary (its triangles, oriented outward) is closed
 ///    and 2-manifold: each edge is used once in each direction, except edges on
