@@ -110,10 +110,19 @@ int curve_neighbours(const InterfaceMesh& mesh, int32_t v, std::array<int32_t, 3
 /// q 0.18. (Loops of four spread too lowered as many label volumes' worst
 /// triangles as they raised.)
 bool loop_spreading(const InterfaceMesh& mesh, const PhaseField& field, int32_t v, Vec3& force) {
-  if (phase_count(mesh.phases()[size_t(v)]) != 3 || mesh.box_faces()[size_t(v)] != 0) return false;
+  auto on_a_curve = [&](int32_t n) {
+    return phase_count(mesh.phases()[size_t(n)]) == 3 && mesh.box_faces()[size_t(n)] == 0;
+  };
   std::array<int32_t, 3> ends{}, theirs{};
-  if (curve_neighbours(mesh, v, ends) != 2 || curve_neighbours(mesh, ends[0], theirs) != 2) return false;
-  if (theirs[0] != ends[1] && theirs[1] != ends[1]) return false;
+  if (!on_a_curve(v) || curve_neighbours(mesh, v, ends) != 2) return false;
+  // Both ends alike, each a curve node whose other curve neighbour is the other
+  // end: not a curve's end on the box or at a junction point with a chord back
+  // to v. Asked of one end only, the answer depended on which came first, the
+  // order of v's copies, which a rank's window builds otherwise than one process.
+  for (int e = 0; e < 2; ++e)
+    if (!on_a_curve(ends[size_t(e)]) || curve_neighbours(mesh, ends[size_t(e)], theirs) != 2 ||
+        (theirs[0] != ends[size_t(1 - e)] && theirs[1] != ends[size_t(1 - e)]))
+      return false;
   const auto& pos = mesh.positions();
   const Vec3 &x = pos[size_t(v)], &a = pos[size_t(ends[0])], &b = pos[size_t(ends[1])];
   // The tangent's sense toward b: the sense the chord from a to b has along it,
