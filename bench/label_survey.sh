@@ -39,7 +39,7 @@ for kind in e32 e48 e64 g32 g64; do
     corners=$(grep -A3 '^triangle' <<< "$stats" | tail -3 | sed -E 's/.*\): //; s/ of .*//; s/, on a box.*//' |
       sort | uniq -c | awk '{n=$1; $1=""; printf "%s%d%s", (NR>1 ? ", " : ""), n, $0}')
     # Whether its smallest angle is its surface's whole corner at a junction
-    # point (`stats` says so): no triangulation keeping the junctions beats it.
+    # point (`stats` says so): no triangulation beats it while the junctions stay put.
     bound=$(grep -q 'whole corner' <<< "$stats" && echo yes || echo no)
     echo "| $name | $triangles | $min | $mean | $iterations | $corners | $bound |"
   done

@@ -310,7 +310,7 @@ std::string to_text(std::span<const WorstTriangle> worst, const NodeMesh& m) {
     if (w.corner_node >= 0) {
       std::snprintf(buf, sizeof buf,
                     "  its smallest angle is its surface's whole corner at node %d, a junction point: no "
-                    "triangulation keeping the point and its curves does better there\n",
+                    "triangulation does better there while the point and its curves stay where they are\n",
                     w.corner_node);
       out += buf;
     }

@@ -373,9 +373,8 @@ std::string sliver_note(const NodeMesh& mesh) {
   std::snprintf(worst_q, sizeof worst_q, "%.2g", worst.front().quality);
   const std::string corners =
       at_corners == 0 ? std::string("none fills its surface's whole corner at a junction point")
-                      : cat(at_corners, " of them fill their surface's whole corner at a junction point, whose curves "
-                                        "leave it too close together for any remeshing that keeps the junctions to do "
-                                        "better");
+                      : cat(at_corners, " of them fill their surface's whole corner at a junction point: while "
+                                        "the point and its curves stay where they are, no remeshing does better");
   return cat(slivers, slivers == 1 ? " triangle is a sliver" : " triangles are slivers", " (q below ", kSliver,
              ", the worst ", worst_q, "); ", corners, "; `voronoimesh stats --worst ", slivers, "` lists them");
 }
