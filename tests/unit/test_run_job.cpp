@@ -300,6 +300,31 @@ struct NoteRecorder : RunObserver {
   void note(const std::string& line) override { notes.push_back(line); }
 };
 
+// A mesh file with a vertex of no triangle (another tool's edit) is improved
+// without it, and a note says so; validate() would refuse it as it stands.
+TEST_F(RunJob, vertices_of_no_triangle_in_a_mesh_file_are_dropped_with_a_note) {
+  run_job(four_spheres_job(path("created.ply"), 0));
+  NodeMesh created = io::read_ply(path("created.ply"));
+  const NodeMesh original = created;
+  created.points.insert(created.points.begin() + 7, Vec3(0.5, 0.5, 0.5)); // vertex 7, the others after it shifted
+  for (auto& t : created.triangles)
+    for (int32_t& v : t) v += v >= 7;
+  ASSERT_FALSE(validate(created).ok());
+  io::write_ply(created, path("stray.ply"));
+  MeshJob copy;
+  copy.mesh = path("stray.ply");
+  copy.options.iterations = 0;
+  copy.outputs.mesh = path("copied.ply");
+  NoteRecorder seen;
+  const NodeMesh out = run_job(copy, &seen);
+  EXPECT_EQ(out.points, original.points);
+  EXPECT_EQ(out.triangles, original.triangles);
+  const std::string note = "stray.ply: 1 of its " + std::to_string(created.points.size()) +
+                           " vertices belong to no triangle: dropped";
+  EXPECT_EQ(std::count_if(seen.notes.begin(), seen.notes.end(),
+                          [&](const std::string& n) { return n.find(note) != std::string::npos; }), 1);
+}
+
 TEST_F(RunJob, a_phase_the_mesh_loses_is_named_with_its_size_never_dropped_silently) {
   // The 2 x 2 x 2 volume of mesher test suites: label 1 is one voxel, too small
   // for the default phase functions (--voxel-faithful keeps it: VoxelFaithful.*).

@@ -7,6 +7,7 @@
 #include "core/memory.hpp"
 #include "core/staged_outputs.hpp"
 #include "core/text.hpp"
+#include "improve/node_merge.hpp"
 #include "run/run_job.hpp"
 #include "voronoimesh/check/history.hpp"
 #include "voronoimesh/check/stats.hpp"
@@ -168,10 +169,18 @@ void write_staged(detail::StagedOutputs& staged, const NodeMesh& mesh, const Run
 }
 
 /// The mesh at `path` (a PLY written by voronoimesh), which must be valid: an
-/// input's fault, not the library's, when it is not.
+/// input's fault, not the library's, when it is not. Vertices no triangle uses
+/// (left by other tools' edits) are dropped with a note rather than refused:
+/// they hold no surface, and validate() reports them.
 NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
   begin(observer, Stage::read, "reading " + path + "...");
   NodeMesh mesh = io::read_ply(path);
+  const size_t vertices = mesh.points.size();
+  std::vector<int32_t> kept;
+  if (mesh.triangles.size() > 0) detail::drop_unused_nodes(mesh, kept);
+  if (observer && mesh.points.size() < vertices)
+    observer->note(located(path, cat(vertices - mesh.points.size(), " of its ", vertices, " vertices belong to no "
+                                     "triangle: dropped, the others numbered in order")));
   const ValidationReport report = validate(mesh);
   if (!report.ok())
     throw InvalidInput(located(path, cat("not a valid interface mesh (", report.problem_count,
