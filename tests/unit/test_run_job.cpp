@@ -325,6 +325,25 @@ TEST_F(RunJob, vertices_of_no_triangle_in_a_mesh_file_are_dropped_with_a_note) {
                           [&](const std::string& n) { return n.find(note) != std::string::npos; }), 1);
 }
 
+// The library's improve_mesh() too: a stray node would fail the improved
+// mesh's validation, blamed on the library.
+TEST_F(RunJob, improve_mesh_drops_nodes_of_no_triangle_with_a_note) {
+  const Scene scene = parse_scene(R"({"grid": 12, "phases": [{"kind": "constant", "value": 0},
+      {"kind": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.3}]})", "ball.json");
+  NodeMesh mesh = create_mesh(scene);
+  const size_t nodes = mesh.points.size();
+  mesh.points.push_back(Vec3(0.5, 0.5, 0.5));
+  MeshOptions o;
+  o.iterations = 2;
+  NoteRecorder seen;
+  improve_mesh(mesh, scene.field, o, &seen);
+  EXPECT_EQ(mesh.points.size(), nodes);
+  EXPECT_TRUE(validate(mesh).ok());
+  ASSERT_EQ(seen.notes.size(), 1u);
+  EXPECT_EQ(seen.notes[0].rfind("the mesh: 1 of its " + std::to_string(nodes + 1) + " vertices belong to no triangle", 0),
+            0u) << seen.notes[0];
+}
+
 TEST_F(RunJob, a_phase_the_mesh_loses_is_named_with_its_size_never_dropped_silently) {
   // The 2 x 2 x 2 volume of mesher test suites: label 1 is one voxel, too small
   // for the default phase functions (--voxel-faithful keeps it: VoxelFaithful.*).

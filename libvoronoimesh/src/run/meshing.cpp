@@ -99,10 +99,24 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
              ": no surface in the mesh: smaller or thinner than the grid resolves (a finer --grid may keep it)");
 }
 
+/// Drops the vertices of `mesh` that no triangle uses (another tool's edits can
+/// leave them; they hold no surface and fail validation), numbering the others
+/// in order, with a note naming `what` holds them.
+void drop_vertices_of_no_triangle(NodeMesh& mesh, const std::string& what, RunObserver* observer) {
+  const size_t vertices = mesh.points.size();
+  std::vector<int32_t> kept;
+  if (mesh.triangles.empty()) return; // nothing to mesh: the caller says so
+  detail::drop_unused_nodes(mesh, kept);
+  if (observer && mesh.points.size() < vertices)
+    observer->note(cat(what, ": ", vertices - mesh.points.size(), " of its ", vertices,
+                       " vertices belong to no triangle: dropped, the others numbered in order"));
+}
+
 /// improve_mesh(), recording every iteration in `history` if given.
 int improve(NodeMesh& mesh, std::shared_ptr<const PhaseField> field, const MeshOptions& o, RunObserver* observer,
             QualityHistory* history) {
   detail::check_options(o);
+  drop_vertices_of_no_triangle(mesh, "the mesh", observer);
   const auto limit = detail::thread_limit(o);
   const Pipeline pipeline = detail::parse_pipeline(o);
   // A closed mesh has one more phase, outside the box; the passes need its function too.
@@ -169,18 +183,12 @@ void write_staged(detail::StagedOutputs& staged, const NodeMesh& mesh, const Run
 }
 
 /// The mesh at `path` (a PLY written by voronoimesh), which must be valid: an
-/// input's fault, not the library's, when it is not. Vertices no triangle uses
-/// (left by other tools' edits) are dropped with a note rather than refused:
-/// they hold no surface, and validate() reports them.
+/// input's fault, not the library's, when it is not; but vertices no triangle
+/// uses are dropped with a note, not refused.
 NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
   begin(observer, Stage::read, "reading " + path + "...");
   NodeMesh mesh = io::read_ply(path);
-  const size_t vertices = mesh.points.size();
-  std::vector<int32_t> kept;
-  if (mesh.triangles.size() > 0) detail::drop_unused_nodes(mesh, kept);
-  if (observer && mesh.points.size() < vertices)
-    observer->note(located(path, cat(vertices - mesh.points.size(), " of its ", vertices, " vertices belong to no "
-                                     "triangle: dropped, the others numbered in order")));
+  drop_vertices_of_no_triangle(mesh, path, observer);
   const ValidationReport report = validate(mesh);
   if (!report.ok())
     throw InvalidInput(located(path, cat("not a valid interface mesh (", report.problem_count,

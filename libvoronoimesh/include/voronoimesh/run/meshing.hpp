@@ -297,7 +297,8 @@ MeshOptions options_for_scene(MeshOptions options, const Scene& scene);
 
 /// Runs options.pipeline (pipeline_for() without a scene) for
 /// options.iterations on `mesh`, moving its nodes and flipping its edges in
-/// place (paper Algorithm 1).
+/// place (paper Algorithm 1). Nodes no triangle uses are dropped first (the
+/// others numbered in order), with a note to the observer.
 /// @param mesh     the mesh to improve, changed in place
 /// @param field    the phase functions `mesh` was created from (for a closed mesh without the outside
 ///                 phase, which is added: phases_of_mesh()); may be null when no pass needs it
