@@ -233,7 +233,8 @@ PYBIND11_MODULE(_voronoimesh, m) {
       .def(
           "validate", [](const Mesh& self) { return vm::validate(self.mesh).problems; },
           "The problems the validator finds (every phase closed and 2-manifold, junctions consistent, no duplicate "
-          "or zero-area triangles; at most 20, one line each): an empty list for a valid mesh")
+          "or zero-area triangles, no node without a triangle; at most 20, one line each): an empty list for a valid "
+          "mesh")
       .def("junctions", &junctions,
            "The triple curves: a list of dicts with 'phases' (labels), 'nodes' (int32 ids along the curve) and 'closed'")
       .def(
