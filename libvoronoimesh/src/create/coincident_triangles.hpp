@@ -14,9 +14,9 @@ namespace vm::detail {
 /// (nothing, if those are the same phase). Couples that do not stack that way, and
 /// stacks of three or more, are left for the validator to report. Where a pair
 /// cancels, corners that no triangle uses any more are dropped (any vertex no
-/// triangle uses is): a vertex lies in
-/// at most two neighbouring slabs, and every rank that numbers it cuts both, so
-/// all drop the same vertices and number the rest as one process does.
+/// triangle uses is): a vertex lies in at most two neighbouring slabs, and every
+/// rank that numbers it cuts both, so all drop the same vertices and number the
+/// rest as one process does.
 void resolve_coincident_triangles(SlabsMesh& e, CreateStats& stats);
 
 } // namespace vm::detail

@@ -103,9 +103,9 @@ std::string lost_phase_line(const Scene& scene, int32_t p) {
 /// leave them; they hold no surface and fail validation), numbering the others
 /// in order, with a note naming `what` holds them.
 void drop_vertices_of_no_triangle(NodeMesh& mesh, const std::string& what, RunObserver* observer) {
+  if (mesh.triangles.empty()) return; // nothing to mesh: the caller says so
   const size_t vertices = mesh.points.size();
   std::vector<int32_t> kept;
-  if (mesh.triangles.empty()) return; // nothing to mesh: the caller says so
   detail::drop_unused_nodes(mesh, kept);
   if (observer && mesh.points.size() < vertices)
     observer->note(cat(what, ": ", vertices - mesh.points.size(), " of its ", vertices,
