@@ -11,7 +11,10 @@
 # the label cases among them, read voxel-faithful (property_runner --voxel-faithful).
 # CHECK_EVERY=N meshes each case whole with crossings looked for every N
 # iterations (property_runner --check-crossings-every; give ITERATIONS=8 or so,
-# so that windows open).
+# so that windows open). WHOLE=1 meshes each case whole as `voronoimesh mesh`
+# does, its default pipeline (remesh, collapses, polish, floor), checked after
+# every iteration (property_runner --whole; give ITERATIONS=8 or so, so that
+# polish runs).
 set -euo pipefail
 # Read whole before it runs (the braces, closed by the last line, with exit in
 # them): bash reads a script as it goes, and editing this file during an
@@ -25,6 +28,7 @@ iterations=${ITERATIONS:-3}
 first_case=${FIRST:-0}
 variant=${VOXEL_FAITHFUL:+--voxel-faithful}
 windows=${CHECK_EVERY:+--check-crossings-every $CHECK_EVERY}
+whole=${WHOLE:+--whole}
 root=$(cd "$(dirname "$0")/.." && pwd)
 runner=${BUILD:-$root/build}/tests/property_runner
 [[ -x $runner ]] || { echo "property_tests.sh: $runner not built (cmake --build build)" >&2; exit 2; }
@@ -34,12 +38,12 @@ trap 'rm -rf "$work"' EXIT
 batches=$(( (cases + batch - 1) / batch ))
 first_batch=$(( first_case / batch ))
 (( first_case % batch == 0 )) || { echo "property_tests.sh: FIRST=$first_case is not a multiple of BATCH=$batch" >&2; exit 2; }
-echo "property tests: $cases cases of seed $seed from case $first_case, $batches batches of $batch, $jobs at a time, $iterations iterations${variant:+ (only label cases, read voxel-faithful)}${windows:+ (meshed whole, crossings checked every $CHECK_EVERY iterations)}"
+echo "property tests: $cases cases of seed $seed from case $first_case, $batches batches of $batch, $jobs at a time, $iterations iterations${variant:+ (only label cases, read voxel-faithful)}${windows:+ (meshed whole, crossings checked every $CHECK_EVERY iterations)}${whole:+ (meshed whole with the default pipeline, checked after every iteration)}"
 start=$(date +%s)
 # Each batch writes its own log; a batch's exit status only says whether a case failed.
 seq $first_batch $((batches - 1)) | xargs -P "$jobs" -I{} bash -c '
   first=$(( {} * '"$batch"' )); count=$(( '"$cases"' - first < '"$batch"' ? '"$cases"' - first : '"$batch"' ))
-  "'"$runner"'" --seed '"$seed"' --first $first --count $count --iterations '"$iterations"' '"$variant"' '"$windows"' > "'"$work"'/batch{}.log" 2>&1 || true
+  "'"$runner"'" --seed '"$seed"' --first $first --count $count --iterations '"$iterations"' '"$variant"' '"$windows"' '"$whole"' > "'"$work"'/batch{}.log" 2>&1 || true
   done_batches=$(ls "'"$work"'" | wc -l)
   echo "batch {} ($first..$((first + count - 1))): $(tail -n 1 "'"$work"'/batch{}.log")  [$done_batches/'"$batches"' batches, $(( $(date +%s) - '"$start"' ))s]"
 '

@@ -85,10 +85,18 @@ void check_stages(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
   }
 }
 
-/// Counts the windows of unchecked crossings that ran again.
-struct WindowCount : RunObserver {
+/// Checks the mesh of a whole run after every iteration whose crossings were
+/// looked for (CheckOptions::whole), and counts the windows of unchecked
+/// crossings that ran again.
+struct IterationChecks : RunObserver {
+  CaseResult* result = nullptr; ///< null: count windows only
   size_t run_again = 0;
-  void iteration(const IterationReport& report, const InterfaceMesh&) override { run_again += report.runs_again; }
+  void iteration(const IterationReport& report, const InterfaceMesh& mesh) override {
+    run_again += report.runs_again;
+    if (!result || !result->ok() || report.crossings_deferred) return;
+    valid_unintersected_and_inside(mesh.to_node_mesh(), "iteration " + std::to_string(report.iteration) +
+                                                            " of the default pipeline", *result);
+  }
 };
 
 /// The whole of mesh_scene() on `threads` threads, watched by `observer` (null for none).
@@ -100,8 +108,30 @@ NodeMesh meshed(const RandomCase& c, const CheckOptions& o, int threads, RunObse
   return mesh_scene(c.scene, options, observer);
 }
 
-void compare_threads(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
-  const NodeMesh one = meshed(c, o, 1), two = meshed(c, o, 2);
+/// The case meshed whole on one thread (CheckOptions::whole,
+/// check_crossings_every over 1), returned; the mesh checked at the end, and
+/// after every checked iteration too with `whole`.
+NodeMesh check_whole(const RandomCase& c, const CheckOptions& o, CaseResult& r) {
+  IterationChecks checks;
+  if (o.whole) checks.result = &r;
+  NodeMesh m = meshed(c, o, 1, &checks);
+  r.windows_run_again = checks.run_again;
+  if (!r.ok()) return m;
+  r.triangles = m.num_triangles();
+  const std::string stage = o.whole ? "the default pipeline's mesh" : "meshed with crossings checked every " +
+                                                                          std::to_string(o.check_crossings_every) +
+                                                                          " iterations";
+  if (!valid_unintersected_and_inside(m, stage, r)) return m;
+  if (c.closed_form) r.against_field = inverted_triangles(m, *phases_of_mesh(m, c.scene.field));
+  r.folds = count_folds(m);
+  return m;
+}
+
+/// Requires the same mesh on 1 and 2 threads; `one_thread`, if given, is the
+/// first (check_whole()'s).
+void compare_threads(const RandomCase& c, const CheckOptions& o, CaseResult& r,
+                     std::optional<NodeMesh> one_thread) {
+  const NodeMesh one = one_thread ? std::move(*one_thread) : meshed(c, o, 1), two = meshed(c, o, 2);
   if (one.points != two.points || one.triangles != two.triangles || one.pairs != two.pairs)
     r.failures.push_back("1 and 2 threads give different meshes (" + std::to_string(one.num_triangles()) + " and " +
                          std::to_string(two.num_triangles()) + " triangles)");
@@ -112,17 +142,10 @@ void compare_threads(const RandomCase& c, const CheckOptions& o, CaseResult& r) 
 CaseResult check_case(const RandomCase& c, const CheckOptions& o) {
   CaseResult r;
   try {
-    if (o.check_crossings_every > 1) {
-      WindowCount windows;
-      const NodeMesh m = meshed(c, o, 1, &windows);
-      r.triangles = m.num_triangles();
-      r.windows_run_again = windows.run_again;
-      valid_unintersected_and_inside(m, "meshed with crossings checked every " +
-                                            std::to_string(o.check_crossings_every) + " iterations", r);
-    } else {
-      check_stages(c, o, r);
-    }
-    if (r.ok() && o.compare_threads) compare_threads(c, o, r);
+    std::optional<NodeMesh> whole;
+    if (o.whole || o.check_crossings_every > 1) whole = check_whole(c, o, r);
+    else check_stages(c, o, r);
+    if (r.ok() && o.compare_threads) compare_threads(c, o, r, std::move(whole));
   } catch (const std::exception& e) {
     r.failures.push_back(std::string("threw: ") + e.what());
   }

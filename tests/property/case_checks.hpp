@@ -26,6 +26,14 @@ struct CheckOptions {
   /// crossings and inside the box (and the same on 1 and 2 threads, with
   /// compare_threads).
   int check_crossings_every = 1;
+  /// Instead of checking the paper's passes stage by stage, mesh the case whole
+  /// as `voronoimesh mesh` does (mesh_scene(): the case's default pipeline, with
+  /// the remesh pass, the flip pass's collapses, polish and floor on their
+  /// schedules, a label case stopping once converged) and check the mesh after
+  /// every iteration whose crossings were looked for (with
+  /// check_crossings_every over 1, those that end a clean window). The
+  /// schedules reach polish from iteration 6: give 8 or so `iterations`.
+  bool whole = false;
 };
 
 /// What check_case() found.
@@ -39,8 +47,8 @@ struct CaseResult {
   /// Surface edges that fold at the end (MeshStats::folds): good triangles laid
   /// onto each other, which the checks above do not see.
   size_t folds = 0;
-  /// With CheckOptions::check_crossings_every over 1: windows whose check at
-  /// their end found a crossing, so that their iterations ran again.
+  /// Meshed whole (CheckOptions::whole, check_crossings_every over 1): windows
+  /// whose check at their end found a crossing, so that their iterations ran again.
   size_t windows_run_again = 0;
   bool ok() const { return failures.empty(); }
 };

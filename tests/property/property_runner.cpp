@@ -29,12 +29,13 @@ struct Args {
   std::string remesh; ///< a remesh pass spec run first in every iteration; empty: none
   bool voxel_faithful = false; ///< only the label cases, read voxel-faithful (random_case())
   uint64_t check_every = 1;    ///< CheckOptions::check_crossings_every
+  bool whole = false;          ///< CheckOptions::whole
 };
 
 [[noreturn]] void usage(const char* problem) {
   std::fprintf(stderr, "property_runner: %s\nusage: property_runner [--seed S] [--first A] [--count N] "
                        "[--case I] [--iterations K] [--threads-every M] [--progress P] [--remesh SPEC] [--voxel-faithful]\n"
-                       "       [--check-crossings-every N] [--verbose]\n", problem);
+                       "       [--check-crossings-every N] [--whole] [--verbose]\n", problem);
   std::exit(2);
 }
 
@@ -48,6 +49,10 @@ Args parse(int argc, char** argv) {
     }
     if (arg == "--voxel-faithful") {
       a.voxel_faithful = true;
+      continue;
+    }
+    if (arg == "--whole") {
+      a.whole = true;
       continue;
     }
     if (arg == "--remesh" && i + 1 < argc) {
@@ -78,8 +83,9 @@ int main(int argc, char** argv) {
   uint64_t checked = 0, failed = 0, against_field = 0, against_triangles = 0, folds = 0;
   uint64_t windowed_cases = 0, windows_run_again = 0; // with --check-crossings-every
   std::string variant = a.voxel_faithful ? " --voxel-faithful" : "";
-  if (a.check_every > 1)
-    variant += " --check-crossings-every " + std::to_string(a.check_every) + " --iterations " + std::to_string(a.iterations);
+  if (a.check_every > 1) variant += " --check-crossings-every " + std::to_string(a.check_every);
+  if (a.whole) variant += " --whole";
+  if (a.check_every > 1 || a.whole) variant += " --iterations " + std::to_string(a.iterations);
   for (uint64_t index = a.first; index < a.first + a.count; ++index) {
     if (a.voxel_faithful && SceneKind(index % kSceneKinds) != SceneKind::labels) continue;
     ++checked;
@@ -97,6 +103,7 @@ int main(int argc, char** argv) {
     o.compare_threads = a.threads_every > 0 && index % a.threads_every == 0;
     o.remesh = a.remesh;
     o.check_crossings_every = int(a.check_every);
+    o.whole = a.whole;
     if (a.verbose) {
       std::printf("%s\n", c.description().c_str());
       if (!c.scene_json.empty()) std::printf("scene:\n%s\n", c.scene_json.c_str());

@@ -84,28 +84,44 @@ constexpr std::array<size_t, kShards> kAgainstAtMost = {668, 876, 105, 1333, 770
 /// triangles against their pair unchanged in every case.
 constexpr std::array<size_t, kShards> kFoldsAtMost = {903, 1030, 213, 665, 696, 500, 339, 449};
 
+/// What checking a run of cases found.
+struct Tally {
+  int failed = 0;
+  size_t against = 0; // triangles against their pair's direction, over the closed-form cases
+  size_t folds = 0;   // surface edges that fold, over all the cases
+};
+
+/// Checks cases `index(0)` .. `index(count - 1)` of kSeed (read voxel-faithful
+/// if asked) with `o`, on 1 and 2 threads too for every kThreadsEvery-th, and
+/// reports the first three that fail with the property_runner arguments
+/// (`flags` after the case) that reproduce them.
+template <class Index>
+Tally check_cases(int count, Index index, CheckOptions o, bool voxel_faithful, const std::string& flags) {
+  Tally tally;
+  for (int i = 0; i < count; ++i) {
+    const uint64_t id = index(i);
+    const RandomCase c = random_case(kSeed, id, voxel_faithful);
+    EXPECT_EQ(c.voxel_faithful, voxel_faithful) << "case " << id;
+    o.compare_threads = i % kThreadsEvery == 0;
+    const CaseResult r = check_case(c, o);
+    tally.against += r.against_field;
+    tally.folds += r.folds;
+    if (!r.ok() && ++tally.failed <= 3)
+      ADD_FAILURE() << c.description() << "\n  " << r.failures.front() << "\n  reproduce: property_runner --seed "
+                    << kSeed << " --case " << id << flags << " --verbose";
+  }
+  return tally;
+}
+
 class PropertyQuickTier : public testing::TestWithParam<int> {};
 
 // Each shard is its own test so that ctest spreads them over the cores.
 TEST_P(PropertyQuickTier, random_cases_stay_valid_through_create_and_improve) {
-  int failed = 0;
-  size_t against = 0; // triangles against their pair's direction, over the shard's closed-form cases
-  size_t folds = 0;   // surface edges that fold, over all the shard's cases
-  for (int i = 0; i < kCasesPerShard; ++i) {
-    const uint64_t index = uint64_t(GetParam() * kCasesPerShard + i);
-    const RandomCase c = random_case(kSeed, index);
-    CheckOptions o;
-    o.compare_threads = index % kThreadsEvery == 0;
-    const CaseResult r = check_case(c, o);
-    against += r.against_field;
-    folds += r.folds;
-    if (!r.ok() && ++failed <= 3)
-      ADD_FAILURE() << c.description() << "\n  " << r.failures.front()
-                    << "\n  reproduce: property_runner --seed " << kSeed << " --case " << index << " --verbose";
-  }
-  EXPECT_EQ(failed, 0);
-  EXPECT_LE(against, kAgainstAtMost[size_t(GetParam())]) << "more triangles against their pair's direction";
-  EXPECT_LE(folds, kFoldsAtMost[size_t(GetParam())]) << "more surface edges folding";
+  const Tally t = check_cases(kCasesPerShard, [](int i) { return uint64_t(GetParam() * kCasesPerShard + i); },
+                              CheckOptions{}, false, "");
+  EXPECT_EQ(t.failed, 0);
+  EXPECT_LE(t.against, kAgainstAtMost[size_t(GetParam())]) << "more triangles against their pair's direction";
+  EXPECT_LE(t.folds, kFoldsAtMost[size_t(GetParam())]) << "more surface edges folding";
 }
 
 INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
@@ -115,20 +131,23 @@ INSTANTIATE_TEST_SUITE_P(Shards, PropertyQuickTier, testing::Range(0, kShards));
 // their phase, on every lattice and snap the options draw. The long tier:
 // VOXEL_FAITHFUL=1 scripts/property_tests.sh.
 TEST(PropertyQuickTier, label_cases_read_voxel_faithful_stay_valid) {
-  constexpr int kLabelCases = 24;
-  int failed = 0;
-  for (int i = 0; i < kLabelCases; ++i) {
-    const uint64_t index = uint64_t(i) * kSceneKinds + uint64_t(SceneKind::labels);
-    const RandomCase c = random_case(kSeed, index, true);
-    ASSERT_TRUE(c.voxel_faithful);
-    CheckOptions o;
-    o.compare_threads = i % kThreadsEvery == 0;
-    const CaseResult r = check_case(c, o);
-    if (!r.ok() && ++failed <= 3)
-      ADD_FAILURE() << c.description() << "\n  " << r.failures.front() << "\n  reproduce: property_runner --seed "
-                    << kSeed << " --case " << index << " --voxel-faithful --verbose";
-  }
-  EXPECT_EQ(failed, 0);
+  const Tally t = check_cases(
+      24, [](int i) { return uint64_t(i) * kSceneKinds + uint64_t(SceneKind::labels); }, CheckOptions{}, true,
+      " --voxel-faithful");
+  EXPECT_EQ(t.failed, 0);
+}
+
+// The cases meshed whole as `voronoimesh mesh` meshes them: their default
+// pipeline (the remesh pass, the flip pass's collapses, polish and floor, on
+// their schedules), checked after every iteration, which the shards above (the
+// paper's passes) never run. The long tier: WHOLE=1 ITERATIONS=8
+// scripts/property_tests.sh.
+TEST(PropertyQuickTier, cases_meshed_whole_with_the_default_pipeline_stay_valid) {
+  CheckOptions o;
+  o.iterations = 8; // polish from the sixth
+  o.whole = true;
+  const Tally t = check_cases(3 * kSceneKinds, [](int i) { return uint64_t(i); }, o, false, " --whole --iterations 8");
+  EXPECT_EQ(t.failed, 0);
 }
 
 /// Cases the long tier found failing, as {seed, case}, each fixed since: they
