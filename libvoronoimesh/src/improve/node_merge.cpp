@@ -143,6 +143,12 @@ void keep_used_nodes(std::span<const Vec3> points, NodeMesh& m, std::vector<int3
   std::vector<uint8_t> used(points.size(), 0);
   parallel_for_each_index(m.num_triangles(), [&](size_t t) { flag_corners(m, t, used); });
   const std::vector<int32_t> now_kept = indices_where(points.size(), [&](size_t v) { return used[v] != 0; });
+  // m's own nodes, all used (every mesh improve_mesh() is given, as a rule):
+  // nothing to renumber or copy.
+  if (now_kept.size() == points.size() && points.data() == m.points.data()) {
+    kept.insert(kept.end(), now_kept.begin(), now_kept.end());
+    return;
+  }
   std::vector<int32_t> id(points.size(), -1);
   std::vector<Vec3> kept_points(now_kept.size());
   parallel_for_each_index(now_kept.size(), [&](size_t i) {
