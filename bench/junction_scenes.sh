@@ -33,13 +33,15 @@ PY
 # "exact bound": the most min q can be with exact junctions (the smallest
 # corner of a surface at a quadruple point; scripts/corner_bound.py).
 # "farthest node": the largest offset of a surface / triple-curve / quadruple-point
-# node from its closed-form interface, in grid spacings h (`stats --field`).
+# node from its closed-form interface, in grid spacings h (`stats --field`);
+# "nowhere": the curve / point nodes whose phases meet nowhere near them (a
+# junction finer than the grid), left out of the farthest.
 # "smallest corner": the smallest corner a surface of the mesh makes at a
 # junction point (`stats`), which bounds the min angle while the mesh's
 # junctions stay where they are: a min angle equal to it is all that scene's
 # junctions, as meshed, allow.
-echo "| scene | triangles | min q | mean q | min angle | smallest corner | exact bound | farthest node (h): surface / curve / point |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| scene | triangles | min q | mean q | min angle | smallest corner | exact bound | farthest node (h): surface / curve / point | nowhere: curve / point |"
+echo "|---|---|---|---|---|---|---|---|---|"
 for scene in "$out"/seeds*.json "$out"/balls_*.json; do
   name=$(basename "$scene" .json)
   "$vm" mesh -q "$scene" -o "$out/$name.ply"
@@ -48,9 +50,10 @@ for scene in "$out"/seeds*.json "$out"/balls_*.json; do
 import json, sys
 s = json.load(sys.stdin)
 far = " / ".join("{:.3f}".format(s["offsets"][c]["max_h"]) for c in ("surface", "triple_curve", "quadruple_point"))
-print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {:.1f} | {} | {} |".format(
+nowhere = " / ".join(str(s["offsets"][c]["unresolved"]) for c in ("triple_curve", "quadruple_point"))
+print("| {} | {} | {:.3f} | {:.3f} | {:.1f} | {:.1f} | {} | {} | {} |".format(
     sys.argv[1], s["triangles"], s["min_quality"], s["mean_quality"], s["min_angle_deg"], s["smallest_corner_deg"],
-    sys.argv[2], far))' "$name" "${bound:-none}"
+    sys.argv[2], far, nowhere))' "$name" "${bound:-none}"
 done | tee "$out/table.md"
 python3 - "$out/table.md" <<'PY'
 import sys

@@ -412,6 +412,44 @@ TEST(Stats, a_triangle_sharing_its_corner_names_none) {
   if (first.at("corner_node").get<int>() < 0) EXPECT_TRUE(first.at("corner_deg").is_null());
 }
 
+// A junction node is measured to where its phases meet (Newton's method run to
+// its end), and counted apart where they meet nowhere near: four Voronoi cells
+// whose seeds form a regular tetrahedron meet at its centre, 0.06 from the
+// node; with a fifth seed at the centre, whose cell leads there, they meet
+// nowhere (the mesh's point would be a topology finer than its grid).
+TEST(Offsets, a_junction_node_whose_phases_meet_nowhere_near_is_counted_apart) {
+  const Vec3 centre(0.5, 0.5, 0.5), node = centre + Vec3(0.05, 0.03, -0.02);
+  auto seeds = [&](bool fifth) {
+    std::string phases;
+    const int corners[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    for (const auto& c : corners) {
+      const Vec3 p = centre + 0.15 * Vec3(c[0], c[1], c[2]);
+      phases += std::string(phases.empty() ? "" : ", ") + R"({"kind": "seeds", "points": [[)" +
+                std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + "]]}";
+    }
+    if (fifth) phases += R"(, {"kind": "seeds", "points": [[0.5, 0.5, 0.5]]})";
+    return parse_scene(R"({"domain": {"min": [0,0,0], "max": [1,1,1]}, "grid": 8, "phases": [)" + phases + "]}",
+                       "inline");
+  };
+  // Node 0 lies on a triangle of cells 0|1 and one of 2|3: its phases are all four.
+  NodeMesh m;
+  m.domain = Box{Vec3::Zero(), Vec3::Ones()};
+  m.points = {node, node + Vec3(0.1, 0, 0), node + Vec3(0, 0.1, 0), node + Vec3(0, 0, 0.1), node + Vec3(0.1, 0.1, 0)};
+  m.triangles = {{0, 1, 2}, {0, 3, 4}};
+  m.pairs = {{0, 1}, {2, 3}};
+  const InterfaceOffsets meet = interface_offsets(m, *seeds(false).field);
+  EXPECT_EQ(meet[2].nodes, 1u);
+  EXPECT_EQ(meet[2].unresolved, 0u);
+  EXPECT_EQ(meet[2].farthest, 0);
+  EXPECT_NEAR(meet[2].max, (node - centre).norm(), 1e-6);
+  const InterfaceOffsets nowhere = interface_offsets(m, *seeds(true).field);
+  EXPECT_EQ(nowhere[2].nodes, 1u);
+  EXPECT_EQ(nowhere[2].unresolved, 1u);
+  EXPECT_EQ(nowhere[2].farthest, -1);
+  EXPECT_NE(to_text(nowhere, m, 0.1).find("1 whose phases meet nowhere near them"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(to_json(nowhere, m, 0.1))["quadruple_point"]["unresolved"].get<int>(), 1);
+}
+
 // interface_offsets() measures how far nodes lie from where their phases are
 // equal: on the meshed four spheres every class is within a small share of h
 // (the paper's projection puts them there), and a surface node pushed 0.3 h

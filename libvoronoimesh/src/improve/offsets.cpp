@@ -4,6 +4,8 @@
 #include "voronoimesh/improve/offsets.hpp"
 
 #include "core/parallel.hpp"
+#include "core/text.hpp"
+#include "mesh/node_rings.hpp"
 #include "mesh/topology.hpp"
 
 #include "voronoimesh/improve/project.hpp"
@@ -11,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +28,37 @@ constexpr std::array<const char*, 3> kClassTexts = {"surface nodes", "triple-cur
 /// The class of a node where `phases` meet: 0 surface, 1 triple curve, 2 quadruple or higher point; -1 none.
 int class_of(size_t phases) { return phases < 2 ? -1 : int(std::min<size_t>(phases, 4)) - 2; }
 
+/// Newton steps a junction node may take on its way to where its phases meet.
+constexpr int kJunctionSteps = 50;
+
+/// Where Newton's method (least-squares steps on the node's box faces) leads a
+/// junction node at x with `phases`: its junction, if the steps settle within
+/// the domain and no other phase leads there; else none (the phase functions
+/// have no such junction near: a topology finer than the grid made the mesh's).
+std::optional<Vec3> junction_of(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
+                                uint8_t box_faces, const Box& domain) {
+  const double size = (domain.max - domain.min).norm(), settled = 1e-12 * size;
+  Vec3 y = x;
+  for (int k = 0;; ++k) {
+    if (k == kJunctionSteps) return std::nullopt;
+    const Vec3 step = least_squares_step_on_faces(field, y, phases, box_faces);
+    y += step;
+    if (!y.allFinite() || (y - x).norm() > size) return std::nullopt;
+    if (step.norm() <= settled) break;
+  }
+  for (int a = 0; a < 3; ++a)
+    if (y[a] < domain.min[a] - settled || y[a] > domain.max[a] + settled) return std::nullopt;
+  // The node's phases must be the largest there, and the next one below them.
+  const size_t n = phases.size();
+  std::vector<int32_t> ids(std::min(n + 1, size_t(field.num_phases())));
+  std::vector<double> values(ids.size());
+  field.top_values(y, ids, values);
+  for (size_t k = 0; k < n; ++k)
+    if (std::find(phases.begin(), phases.end(), ids[k]) == phases.end()) return std::nullopt;
+  if (ids.size() > n && values[n] >= values[n - 1] - 1e-9 * (1 + std::abs(values[n - 1]))) return std::nullopt;
+  return y;
+}
+
 } // namespace
 
 InterfaceOffsets interface_offsets(const NodeMesh& m, const PhaseField& field) {
@@ -34,10 +69,15 @@ InterfaceOffsets interface_offsets(const NodeMesh& m, const PhaseField& field) {
   // paper's eq. 4 (a mean of pairwise steps) is a good move but not a distance.
   ProjectParams nearest;
   nearest.least_squares_from = 2;
+  // Junction nodes: the distance to their junction, or -1 where there is none near.
   std::vector<double> offset(m.points.size(), 0.0);
   detail::parallel_for_each_index(m.points.size(), [&](size_t n) {
     const auto phases = np.of(n);
-    if (phases.size() >= 2) offset[n] = projection_step(field, m.points[n], phases, nearest).norm();
+    const Vec3& x = m.points[n];
+    if (phases.size() == 2) offset[n] = projection_step(field, x, phases, nearest).norm();
+    if (phases.size() < 3) return;
+    const std::optional<Vec3> at = junction_of(field, x, phases, detail::box_faces_at(x, m.domain), m.domain);
+    offset[n] = at ? (*at - x).norm() : -1;
   });
   // Summed in node order, so the result does not depend on the thread count.
   InterfaceOffsets out;
@@ -46,11 +86,15 @@ InterfaceOffsets interface_offsets(const NodeMesh& m, const PhaseField& field) {
     if (c < 0) continue;
     NodeOffsets& o = out[size_t(c)];
     ++o.nodes;
+    if (offset[n] < 0) {
+      ++o.unresolved;
+      continue;
+    }
     o.rms += offset[n] * offset[n];
     if (o.farthest < 0 || offset[n] > o.max) o.max = offset[n], o.farthest = int32_t(n);
   }
   for (NodeOffsets& o : out)
-    if (o.nodes > 0) o.rms = std::sqrt(o.rms / double(o.nodes));
+    if (o.nodes > o.unresolved) o.rms = std::sqrt(o.rms / double(o.nodes - o.unresolved));
   return out;
 }
 
@@ -60,10 +104,18 @@ std::string to_text(const InterfaceOffsets& offsets, const NodeMesh& m, double s
   for (size_t c = 0; c < offsets.size(); ++c) {
     const NodeOffsets& o = offsets[c];
     if (o.nodes == 0) continue;
-    const Vec3& p = m.points[size_t(o.farthest)];
-    std::snprintf(buf, sizeof buf, "  %-19s%8zu: rms %.3g h, max %.3g h (node %d at (%g, %g, %g))\n", kClassTexts[c],
-                  o.nodes, o.rms / spacing, o.max / spacing, o.farthest, p.x(), p.y(), p.z());
+    std::snprintf(buf, sizeof buf, "  %-19s%8zu:", kClassTexts[c], o.nodes);
     out += buf;
+    if (o.farthest >= 0) {
+      const Vec3& p = m.points[size_t(o.farthest)];
+      std::snprintf(buf, sizeof buf, " rms %.3g h, max %.3g h (node %d at (%g, %g, %g))", o.rms / spacing,
+                    o.max / spacing, o.farthest, p.x(), p.y(), p.z());
+      out += buf;
+    }
+    if (o.unresolved > 0)
+      out += detail::cat(o.farthest >= 0 ? ";" : "", " ", o.unresolved,
+                         " whose phases meet nowhere near them (finer than the grid), not in rms and max");
+    out += "\n";
   }
   return out;
 }
@@ -74,6 +126,7 @@ std::string to_json(const InterfaceOffsets& offsets, const NodeMesh& m, double s
     const NodeOffsets& o = offsets[c];
     nlohmann::ordered_json k = {{"nodes", o.nodes}, {"rms", o.rms},           {"max", o.max},
                                 {"rms_h", o.rms / spacing}, {"max_h", o.max / spacing}};
+    if (c > 0) k["unresolved"] = o.unresolved;
     if (o.farthest >= 0) {
       const Vec3& p = m.points[size_t(o.farthest)];
       k["farthest"] = {{"node", o.farthest}, {"position", {p.x(), p.y(), p.z()}}};

@@ -41,20 +41,40 @@ Vec3 least_squares_step(std::span<const double> phi, std::span<const Vec3> grad,
   return svd.solve(r.head(rows));
 }
 
+/// The values and gradients of `phases` at x.
+struct PhasesAt {
+  std::array<double, kMaxPhasesAtNode> phi;
+  std::array<Vec3, kMaxPhasesAtNode> grad;
+  PhasesAt(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases, const char* caller) {
+    if (phases.size() > kMaxPhasesAtNode)
+      throw InvalidInput(detail::cat(caller, ": ", phases.size(), " phases given, at most ", kMaxPhasesAtNode,
+                                     " meet at a node"));
+    for (size_t i = 0; i < phases.size(); ++i) {
+      phi[i] = field.value(phases[i], x);
+      grad[i] = field.gradient(phases[i], x);
+    }
+  }
+};
+
 } // namespace
+
+Vec3 least_squares_step_on_faces(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
+                                 uint8_t box_faces) {
+  const size_t n = phases.size();
+  if (n < 2) return Vec3::Zero();
+  PhasesAt at(field, x, phases, "least_squares_step_on_faces");
+  // A held axis is left out of every gradient, so of every equation: the
+  // least-norm step has no part along it.
+  for (size_t i = 0; i < n; ++i) constrain_to_box(at.grad[i], box_faces);
+  return least_squares_step({at.phi.data(), n}, {at.grad.data(), n}, 0);
+}
 
 Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
                      const ProjectParams& params) {
   const size_t n = phases.size();
   if (n < 2) return Vec3::Zero();
-  if (n > kMaxPhasesAtNode)
-    throw InvalidInput(detail::cat("projection_step: ", n, " phases given, at most ", kMaxPhasesAtNode, " meet at a node"));
-  std::array<double, kMaxPhasesAtNode> phi;
-  std::array<Vec3, kMaxPhasesAtNode> grad;
-  for (size_t i = 0; i < n; ++i) {
-    phi[i] = field.value(phases[i], x);
-    grad[i] = field.gradient(phases[i], x);
-  }
+  const PhasesAt at(field, x, phases, "projection_step");
+  const auto& [phi, grad] = at;
   const double min_gap2 = params.min_gradient_gap * params.min_gradient_gap;
   if (params.least_squares_from > 0 && n >= size_t(params.least_squares_from))
     return least_squares_step({phi.data(), n}, {grad.data(), n}, min_gap2);

@@ -51,6 +51,19 @@ struct ProjectParams {
 Vec3 projection_step(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
                      const ProjectParams& params = {});
 
+/// The least-squares Newton step onto phi_i = phi_j for every pair of `phases`
+/// (the step of ProjectParams::least_squares_from), moving only along the axes
+/// that `box_faces` (bits as InterfaceMesh::box_faces()) leave free: repeated,
+/// it leads a junction node to where its phases meet on its box faces
+/// (interface_offsets()). Zero for fewer than two phases.
+/// @param field     the phase functions
+/// @param x         the node's position
+/// @param phases    the phases meeting at the node (at most kMaxPhasesAtNode)
+/// @param box_faces the box faces the node lies on
+/// @throws InvalidInput for more than kMaxPhasesAtNode phases
+Vec3 least_squares_step_on_faces(const PhaseField& field, const Vec3& x, std::span<const int32_t> phases,
+                                 uint8_t box_faces);
+
 /// projection_step() for node n of `mesh` at x, chi its phase set, kept on its
 /// box faces: the step add_projection() adds for it.
 /// @param mesh   the mesh; chi of a node is its phase set
