@@ -47,10 +47,11 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       cmd->add_option("--field", o->field,
                       std::string("Also measure how far the nodes lie from the interface of the input the mesh was "
                                   "made from: per surface, triple-curve and quadruple-point nodes the RMS and largest "
-                                  "first-order distance from where their phases are equal, in multiples of the "
-                                  "spacing h of the grid the mesh was created on (from the PLY's grid_spacing "
-                                  "comment; for a mesh without one, the input's default grid), and the farthest "
-                                  "node. ") +
+                                  "distance from where their phases are equal (a junction node's found by Newton's "
+                                  "method within its box faces; those whose phases meet nowhere near are counted "
+                                  "apart), in multiples of the spacing h of the grid the mesh was created on (from "
+                                  "the PLY's grid_spacing comment; for a mesh without one, the input's default "
+                                  "grid), and the farthest node. ") +
                           kInputHelp)
           ->option_text("INPUT");
   add_input_options(cmd, o->input, field);
