@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -131,6 +132,13 @@ TEST(Close, the_outside_phase_wins_exactly_outside_the_box) {
     const bool outside = ((x.array() < 0) || (x.array() > 1)).any();
     const double best_inner = *std::max_element(v.begin(), v.end() - 1);
     EXPECT_EQ(v.back() > best_inner, outside) << x.transpose();
+    // top_values() agrees (its values() asks the inner field's top values: a
+    // nested call that once shrank the outer one's scratch to the inner phases).
+    std::array<int32_t, 2> ids;
+    std::array<double, 2> top;
+    f->top_values(x, ids, top);
+    EXPECT_EQ(ids[0] == out, outside) << x.transpose();
+    EXPECT_EQ(top[0], *std::max_element(v.begin(), v.end()));
   }
   // On a face the outside phase ties the winner, and its gradient there differs
   // from the winner's by the outward normal.

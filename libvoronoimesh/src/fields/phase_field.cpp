@@ -13,9 +13,22 @@ namespace vm {
 std::string PhaseField::describe_phase(int i) const { return "phase " + phase_name(i); }
 
 void PhaseField::top_values(const Vec3& x, std::span<int32_t> ids, std::span<double> vals) const {
-  // Scratch space per thread: this runs once per grid node.
-  thread_local std::vector<double> v;
-  thread_local std::vector<int32_t> order;
+  // Scratch space per thread: this runs once per grid node. A call nested in
+  // another (a field whose values() asks another field's top values, as the
+  // phase outside a closed mesh's box does) has its own: sharing it, the inner
+  // call shrank the outer's arrays to its own phases, and the outside phase was
+  // never among the top.
+  thread_local int depth = 0;
+  thread_local std::vector<double> outer_v;
+  thread_local std::vector<int32_t> outer_order;
+  std::vector<double> nested_v;
+  std::vector<int32_t> nested_order;
+  std::vector<double>& v = depth == 0 ? outer_v : nested_v;
+  std::vector<int32_t>& order = depth == 0 ? outer_order : nested_order;
+  ++depth;
+  struct Leave {
+    ~Leave() { --depth; }
+  } leave;
   v.resize(size_t(num_phases()));
   order.resize(v.size());
   values(x, v);
