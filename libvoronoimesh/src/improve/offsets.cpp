@@ -65,19 +65,21 @@ InterfaceOffsets interface_offsets(const NodeMesh& m, const PhaseField& field) {
   const std::vector<char> usable = detail::measured_triangles(m.triangles, m.pairs.size(), m.points.size());
   const detail::NodePhases np = detail::node_phases(detail::node_triangles(m.points.size(), m.triangles, &usable),
                                                     m.pairs);
-  // The least-squares step takes every pair of the node's phases at once: the
-  // paper's eq. 4 (a mean of pairwise steps) is a good move but not a distance.
+  // A surface node's offset is its Newton step (taken as the least-squares one,
+  // which for one pair is eq. 4's); a junction node's the distance to its
+  // junction, or -1 where there is none near.
   ProjectParams nearest;
   nearest.least_squares_from = 2;
-  // Junction nodes: the distance to their junction, or -1 where there is none near.
   std::vector<double> offset(m.points.size(), 0.0);
   detail::parallel_for_each_index(m.points.size(), [&](size_t n) {
     const auto phases = np.of(n);
     const Vec3& x = m.points[n];
-    if (phases.size() == 2) offset[n] = projection_step(field, x, phases, nearest).norm();
-    if (phases.size() < 3) return;
-    const std::optional<Vec3> at = junction_of(field, x, phases, detail::box_faces_at(x, m.domain), m.domain);
-    offset[n] = at ? (*at - x).norm() : -1;
+    if (phases.size() == 2) {
+      offset[n] = projection_step(field, x, phases, nearest).norm();
+    } else if (phases.size() > 2) {
+      const std::optional<Vec3> at = junction_of(field, x, phases, detail::box_faces_at(x, m.domain), m.domain);
+      offset[n] = at ? (*at - x).norm() : -1;
+    }
   });
   // Summed in node order, so the result does not depend on the thread count.
   InterfaceOffsets out;
