@@ -106,7 +106,7 @@ TEST(MpiCreate, tiny_loops_closed_as_in_one_process) {
     labels.insert(labels.end(), slice, slice + 36);
   }
   const mpi::DistributedStats stats = expect_same_as_one_process(scene_from_labels(grid, labels), {});
-  EXPECT_GT(stats.create.wide_snapped_nodes, 0u);
+  EXPECT_GT(stats.create.tiny_loop_nodes, 0u);
 }
 
 // The property tier's random cases (tests/property), created by the ranks
@@ -123,7 +123,7 @@ TEST(MpiCreate, random_cases_are_the_one_process_mesh) {
     if (!has_a_slab_per_rank(c.scene.grid, c.options.lattice)) continue;
     SCOPED_TRACE(c.description());
     ++run;
-    closed += expect_same_as_one_process(c.scene, c.options, true).create.wide_snapped_nodes > 0;
+    closed += expect_same_as_one_process(c.scene, c.options, true).create.tiny_loop_nodes > 0;
   }
   EXPECT_GE(run, int(kCases) * 3 / 4);
   EXPECT_GE(closed, 4) << "too few cases with tiny loops to say anything about them";

@@ -204,7 +204,7 @@ TEST(Create, closes_triple_curve_loops_far_smaller_than_a_cell) {
   const GridSpec g = grid_for_lattice(scene.grid, Lattice::bcc);
   NodeMesh mesh;
   const CreateStats stats = create_initial_mesh(SampledField::sample(*scene.field, g), CreateParams{}, mesh);
-  EXPECT_GT(stats.wide_snapped_nodes, 0u);
+  EXPECT_GT(stats.tiny_loop_nodes, 0u);
   const ValidationReport report = validate(mesh);
   EXPECT_TRUE(report.ok()) << report.summary();
   EXPECT_TRUE(detail::tiny_loop_vertices(mesh.points, mesh.triangles, mesh.pairs, g.h()).empty());

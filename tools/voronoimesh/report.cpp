@@ -50,9 +50,9 @@ void Report::created(const vm::CreateReport& r) {
                 (unsigned long long)r.stats.tets_cut, (unsigned long long)r.stats.held_nodes, r.stats.check_seconds,
                 (unsigned long long)r.stats.unsnapped_nodes);
   std::string text = line;
-  if (r.stats.wide_snapped_nodes > 0)
+  if (r.stats.tiny_loop_nodes > 0)
     text += ", triple-curve loops far smaller than a cell closed (at " +
-            std::to_string(r.stats.wide_snapped_nodes) + " nodes)";
+            std::to_string(r.stats.tiny_loop_nodes) + " nodes)";
   say(text);
 }
 

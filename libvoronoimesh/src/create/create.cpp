@@ -359,7 +359,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
     round_stats.snapped_nodes = whole ? values.snapped_nodes() : count_snapped(values, lattice, counted);
     round_stats.unsnapped_nodes = stats.unsnapped_nodes;
     round_stats.untied_nodes = stats.untied_nodes;
-    round_stats.wide_snapped_nodes = stats.wide_snapped_nodes;
+    round_stats.tiny_loop_nodes = stats.tiny_loop_nodes;
     round_stats.repair_rounds = round;
     stats = round_stats;
     if (round == kMaxRepairRounds) break;
@@ -396,7 +396,7 @@ CreateStats create_slabs(const NodeSource& field, NodeValues& values, const Crea
         counted_widened += is_counted(node);
         recut_around(node);
       }
-      stats.wide_snapped_nodes = peers.sum(counted_widened);
+      stats.tiny_loop_nodes = peers.sum(counted_widened);
       if (peers.sum(uint64_t(widened)) == 0) {
         stats.validated = true;
         break;

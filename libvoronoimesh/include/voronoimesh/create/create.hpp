@@ -48,7 +48,7 @@ struct CreateStats {
   /// lattice edge where a third phase nearly ties the two crossing it), at
   /// which the third phase rose to close them: no improvement could make their
   /// triangles better than slivers.
-  uint64_t wide_snapped_nodes = 0;
+  uint64_t tiny_loop_nodes = 0;
   int repair_rounds = 0;           ///< extra extractions that undoing snapping and ties needed
   double seconds = 0;              ///< wall time of create (sampling excluded)
   /// Wall time of sampling the field, where create samples it itself (create_initial_mesh() from a PhaseField).
