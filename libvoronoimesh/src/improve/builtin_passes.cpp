@@ -71,7 +71,9 @@ public:
       : params_{p.at("length") > 0 ? 1.0 : p.at("size"), p.at("tolerance"), p.at("min_size"), p.at("merge_corners"),
                 p.at("merge_digons"), false, p.at("min_quality")},
         length_(p.at("length")), last_(int(p.at("last"))), split_first_(int(p.at("split_first"))),
-        merge_overshoots_(p.at("merge_overshoots") > 0) {}
+        merge_overshoots_(p.at("merge_overshoots") > 0) {
+    params_.merge_islands = p.at("merge_islands");
+  }
   void run(PassContext& c) override {
     if (c.iteration > last_) return;
     // Curvature comes from the phase functions: without them the target would
@@ -234,6 +236,10 @@ void register_builtin_passes(PassRegistry& registry) {
        {"merge_overshoots", 1, 0, 1, true,
         "from the second iteration, a curve node next to a quadruple point where the point's fourth phase is larger "
         "(the curve runs past it) merges into the point, which goes where its phases meet (0: never)"},
+       {"merge_islands", remesh.merge_islands, 0.0, 16.0, false,
+        "a closed piece of a phase's boundary at most this x the target across, where the phase functions make "
+        "another phase lead inside it (a pocket the lattice made; the phase has other pieces), merges into one "
+        "node (0: never)"},
        {"min_quality", remesh.min_quality, 0.0, 1.0, false,
         "collapses leave no triangle below this or the worst they replace"},
        {"last", 3, 0, 1000000, true, "the last iteration it runs in (each run rebuilds the mesh)"},

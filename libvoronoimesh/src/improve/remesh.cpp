@@ -9,6 +9,7 @@
 #include "improve/digon_faces.hpp"
 #include "improve/edge_splits.hpp"
 #include "improve/node_merge.hpp"
+#include "improve/phase_islands.hpp"
 #include "mesh/node_rings.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
@@ -343,7 +344,7 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
   // collapse changes the nodes around the points: each merges whole or not at
   // all, which the collapses' blame cannot say.
   auto merge_points = [&] {
-    if ((params.merge_digons <= 0 && !params.merge_overshoots) || !field) return;
+    if ((params.merge_digons <= 0 && !params.merge_overshoots && params.merge_islands <= 0) || !field) return;
     auto merge = [&](const NodeRings& tables, std::vector<detail::PointMerge> merges) {
       detail::Blame blame;
       std::vector<Vec3> moved_to;
@@ -359,7 +360,9 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     // digon alone: where a chain's whole merge fails, its faces may still
     // merge one by one over the calls (seeds17_2: three corners of cells 3,
     // 11, 12 and 16 in a row, which only merge that way). After the digons,
-    // the curve ends past their quadruple point (improve/curve_overshoots.hpp).
+    // the curve ends past their quadruple point (improve/curve_overshoots.hpp)
+    // and the pockets of phases that the phase functions do not have
+    // (improve/phase_islands.hpp).
     const NodeRings* tables = &current_rings(); // before `target` is read: it sets it
     std::vector<detail::PointMerge> merges = digons(*tables);
     if (merge(*tables, detail::digon_chains(merges, tables->num_nodes()))) {
@@ -368,6 +371,9 @@ RemeshStats remesh_edges(InterfaceMesh& mesh, const PhaseField* field, double re
     }
     if (params.merge_overshoots)
       for (detail::PointMerge& m : detail::overshooting_curve_ends(*tables, target, *field))
+        merges.push_back(std::move(m));
+    if (params.merge_islands > 0)
+      for (detail::PointMerge& m : detail::phase_islands(*tables, target, *field, params.merge_islands))
         merges.push_back(std::move(m));
     merge(*tables, std::move(merges));
   };

@@ -74,6 +74,13 @@ struct RemeshParams {
   /// next call collapses again (1,000 grains at grid 128: 1.39M triangles ->
   /// 2.04M -> 1.29M; splitting first: 1.35M -> 1.28M).
   bool split_first = false;
+  /// With the phase functions: a closed piece of a phase's boundary (at most
+  /// 64 triangles) that is at most this many targets across, where
+  /// another phase leads at its centre and the centre of each of its triangles
+  /// (a pocket the lattice made, cut off from the rest of the phase), merges
+  /// into one node when the mesh stays valid; a phase keeps its other pieces,
+  /// so no phase is lost. 0: never.
+  double merge_islands = 2;
 };
 
 /// What remesh_edges() did.
