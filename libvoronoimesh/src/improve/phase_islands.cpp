@@ -84,17 +84,27 @@ private:
   std::vector<int32_t> walk_, found_; // kept between floods: most floods are one side long
 };
 
+/// How far inside its phase's side a triangle's centre is sampled, in targets.
+constexpr double kInward = 0.1;
+
 /// True where `phase` leads nowhere the piece's triangles enclose: at the mean
-/// of their nodes and at the centre of each.
+/// of their nodes, and a little inside each triangle's centre (on its side of
+/// `phase`), where a piece the phase functions have is led by its phase
+/// (exactly at the centre, on the interface, either may lead).
 bool led_by_others(const NodeRings& mesh, std::span<const int32_t> triangles, const std::vector<int32_t>& nodes,
-                   int32_t phase, const PhaseField& field) {
+                   int32_t phase, const PhaseField& field, double inward) {
   const auto& pos = mesh.positions();
   std::vector<Vec3> samples{Vec3::Zero()};
   for (int32_t n : nodes) samples[0] += pos[size_t(n)];
   samples[0] /= double(nodes.size());
   for (int32_t t : triangles) {
     const auto& tri = mesh.mesh().triangles[size_t(t)];
-    samples.push_back((pos[size_t(tri[0])] + pos[size_t(tri[1])] + pos[size_t(tri[2])]) / 3);
+    const Vec3 &a = pos[size_t(tri[0])], &b = pos[size_t(tri[1])], &c = pos[size_t(tri[2])];
+    // Triangles are oriented from the pair's first phase into its second.
+    const Vec3 normal = (b - a).cross(c - a);
+    const double into_phase = mesh.mesh().pairs[size_t(t)][0] == phase ? -inward : inward;
+    const double area2 = normal.norm();
+    samples.push_back((a + b + c) / 3 + (area2 > 0 ? into_phase / area2 : 0.0) * normal);
   }
   std::array<int32_t, 1> id;
   std::array<double, 1> value;
@@ -157,7 +167,7 @@ std::vector<PointMerge> phase_islands(const NodeRings& mesh, std::span<const dou
           size = std::min(size, target[size_t(a)]);
           for (int32_t b : nodes) across = std::max(across, (m.points[size_t(a)] - m.points[size_t(b)]).norm());
         }
-        if (across > widest * size || !led_by_others(mesh, piece, nodes, phase, field)) continue;
+        if (across > widest * size || !led_by_others(mesh, piece, nodes, phase, field, kInward * size)) continue;
         if (auto merge = merge_of(mesh, nodes)) pieces.push_back({phase, piece.size(), std::move(*merge)});
       }
   }

@@ -25,9 +25,10 @@ namespace vm::detail {
 /// reached from a junction or box node, of at most 64 triangles and
 /// at most `widest` x the target (the smallest of their nodes') across, of a
 /// phase that has other triangles (a label is never lost), and where the
-/// phase functions make another phase lead at the mean of their nodes and at
-/// the centre of every triangle. A piece the phase fills, however small (a
-/// one-voxel island of a label), keeps its phase leading inside and is kept.
+/// phase functions make another phase lead at the mean of their nodes and a
+/// tenth of a target inside the centre of every triangle. A piece the phase
+/// fills, however small (a drop 0.8 h in radius), keeps its phase leading
+/// inside and is kept.
 /// @param mesh   the node-level mesh
 /// @param target the target edge length at each node
 /// @param field  the phase functions

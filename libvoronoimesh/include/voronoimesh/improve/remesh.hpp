@@ -76,7 +76,7 @@ struct RemeshParams {
   bool split_first = false;
   /// With the phase functions: a closed piece of a phase's boundary (at most
   /// 64 triangles) that is at most this many targets across, where
-  /// another phase leads at its centre and the centre of each of its triangles
+  /// another phase leads at its centre and just inside each of its triangles
   /// (a pocket the lattice made, cut off from the rest of the phase), merges
   /// into one node when the mesh stays valid; a phase keeps its other pieces,
   /// so no phase is lost. 0: never.
