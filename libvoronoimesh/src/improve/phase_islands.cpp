@@ -120,7 +120,8 @@ bool led_by_others(const NodeRings& mesh, std::span<const int32_t> triangles, co
 std::optional<PointMerge> merge_of(const NodeRings& mesh, const std::vector<int32_t>& nodes) {
   uint8_t faces = 0;
   for (int32_t n : nodes) faces |= mesh.box_faces()[size_t(n)];
-  const auto keep = std::find_if(nodes.begin(), nodes.end(), [&](int32_t n) { return mesh.box_faces()[size_t(n)] == faces; });
+  const auto keep =
+      std::find_if(nodes.begin(), nodes.end(), [&](int32_t n) { return mesh.box_faces()[size_t(n)] == faces; });
   if (keep == nodes.end()) return std::nullopt;
   Vec3 to = Vec3::Zero();
   for (int32_t n : nodes) to += mesh.positions()[size_t(n)];
@@ -138,7 +139,9 @@ std::optional<PointMerge> merge_of(const NodeRings& mesh, const std::vector<int3
 std::vector<PointMerge> phase_islands(const NodeRings& mesh, std::span<const double> target, const PhaseField& field,
                                       double widest) {
   const NodeMesh& m = mesh.mesh();
-  const auto phases = size_t(field.num_phases()); // a closed mesh's outside phase, past them, is left alone
+  // A phase the functions do not have (the outside of a closed mesh, given
+  // the scene's functions without it) is left alone.
+  const auto phases = size_t(field.num_phases());
   std::vector<size_t> triangles_of(phases, 0);
   for (const PhasePair& pair : m.pairs)
     for (int32_t p : pair)
