@@ -3,6 +3,8 @@
 // bench/junction_scenes.sh): every mesh valid, free of crossings and inside
 // the domain, and the defect the edit mends gone.
 
+#include "core/union_find.hpp"
+
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/fields/scene.hpp"
@@ -180,28 +182,20 @@ TEST(Improve, a_point_merge_does_not_land_on_another_point_of_its_phases) {
 /// The pieces of `phase`'s boundary in `mesh`: its triangles, joined where two share an edge.
 size_t pieces_of(const InterfaceMesh& mesh, int32_t phase) {
   const NodeMesh m = mesh.to_node_mesh();
-  std::map<std::pair<int32_t, int32_t>, std::vector<size_t>> at_edge;
-  std::vector<size_t> piece(m.num_triangles());
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    piece[t] = t;
-    if (m.pairs[t][0] != phase && m.pairs[t][1] != phase) continue;
+  std::map<std::pair<int32_t, int32_t>, int32_t> first_at_edge; // the first triangle of `phase` at each edge
+  detail::UnionFind pieces(m.num_triangles());
+  std::set<int32_t> triangles;
+  for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t) {
+    if (m.pairs[size_t(t)][0] != phase && m.pairs[size_t(t)][1] != phase) continue;
+    triangles.insert(t);
     for (size_t k = 0; k < 3; ++k) {
-      const int32_t a = m.triangles[t][k], b = m.triangles[t][(k + 1) % 3];
-      at_edge[{std::min(a, b), std::max(a, b)}].push_back(t);
+      const int32_t a = m.triangles[size_t(t)][k], b = m.triangles[size_t(t)][(k + 1) % 3];
+      const auto [at, first] = first_at_edge.try_emplace({std::min(a, b), std::max(a, b)}, t);
+      if (!first) pieces.unite(at->second, t);
     }
   }
-  auto find = [&](size_t t) {
-    while (piece[t] != t) t = piece[t] = piece[piece[t]];
-    return t;
-  };
-  std::set<size_t> triangles;
-  for (const auto& [edge, at] : at_edge)
-    for (size_t t : at) {
-      piece[find(t)] = find(at[0]);
-      triangles.insert(t);
-    }
-  std::set<size_t> roots;
-  for (size_t t : triangles) roots.insert(find(t));
+  std::set<int32_t> roots;
+  for (int32_t t : triangles) roots.insert(pieces.find(t));
   return roots.size();
 }
 

@@ -4,6 +4,7 @@
 /// representative of a class is its smallest member: results do not depend on
 /// the order unions are made in).
 
+#include <cstddef>
 #include <cstdint>
 #include <numeric>
 #include <vector>
