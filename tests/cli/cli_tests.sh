@@ -322,6 +322,14 @@ if "$vm" create -q --grid 12 -o surf.stl --per-phase phases && [ ! -e surf.stl ]
   [ -s surf_0-outside_1-sphere1.stl ] && [ "$(ls phases/phase_*.stl | wc -l)" -eq 5 ]; then pass
 else fail "-o surf.stl: one file per phase pair, --per-phase: one per phase"; fi
 if "$vm" create --grid 12 -o surf2.stl 2>&1 | contains "10 STL files, one per phase pair"; then pass; else fail "STL files reported"; fi
+# Files of an earlier run's other pairs or phases are named, not silently left to mix with this run's.
+if "$vm" create --grid 12 -o surf2.stl 2>&1 | contains "note:"; then fail "the same pairs again: a note on other files"
+else pass; fi
+if "$vm" create grids/scene.json -o surf.stl --per-phase phases 2>&1 >/dev/null |
+  contains -E "^note: 10 other surf_\*\.stl files in this folder \(such as surf_0-outside_1-sphere1\.stl\) are not from this run"
+then pass; else fail "an earlier run's STL files beside this run's are not named"; fi
+if "$vm" create grids/scene.json -o surf.stl --per-phase phases 2>&1 | contains -E "^note: 5 other phase_\*\.stl files in phases"
+then pass; else fail "an earlier run's per-phase STL files are not named"; fi
 if "$vm" create --help | contains "\.vtp" && "$vm" create --help | contains "per-phase"; then pass; else fail "--help lists the formats"; fi
 if "$vm" flip -q demo.ply -o fl.msh && grep -q '^\$PhysicalNames' fl.msh; then pass; else fail "flip -o .msh"; fi
 : >blocker

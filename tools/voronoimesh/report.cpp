@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -72,15 +73,58 @@ void Report::improved(const vm::ImproveReport& r) {
   say(line);
 }
 
+namespace {
+
+/// The files in `dir` named `prefix`*.stl that are not among `written` (an
+/// earlier run's, of phase pairs or phases this run does not have), sorted.
+std::vector<std::string> other_stl_files(const std::filesystem::path& dir, const std::string& prefix,
+                                         const std::vector<std::string>& written) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> names, others;
+  for (const std::string& f : written) names.push_back(fs::path(f).filename().string());
+  std::error_code ec;
+  for (fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() > prefix.size() + 4 && name.starts_with(prefix) && name.ends_with(".stl") &&
+        std::find(names.begin(), names.end(), name) == names.end())
+      others.push_back(name);
+  }
+  std::sort(others.begin(), others.end());
+  return others;
+}
+
+/// A note on the files of `pattern` beside this run's that it did not write,
+/// or nothing: loaded together with them, they would mix two meshes.
+std::string stale_note(const std::vector<std::string>& others, const std::filesystem::path& dir,
+                       const std::string& pattern) {
+  if (others.empty()) return {};
+  const std::string where = dir.empty() ? std::string("this folder") : dir.string();
+  return "note: " + std::to_string(others.size()) + " other " + pattern + " file" + (others.size() > 1 ? "s" : "") +
+         " in " + where + " (such as " + others.front() + ") are not from this run; remove them before loading " +
+         pattern + " together";
+}
+
+} // namespace
+
 void Report::written(const std::vector<std::string>& mesh_files, const std::vector<std::string>& phase_files) {
   namespace fs = std::filesystem;
   status("");
-  if (!mesh_files.empty() && mesh_files != std::vector<std::string>{output_})
-    say("output: " + std::to_string(mesh_files.size()) + " STL files, one per phase pair (" +
-        (fs::path(output_).parent_path() / fs::path(output_).stem()).string() + "_<pair>.stl)");
-  if (!phase_files.empty())
-    say("per-phase: " + std::to_string(phase_files.size()) + " STL files in " +
-        fs::path(phase_files.front()).parent_path().string() + " (phase_<label>.stl)");
+  if (!mesh_files.empty() && mesh_files != std::vector<std::string>{output_}) {
+    const fs::path dir = fs::path(output_).parent_path();
+    const std::string stem = fs::path(output_).stem().string();
+    say("output: " + std::to_string(mesh_files.size()) + " STL files, one per phase pair (" + (dir / stem).string() +
+        "_<pair>.stl)");
+    if (const std::string note = stale_note(other_stl_files(dir, stem + "_", mesh_files), dir, stem + "_*.stl");
+        !note.empty())
+      say(note);
+  }
+  if (!phase_files.empty()) {
+    const fs::path dir = fs::path(phase_files.front()).parent_path();
+    say("per-phase: " + std::to_string(phase_files.size()) + " STL files in " + dir.string() + " (phase_<label>.stl)");
+    if (const std::string note = stale_note(other_stl_files(dir, "phase_", phase_files), dir, "phase_*.stl");
+        !note.empty())
+      say(note);
+  }
 }
 
 void Report::note(const std::string& line) { say(line); }
