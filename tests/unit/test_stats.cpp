@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <set>
@@ -229,6 +230,34 @@ TEST(Stats, text_and_json_carry_every_field) {
   size_t binned = 0;
   for (size_t n : s.smallest_angles) binned += n;
   EXPECT_EQ(binned, s.triangles);
+}
+
+TEST(Stats, a_closed_meshs_interfaces_are_measured_without_its_box_faces) {
+  test::Builder b;
+  b.tri(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), 0, 1); // right isosceles, on the box
+  b.tri(Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), 0, 2); // right isosceles, on the box
+  b.tri(Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0.5, std::sqrt(3.0) / 2, 1), 1, 2); // equilateral
+  b.tri(Vec3(0, 0, 2), Vec3(1, 0, 2), Vec3(0.5, 0.3, 2), 1, 2);
+  const double worst_interface = triangle_quality(Vec3(0, 0, 2), Vec3(1, 0, 2), Vec3(0.5, 0.3, 2));
+  NodeMesh closed = b.mesh;
+  closed.outside_phase = 0;
+  const MeshStats s = compute_stats(closed);
+  EXPECT_EQ(s.box_triangles, 2u);
+  EXPECT_DOUBLE_EQ(s.interface_min_quality, worst_interface);
+  EXPECT_DOUBLE_EQ(s.interface_mean_quality, (1 + worst_interface) / 2);
+  EXPECT_NEAR(s.mean_quality, (2 * std::sqrt(3.0) / 2 + 1 + worst_interface) / 4, 1e-12); // all four still counted
+  char line[96];
+  std::snprintf(line, sizeof line, "interfaces min/mean    %.4f / %.4f (q without the 2 triangles on the box faces)\n",
+                s.interface_min_quality, s.interface_mean_quality);
+  EXPECT_NE(to_text(s).find(line), std::string::npos) << to_text(s);
+  const auto j = nlohmann::json::parse(to_json(s));
+  EXPECT_EQ(j.at("box_triangles").get<size_t>(), 2u);
+  EXPECT_EQ(j.at("interface_mean_quality").get<double>(), s.interface_mean_quality);
+  // A mesh that is not closed has no box faces to leave out, and says nothing of them.
+  const MeshStats open = compute_stats(b.mesh);
+  EXPECT_EQ(open.box_triangles, 0u);
+  EXPECT_EQ(to_text(open).find("interfaces"), std::string::npos);
+  EXPECT_FALSE(nlohmann::json::parse(to_json(open)).contains("box_triangles"));
 }
 
 TEST(Stats, the_first_percentile_is_the_qualitys_own) {

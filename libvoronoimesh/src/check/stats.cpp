@@ -113,8 +113,10 @@ TriangleCorner corner_of(const NodeMesh& m, const detail::NodePhases& np, const 
 }
 
 void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats& s) {
-  double sum = 0;
+  double sum = 0, interface_sum = 0;
   size_t counted = 0;
+  const bool closed = m.outside_phase >= 0;
+  if (closed) s.interface_min_quality = std::numeric_limits<double>::infinity();
   std::vector<double> qualities;
   qualities.reserve(m.triangles.size());
   s.min_quality = std::numeric_limits<double>::infinity();
@@ -129,6 +131,12 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     qualities.push_back(q);
     sum += q;
     ++counted;
+    if (closed && (m.pairs[t][0] == m.outside_phase || m.pairs[t][1] == m.outside_phase)) {
+      ++s.box_triangles;
+    } else if (closed) {
+      s.interface_min_quality = std::min(s.interface_min_quality, q);
+      interface_sum += q;
+    }
     s.below_half += q < 0.5;
     s.slivers += q < MeshStats::kSliverQuality;
     double smallest = 180;
@@ -141,6 +149,8 @@ void quality_stats(const NodeMesh& m, const std::vector<char>& usable, MeshStats
     const auto bin = std::min(size_t(smallest / MeshStats::kAngleBinDeg), s.smallest_angles.size() - 1);
     ++s.smallest_angles[bin];
   }
+  if (closed && counted == s.box_triangles) s.interface_min_quality = 0;
+  if (closed && counted > s.box_triangles) s.interface_mean_quality = interface_sum / double(counted - s.box_triangles);
   if (counted == 0) {
     s.min_quality = s.min_angle_deg = 0;
     return;
@@ -353,6 +363,9 @@ std::string to_text(const MeshStats& s) {
   line("quadruple points", std::to_string(s.quadruple_points));
   line("higher-order points", std::to_string(s.higher_order_points));
   line("quality min/1%/mean", num("%.4f / %.4f / %.4f", s.min_quality, s.quality_p01, s.mean_quality));
+  if (s.box_triangles > 0)
+    line("interfaces min/mean", num("%.4f / %.4f (q without the %zu triangles on the box faces)",
+                                    s.interface_min_quality, s.interface_mean_quality, s.box_triangles));
   line("quality < 0.5", std::to_string(s.below_half));
   line("slivers (q < 0.1)", std::to_string(s.slivers));
   line("folds", std::to_string(s.folds) + " surface edges turning more than " +
@@ -404,6 +417,11 @@ std::string to_json(const MeshStats& s, std::span<const WorstTriangle> worst, co
       {"max_edge", s.max_edge},
       {"rms_edge", s.rms_edge},
   };
+  if (s.box_triangles > 0) {
+    j["box_triangles"] = s.box_triangles;
+    j["interface_min_quality"] = s.interface_min_quality;
+    j["interface_mean_quality"] = s.interface_mean_quality;
+  }
   if (s.self_intersections) j["self_intersections"] = *s.self_intersections;
   auto label = [&](int32_t p) { return m ? m->label_of(p) : p; };
   auto corners_json = [&](std::span<const TriangleCorner> corners) {

@@ -67,6 +67,16 @@ struct MeshStats {
   /// @var max_edge
   /// Longest edge, in the units of the points.
 
+  /// Of a closed mesh (NodeMesh::outside_phase), the triangles on the box faces:
+  /// the outside phase's boundary, a lattice of right triangles (q 0.866) that
+  /// would hide the interfaces' own quality in the figures above. 0 for other meshes.
+  size_t box_triangles = 0;
+  /// Of a closed mesh, the smallest and mean q of the other triangles (the
+  /// interfaces between phases inside the box); 0 for other meshes.
+  double interface_min_quality = 0, interface_mean_quality = 0;
+  /// @var interface_mean_quality
+  /// Of a closed mesh, the mean q of the triangles not on the box faces.
+
   /// Pairs of triangles that intersect (find_self_intersections); not measured by
   /// compute_stats, which must stay cheap: set by callers that check.
   std::optional<size_t> self_intersections;
