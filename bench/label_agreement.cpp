@@ -10,7 +10,7 @@
 //                        [--voxel-faithful] [--snap S]
 //        label_agreement --header
 
-#include "voronoimesh/check/locate.hpp"
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
@@ -24,7 +24,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
-#include <map>
 #include <optional>
 #include <string>
 
@@ -39,18 +38,12 @@ struct Options {
   double snap = vm::MeshOptions{}.snap;
 };
 
-/// Voxel centres of one label: how many, and how many lie in its phase.
-struct Count {
-  int64_t voxels = 0, agree = 0;
-};
-
 int run(const std::string& path, const Options& o) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
   const auto t0 = std::chrono::steady_clock::now();
-  const vm::io::Volume volume = vm::io::read_volume(path);
-  if (!volume.integer || volume.components != 1 || !volume.direction.isIdentity()) {
-    std::fprintf(stderr, "label_agreement: %s: needs one integer label per voxel and axis-aligned voxels\n",
-                 path.c_str());
+  const vm::io::Volume volume = vm::read_placed_volume(path, o.input);
+  if (!volume.integer || volume.components != 1) {
+    std::fprintf(stderr, "label_agreement: %s: needs one integer label per voxel\n", path.c_str());
     return 2;
   }
   const vm::Scene scene = vm::load_input(path, o.input);
@@ -66,48 +59,19 @@ int run(const std::string& path, const Options& o) {
   const vm::NodeMesh m = vm::mesh_scene(scene, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const vm::PointGrid centres{volume.origin, volume.spacing, volume.size};
-  const std::vector<int32_t> located = vm::locate_grid_points(m, centres);
-  const int64_t nx = volume.size[0], ny = volume.size[1], nz = volume.size[2];
-  auto label_at = [&](int64_t i, int64_t j, int64_t k) { return volume.labels[size_t(i + nx * (j + ny * k))]; };
-  std::map<int32_t, Count> by_label;
-  Count all, interior;
-  int64_t undecided = 0;
-  for (int64_t k = 0; k < nz; ++k)
-    for (int64_t j = 0; j < ny; ++j)
-      for (int64_t i = 0; i < nx; ++i) {
-        const int32_t label = label_at(i, j, k);
-        const int32_t phase = located[size_t(i + nx * (j + ny * k))];
-        if (i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) continue; // on the box
-        if (phase < 0) {
-          ++undecided;
-          continue;
-        }
-        const bool agree = phase < scene.field->num_phases() && scene.field->phase_label(phase) == label;
-        bool uniform = true;
-        for (int dk = -1; dk <= 1; ++dk)
-          for (int dj = -1; dj <= 1; ++dj)
-            for (int di = -1; di <= 1; ++di) uniform = uniform && label_at(i + di, j + dj, k + dk) == label;
-        for (Count* c : {&all, &by_label[label]}) ++c->voxels, c->agree += agree;
-        if (uniform) ++interior.voxels, interior.agree += agree;
-      }
-  double worst = 100;
-  int32_t worst_label = 0;
-  int64_t worst_voxels = 0;
+  const vm::LabelAgreement a = vm::label_agreement(m, {volume.origin, volume.spacing, volume.size}, volume.labels);
+  const vm::LabelAgreement::Label* worst = a.worst();
   std::string missing;
-  for (const auto& [label, c] : by_label) {
-    const double share = 100.0 * double(c.agree) / double(c.voxels);
-    if (share < worst || worst_voxels == 0) worst = share, worst_label = label, worst_voxels = c.voxels;
-    if (c.agree == 0) missing += (missing.empty() ? "" : " ") + std::to_string(label);
-  }
+  for (int32_t label : a.lost()) missing += (missing.empty() ? "" : " ") + std::to_string(label);
   const vm::MeshStats stats = vm::compute_stats(m);
   char per_cell[32] = "default";
   if (o.input.voxels_per_cell > 0) std::snprintf(per_cell, sizeof per_cell, "%g", o.input.voxels_per_cell);
   std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.2f (label %d, %lld voxels) | %s | %lld | %.1f |\n",
               path.c_str(), o.pipeline.c_str(), per_cell, m.num_triangles(), stats.min_quality,
-              stats.mean_quality, 100.0 * double(all.agree) / double(all.voxels),
-              100.0 * double(interior.agree) / double(interior.voxels), worst, worst_label, (long long)worst_voxels,
-              missing.empty() ? "none" : missing.c_str(), (long long)undecided, seconds);
+              stats.mean_quality, 100.0 * double(a.in_phase) / double(a.voxels),
+              100.0 * double(a.interior_in_phase) / double(a.interior),
+              worst ? 100.0 * double(worst->in_phase) / double(worst->voxels) : 100.0, worst ? worst->label : 0, (long long)(worst ? worst->voxels : 0),
+              missing.empty() ? "none" : missing.c_str(), (long long)a.undecided, seconds);
   return 0;
 }
 

@@ -154,6 +154,12 @@ nrrd_labels oblique.nrrd 'space dimension: 3\nspace directions: (1,0.2,0) (0,1,0
 if "$vm" create -q labels.nrrd -o l.ply && "$vm" stats l.ply | contains -E "^phases +3" ; then pass; else fail "create on a label volume"; fi
 if "$vm" stats l.ply | contains -E "^topology +valid"; then pass; else fail "label volume mesh is not valid"; fi
 if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | contains -E "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
+# stats --field on a label volume: where the voxel centres lie in a closed mesh, or why not.
+if "$vm" mesh -q labels.nrrd --close --iterations 3 -o lclosed.ply &&
+  "$vm" stats lclosed.ply --field labels.nrrd | contains -E "^voxel centres in their label's phase: 9[0-9]\.[0-9]{3}% of 2744 \(interior ones 100\.000%" &&
+  "$vm" stats lclosed.ply --field labels.nrrd | contains -E "^  labels with none in their phase: none$" &&
+  "$vm" stats lm.ply --field labels.nrrd | contains "voxel centres not located: the mesh is not closed"; then pass
+else fail "stats --field on a label volume: voxel centres"; fi
 # smooth --field improves a created mesh as mesh does with the same pipeline: the same file,
 # byte for byte. Its default is the paper's (a mesh from a file is not coarsened again);
 # mesh's default for a label volume remeshes first, to fewer triangles.

@@ -4,8 +4,9 @@
 // casting rays along x, and the phase around it must be its voxel's label
 // wherever the voxel is more than a voxel away from any other label.
 
-#include "voronoimesh/check/locate.hpp"
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
@@ -15,6 +16,7 @@
 #include "nrrd_file.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -41,14 +43,10 @@ uint8_t ellipsoid_label(int i, int j, int k) {
   return label;
 }
 
-struct Agreement {
-  size_t far = 0, far_agree = 0, all = 0, all_agree = 0, undecided = 0;
-};
-
 /// Meshes the ellipsoids (closed domain, 20 iterations of `pipeline`) with `options` and
 /// counts the voxel centres whose phase in the mesh is their label, overall and
 /// among those whose neighbours within `margin` voxels all share their label.
-Agreement mesh_and_compare(const InputOptions& options, int margin, const std::string& pipeline = kDefaultPipeline) {
+LabelAgreement mesh_and_compare(const InputOptions& options, int margin, const std::string& pipeline = kDefaultPipeline) {
   std::vector<uint8_t> voxels;
   for (int k = 0; k < kSize; ++k)
     for (int j = 0; j < kSize; ++j)
@@ -63,44 +61,55 @@ Agreement mesh_and_compare(const InputOptions& options, int margin, const std::s
   RunOptions run;
   run.iterations = 20;
   Pipeline::parse(pipeline, builtin_registry()).run(mesh, phases.get(), run);
-  const NodeMesh m = mesh.to_node_mesh();
+  NodeMesh m = mesh.to_node_mesh();
   EXPECT_TRUE(validate(m).ok()) << validate(m).summary();
+  for (int p = 0; p < scene.field->num_phases(); ++p) m.phase_labels.push_back(scene.field->phase_label(p));
 
   PointGrid voxel_centres;
   voxel_centres.size = {kSize, kSize, kSize};
-  const std::vector<int32_t> located = locate_grid_points(m, voxel_centres);
-  Agreement a;
-  for (int k = 1; k < kSize - 1; ++k)
-    for (int j = 1; j < kSize - 1; ++j)
-      for (int i = 1; i < kSize - 1; ++i) {
-        const size_t v = size_t(i + kSize * (j + kSize * k));
-        if (located[v] < 0) {
-          ++a.undecided;
-          continue;
-        }
-        const int label = voxels[v];
-        const bool agree = scene.field->phase_label(located[v]) == label;
-        bool uniform = true; // all neighbours within the margin share the label: far from any interface
-        for (int dk = -margin; dk <= margin; ++dk)
-          for (int dj = -margin; dj <= margin; ++dj)
-            for (int di = -margin; di <= margin; ++di) {
-              const int x = std::clamp(i + di, 0, kSize - 1), y = std::clamp(j + dj, 0, kSize - 1),
-                        z = std::clamp(k + dk, 0, kSize - 1);
-              uniform = uniform && voxels[size_t(x + kSize * (y + kSize * z))] == label;
-            }
-        ++a.all, a.all_agree += agree;
-        if (uniform) ++a.far, a.far_agree += agree;
-      }
-  std::printf("voxel centres: %zu of %zu far from interfaces agree, %zu of %zu overall (%.2f%%), %zu undecided\n",
-              a.far_agree, a.far, a.all_agree, a.all, 100.0 * double(a.all_agree) / double(a.all), a.undecided);
+  const std::vector<int32_t> labels(voxels.begin(), voxels.end());
+  const LabelAgreement a = label_agreement(m, voxel_centres, labels, margin);
+  std::printf("voxel centres: %lld of %lld far from interfaces agree, %lld of %lld overall (%.2f%%), %lld undecided\n",
+              (long long)a.interior_in_phase, (long long)a.interior, (long long)a.in_phase, (long long)a.voxels,
+              100.0 * double(a.in_phase) / double(a.voxels), (long long)a.undecided);
   return a;
 }
 
 TEST(LabelVolume, mesh_phases_agree_with_the_voxel_labels) {
-  const Agreement a = mesh_and_compare({}, 1);
-  EXPECT_EQ(a.far_agree, a.far);
-  EXPECT_GT(double(a.all_agree), 0.97 * double(a.all));
-  EXPECT_LT(a.undecided, a.all / 100);
+  const LabelAgreement a = mesh_and_compare({}, 1);
+  EXPECT_EQ(a.interior_in_phase, a.interior);
+  EXPECT_GT(double(a.in_phase), 0.97 * double(a.voxels));
+  EXPECT_LT(a.undecided, a.voxels / 100);
+}
+
+TEST(LabelVolume, the_agreement_counts_every_label_and_says_so_in_text_and_json) {
+  const LabelAgreement a = mesh_and_compare({}, 1);
+  std::vector<int32_t> labels;
+  int64_t voxels = 0, in_phase = 0;
+  for (const LabelAgreement::Label& l : a.labels) labels.push_back(l.label), voxels += l.voxels, in_phase += l.in_phase;
+  EXPECT_EQ(labels, (std::vector<int32_t>{0, 3, 7, 200}));
+  EXPECT_EQ(voxels, a.voxels);
+  EXPECT_EQ(in_phase, a.in_phase);
+  EXPECT_TRUE(a.lost().empty());
+  ASSERT_NE(a.worst(), nullptr);
+  EXPECT_LE(double(a.worst()->in_phase) / double(a.worst()->voxels), double(a.in_phase) / double(a.voxels));
+  const std::string text = to_text(a);
+  EXPECT_NE(text.find("voxel centres in their label's phase: "), std::string::npos) << text;
+  EXPECT_NE(text.find("worst label " + std::to_string(a.worst()->label) + ": "), std::string::npos) << text;
+  EXPECT_NE(text.find("labels with none in their phase: none"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(to_json(a));
+  EXPECT_EQ(j.at("in_phase").get<int64_t>(), a.in_phase);
+  EXPECT_EQ(j.at("labels").size(), 4u);
+}
+
+TEST(LabelVolume, the_agreement_of_a_mesh_that_is_not_closed_is_refused) {
+  PointGrid centres;
+  centres.size = {2, 2, 2};
+  const std::vector<int32_t> labels(8, 1);
+  EXPECT_THROW(label_agreement(test::tetrahedron(), centres, labels), InvalidInput);
+  NodeMesh closed = test::tetrahedron();
+  closed.outside_phase = 0;
+  EXPECT_THROW(label_agreement(closed, centres, std::vector<int32_t>(7, 1)), InvalidInput); // a label short
 }
 
 // --voxels-per-cell 2: a mesh with about a quarter of the triangles, still
@@ -108,20 +117,20 @@ TEST(LabelVolume, mesh_phases_agree_with_the_voxel_labels) {
 TEST(LabelVolume, coarser_grid_agrees_with_the_voxel_labels) {
   InputOptions coarse;
   coarse.voxels_per_cell = 2;
-  const Agreement a = mesh_and_compare(coarse, 2);
-  EXPECT_EQ(a.far_agree, a.far);
-  EXPECT_GT(double(a.all_agree), 0.95 * double(a.all));
-  EXPECT_LT(a.undecided, a.all / 100);
+  const LabelAgreement a = mesh_and_compare(coarse, 2);
+  EXPECT_EQ(a.interior_in_phase, a.interior);
+  EXPECT_GT(double(a.in_phase), 0.95 * double(a.voxels));
+  EXPECT_LT(a.undecided, a.voxels / 100);
 }
 
 // Remeshed to edges 1.4 times as long (about half the triangles; the default
 // for label volumes): as right as the paper's pipeline wherever the labels are
 // a voxel from any other label.
 TEST(LabelVolume, remeshed_mesh_agrees_with_the_voxel_labels) {
-  const Agreement a = mesh_and_compare({}, 1, kLabelVolumePipeline);
-  EXPECT_EQ(a.far_agree, a.far);
-  EXPECT_GT(double(a.all_agree), 0.97 * double(a.all));
-  EXPECT_LT(a.undecided, a.all / 100);
+  const LabelAgreement a = mesh_and_compare({}, 1, kLabelVolumePipeline);
+  EXPECT_EQ(a.interior_in_phase, a.interior);
+  EXPECT_GT(double(a.in_phase), 0.97 * double(a.voxels));
+  EXPECT_LT(a.undecided, a.voxels / 100);
 }
 
 } // namespace

@@ -1,10 +1,13 @@
 #include "commands.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
+#include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/improve/offsets.hpp"
+#include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/run/meshing.hpp"
 
@@ -51,7 +54,10 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                                   "method within its box faces; those whose phases meet nowhere near are counted "
                                   "apart), in multiples of the spacing h of the grid the mesh was created on (from "
                                   "the PLY's grid_spacing comment; for a mesh without one, the input's default "
-                                  "grid), and the farthest node. ") +
+                                  "grid), and the farthest node. For a label volume and a closed mesh (mesh "
+                                  "--close), also where the voxel centres lie: the share in a phase of their own "
+                                  "label (all, and those whose 26 neighbours share it), the worst label and the "
+                                  "labels with none in their phase. ") +
                           kInputHelp)
           ->option_text("INPUT");
   add_input_options(cmd, o->input, field);
@@ -60,8 +66,20 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       vm::NodeMesh mesh = vm::io::read_ply(o->mesh);
       // The input first: one the mesh was not made from is refused before any measuring.
       std::optional<vm::MeshOffsets> offsets;
-      if (!o->field.empty())
-        offsets = vm::offsets_from_input(mesh, o->mesh, vm::read_input(o->field, input_options(o->input)), o->field);
+      std::optional<vm::LabelAgreement> agreement;
+      std::string not_located; // why a label volume's voxel centres were not located
+      if (!o->field.empty()) {
+        const vm::InputOptions options = input_options(o->input);
+        offsets = vm::offsets_from_input(mesh, o->mesh, vm::read_input(o->field, options), o->field);
+        if (vm::io::is_volume_file(o->field)) {
+          const vm::io::Volume volume = vm::read_placed_volume(o->field, options);
+          const bool labels = volume.integer && volume.components == 1;
+          if (labels && mesh.outside_phase < 0)
+            not_located = "voxel centres not located: the mesh is not closed (mesh --close makes it so)";
+          else if (labels)
+            agreement = vm::label_agreement(mesh, {volume.origin, volume.spacing, volume.size}, volume.labels);
+        }
+      }
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);
       // Only a mesh whose topology is sound can be checked for crossings.
@@ -72,6 +90,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       if (o->json) {
         std::vector<std::pair<std::string, std::string>> more;
         if (offsets) more.emplace_back("offsets", vm::to_json(offsets->offsets, mesh, offsets->spacing));
+        if (agreement) more.emplace_back("label_agreement", vm::to_json(*agreement));
         std::cout << vm::to_json(s, worst, &mesh, folds, more) << "\n";
       } else {
         std::cout << vm::to_text(s);
@@ -86,6 +105,8 @@ void add_stats_command(CLI::App& app, int& exit_code) {
                                                    : ", the input's default grid spacing: the mesh does not say its own")
                     << ")\n"
                     << vm::to_text(offsets->offsets, mesh, offsets->spacing);
+        if (agreement) std::cout << vm::to_text(*agreement);
+        if (!not_located.empty()) std::cout << not_located << "\n";
       }
       return report.ok() && !crossing ? kOk : kTopology;
     });

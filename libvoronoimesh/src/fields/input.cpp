@@ -94,6 +94,14 @@ void refuse_options_that_do_not_apply(const InputOptions& o, bool volume, bool l
                                        " (docs/inputs.md)")));
 }
 
+io::Volume read_placed_volume(const std::string& path, const InputOptions& options, std::string* world) {
+  io::Volume v = io::read_volume(path);
+  const std::string frame = convert_world(v, options.world, path);
+  detail::axis_align(v, path, options.ignore_direction);
+  if (world) *world = frame;
+  return v;
+}
+
 Scene load_input(const std::string& path, const InputOptions& options) {
   detail::check_input_options(options);
   if (detail::lower(path).ends_with(".json")) {
@@ -101,10 +109,9 @@ Scene load_input(const std::string& path, const InputOptions& options) {
     return load_scene(path);
   }
   if (io::is_volume_file(path)) {
-    io::Volume v = io::read_volume(path);
+    std::string world;
+    io::Volume v = read_placed_volume(path, options, &world);
     if (!v.integer) refuse_options_that_do_not_apply(options, true, false, "a distance grid (real values)", path);
-    const std::string world = convert_world(v, options.world, path);
-    detail::axis_align(v, path, options.ignore_direction);
     Scene scene = v.integer ? detail::label_volume_scene(std::move(v), options, path) : distance_scene(v, options, path);
     scene.world = world;
     return scene;

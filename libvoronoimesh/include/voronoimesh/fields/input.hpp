@@ -4,6 +4,7 @@
 /// grids and labelled point clouds (format and options: docs/inputs.md).
 
 #include "voronoimesh/fields/scene.hpp"
+#include "voronoimesh/io/volume.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -94,6 +95,18 @@ struct InputOptions {
 /// @throws InvalidInput for bad content or a bad option, or an unknown extension
 /// @throws IoError      if the file cannot be read
 Scene load_input(const std::string& path, const InputOptions& options = {});
+
+/// Reads a volume file and places its voxels as load_input() does: in the frame
+/// InputOptions::world asks for, its axes made the identity (flipped and
+/// permuted voxels keeping their world positions), so that voxel (i, j, k) lies
+/// at origin + spacing .* (i, j, k) in the coordinates of a mesh made from it.
+/// @param path    a volume (io::is_volume_file())
+/// @param options read for `world` and `ignore_direction`
+/// @param world   if given, set to the frame of the coordinates as Scene::world says it
+/// @return the volume, its direction the identity
+/// @throws InvalidInput for an oblique direction (unless ignore_direction), or a frame the file does not state
+/// @throws IoError      if the file cannot be read
+io::Volume read_placed_volume(const std::string& path, const InputOptions& options, std::string* world = nullptr);
 
 /// Throws InvalidInput "<what>: --smoothing, ... apply only to volumes, and
 /// this is <kind>" when an option that only volumes (or label volumes) use differs
