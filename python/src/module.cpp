@@ -250,6 +250,13 @@ PYBIND11_MODULE(_voronoimesh, m) {
               py::gil_scoped_release released;
               const vm::MeshOffsets at = vm::offsets_from_input(self.mesh, "the mesh", vm::read_input(field, o.input), field);
               more.emplace_back("offsets", vm::to_json(at.offsets, self.mesh, at.spacing));
+              // A label volume's voxel centres, located in a closed mesh (as 'voronoimesh stats --field').
+              if (vm::io::is_volume_file(field) && self.mesh.outside_phase >= 0) {
+                const vm::io::Volume v = vm::read_placed_volume(field, o.input);
+                if (v.integer && v.components == 1)
+                  more.emplace_back("label_agreement",
+                                    vm::to_json(vm::label_agreement(self.mesh, {v.origin, v.spacing, v.size}, v.labels)));
+              }
             }
             return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
                                vm::sharpest_folds(self.mesh, folds), more);
@@ -259,7 +266,31 @@ PYBIND11_MODULE(_voronoimesh, m) {
           "with worst=N, also the N triangles of lowest quality and what meets at their corners "
           "('worst_triangles'); with folds=M, the M sharpest folds ('sharpest_folds'); with field=INPUT (the "
           "file the mesh was made from, with its input options as keywords), how far the nodes lie from its "
-          "interface ('offsets')")
+          "interface ('offsets') and, for a label volume and a closed mesh, where its voxel centres lie "
+          "('label_agreement', as label_agreement())")
+      .def(
+          "label_agreement_json",
+          [](const Mesh& self, const py::array& labels, const std::array<double, 3>& spacing,
+             const std::array<double, 3>& origin, int margin) {
+            if (labels.ndim() != 3)
+              throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
+                                    std::to_string(labels.ndim()) + " dimensions");
+            const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
+            if (!fortran) throw py::error_already_set();
+            const vm::PointGrid centres{Eigen::Map<const vm::Vec3>(origin.data()),
+                                        Eigen::Map<const vm::Vec3>(spacing.data()),
+                                        {fortran.shape(0), fortran.shape(1), fortran.shape(2)}};
+            py::gil_scoped_release released;
+            return vm::to_json(
+                vm::label_agreement(self.mesh, centres, {fortran.data(), size_t(fortran.size())}, margin));
+          },
+          py::arg("labels"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
+          py::arg("origin") = std::array<double, 3>{0, 0, 0}, py::arg("margin") = 1,
+          "Where the voxel centres of a label array (indexed [x, y, z], voxel centres at origin + spacing * "
+          "index, as for mesh_labels()) lie in this closed mesh (close=True), as JSON: 'voxels' counted (the outer "
+          "layer, on the box faces, left out), 'in_phase' (in a phase of their own label), 'interior' (those whose "
+          "neighbours within `margin` voxels share their label) and 'interior_in_phase', 'undecided', and per label "
+          "'labels'")
       .def(
           "write", [](const Mesh& self, const std::string& path, bool ascii) {
             vm::RunOutputs outputs;

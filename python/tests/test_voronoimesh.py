@@ -59,6 +59,21 @@ def test_label_arrays_give_numpy_meshes_in_labels_and_world_units():
     assert curves and all(c["phases"] == (0, 3, 7) for c in curves) and all(c["closed"] for c in curves)
 
 
+def test_a_closed_meshs_voxel_centres_lie_in_their_labels_phases():
+    labels = two_blocks()
+    mesh = vm.mesh_labels(labels, spacing=(0.5, 1, 2), origin=(10, 20, 30), iterations=5, close=True)
+    a = mesh.label_agreement(labels, spacing=(0.5, 1, 2), origin=(10, 20, 30))
+    assert a["voxels"] == 14 ** 3 and a["undecided"] == 0  # the outer layer lies on the box faces
+    assert [l["label"] for l in a["labels"]] == [0, 3, 7]
+    assert sum(l["voxels"] for l in a["labels"]) == a["voxels"]
+    assert a["interior_in_phase"] == a["interior"] > 0 and a["in_phase"] > 0.9 * a["voxels"]
+    # Compared with other labels, the same mesh disagrees: the count can fail.
+    swapped = np.where(labels == 3, 7, np.where(labels == 7, 3, labels))
+    assert mesh.label_agreement(swapped, spacing=(0.5, 1, 2), origin=(10, 20, 30))["in_phase"] < a["in_phase"]
+    with pytest.raises(ValueError, match="not closed"):
+        vm.mesh_labels(labels, iterations=1).label_agreement(labels)
+
+
 def test_any_integer_array_and_order_gives_the_same_mesh():
     reference = vm.mesh_labels(two_blocks(), iterations=2)
     for dtype, order in [(np.uint8, "C"), (np.int64, "F"), (np.int16, "C")]:
@@ -127,6 +142,12 @@ def test_files_are_read_as_the_cli_reads_them(tmp_path):
         coarse.stats(voxels_per_cell=2)
     with pytest.raises(ValueError, match="its phase 1 is 'liver', but the mesh calls phase 1 'tumour'"):
         ras.stats(field=str(path))  # made with the tumour alone kept
+    # A closed mesh of the volume: stats(field=...) also locates its voxel centres, as the
+    # CLI's stats --field does, with the counts label_agreement() gives for the same array.
+    closed = vm.mesh_file(str(path), iterations=2, close=True)
+    located = closed.stats(field=str(path))["label_agreement"]
+    assert located == closed.label_agreement(data) and located["voxels"] == 14 ** 3
+    assert "label_agreement" not in coarse.stats(field=str(path), voxels_per_cell=2)  # not closed
 
 
 def test_meshes_round_trip_through_meshio(tmp_path):

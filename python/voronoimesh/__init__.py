@@ -24,8 +24,19 @@ def _stats(self, worst=0, folds=0, field="", **input_options):
     with field=INPUT (the file the mesh was made from; its input options, such as
     voxels_per_cell=, as keywords) also 'offsets': how far the surface, triple-curve and
     quadruple-point nodes lie from its interface, in world units and in h (the grid spacing
-    the mesh was created on)."""
+    the mesh was created on), and for a label volume and a closed mesh 'label_agreement':
+    where its voxel centres lie (as Mesh.label_agreement())."""
     return _json.loads(self.stats_json(worst, folds, field, **input_options))
+
+
+def _label_agreement(self, labels, spacing=(1, 1, 1), origin=(0, 0, 0), margin=1):
+    """Where the voxel centres of a label array lie in this closed mesh (one meshed with
+    close=True), as a dict: 'voxels' located (the array's outer layer, on the box faces, left
+    out), 'in_phase' (those in a phase of their own label), 'interior' and 'interior_in_phase'
+    (those whose neighbours within margin voxels share their label), 'undecided', and
+    'labels': per label its 'voxels' and 'in_phase'. What 'voronoimesh stats --field' prints
+    for a label volume."""
+    return _json.loads(self.label_agreement_json(labels, spacing, origin, margin))
 
 
 def _to_meshio(self):
@@ -45,4 +56,5 @@ def _to_meshio(self):
 
 
 Mesh.stats = _stats
+Mesh.label_agreement = _label_agreement
 Mesh.to_meshio = _to_meshio

@@ -46,7 +46,8 @@ uint8_t ellipsoid_label(int i, int j, int k) {
 /// Meshes the ellipsoids (closed domain, 20 iterations of `pipeline`) with `options` and
 /// counts the voxel centres whose phase in the mesh is their label, overall and
 /// among those whose neighbours within `margin` voxels all share their label.
-LabelAgreement mesh_and_compare(const InputOptions& options, int margin, const std::string& pipeline = kDefaultPipeline) {
+LabelAgreement mesh_and_compare(const InputOptions& options, int margin,
+                                const std::string& pipeline = kDefaultPipeline) {
   std::vector<uint8_t> voxels;
   for (int k = 0; k < kSize; ++k)
     for (int j = 0; j < kSize; ++j)

@@ -6,7 +6,8 @@
 ///  - create and improve in one call, or each half (run/meshing.hpp);
 ///  - what the mesh holds (mesh/node_mesh.hpp), its surfaces, phase volumes and
 ///    curves (mesh/queries.hpp), its junctions (mesh/junctions.hpp), counts and quality
-///    (check/stats.hpp), its consistency (check/validate.hpp);
+///    (check/stats.hpp), its consistency (check/validate.hpp), where a label
+///    volume's voxel centres lie in it (check/label_agreement.hpp);
 ///  - writing it in the format a file name asks for (io/write_mesh.hpp);
 ///  - errors: every failure is a vm::Error (core/errors.hpp); the library never exits.
 /// The headers it includes are documented one by one; the lower-level steps
@@ -14,6 +15,7 @@
 /// improve/pipeline.hpp, improve/registry.hpp, the passes) are public too, for
 /// programs that need finer control.
 
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"

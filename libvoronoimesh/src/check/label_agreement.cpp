@@ -17,7 +17,8 @@ namespace vm {
 LabelAgreement label_agreement(const NodeMesh& closed, const PointGrid& centres, std::span<const int32_t> labels,
                                int margin) {
   if (closed.outside_phase < 0)
-    throw InvalidInput("label agreement: the mesh is not closed, so its voxel centres cannot be located (mesh --close)");
+    throw InvalidInput(
+        "label agreement: the mesh is not closed (made with --close), so its voxel centres cannot be located");
   const int64_t nx = centres.size[0], ny = centres.size[1], nz = centres.size[2];
   if (nx < 0 || ny < 0 || nz < 0 || int64_t(labels.size()) != nx * ny * nz)
     throw InvalidInput("label agreement: the labels do not fit the grid of voxel centres");
