@@ -5,7 +5,7 @@
 // (check/locate.hpp) after create and after the default label pipeline, and
 // counted per label. The default loses such labels.
 
-#include "voronoimesh/check/locate.hpp"
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/improve/remesh.hpp"
@@ -57,17 +57,12 @@ std::map<int, LabelShare> shares(const NodeMesh& mesh, const Scene& scene, const
   PointGrid centres;
   centres.size = {kSize, kSize, kSize};
   centres.spacing = spacing;
-  const std::vector<int32_t> located = locate_grid_points(mesh, centres);
+  NodeMesh labelled = mesh; // a created mesh knows its phases' ids, not their labels
+  labelled.phase_labels.clear();
+  for (int p = 0; p < scene.field->num_phases(); ++p) labelled.phase_labels.push_back(scene.field->phase_label(p));
+  const LabelAgreement a = label_agreement(labelled, centres, std::vector<int32_t>(labels.begin(), labels.end()));
   std::map<int, LabelShare> by_label;
-  for (int k = 1; k < kSize - 1; ++k)
-    for (int j = 1; j < kSize - 1; ++j)
-      for (int i = 1; i < kSize - 1; ++i) {
-        const size_t v = size_t(i + kSize * (j + kSize * k));
-        LabelShare& s = by_label[labels[v]];
-        ++s.voxels;
-        const int32_t phase = located[v];
-        s.inside += phase >= 0 && phase < scene.field->num_phases() && scene.field->phase_label(phase) == labels[v];
-      }
+  for (const LabelAgreement::Label& l : a.labels) by_label[l.label] = {l.voxels, l.in_phase};
   return by_label;
 }
 
