@@ -2,6 +2,7 @@
 //
 //   make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]
 //   make_label_volume ct OUT.nrrd [SEED]
+//   make_label_volume thin OUT.nrrd
 //
 // ellipsoids: LABELS-1 random overlapping ellipsoids (labels 1..) in background 0,
 //             like a segmentation of a few organs;
@@ -14,6 +15,10 @@
 //             between vertebrae, ribs as tubes about 6 voxels thick, a sternum),
 //             3 an organ (a liver-like lobed blob with a thin lobe), all with
 //             smooth random wobbles (ct_volume.hpp).
+// thin:       issue 19's structures, 40^3 int16 voxels of 1 mm in background 0: a
+//             sheet one voxel thick (label 1, 900 voxels), a tube one voxel wide
+//             (label 2, 30), three one-voxel islands (label 3), a 6^3 block
+//             (label 4) and a 6^3 block of a negative label (-5).
 
 #include "ct_volume.hpp"
 
@@ -40,7 +45,7 @@ struct Seeds {
 };
 using SeedTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Seeds>, Seeds, 3>;
 
-/// Writes `v` (sizes n, x fastest) as a raw little-endian NRRD of `type` ("uchar", "ushort").
+/// Writes `v` (sizes n, x fastest) as a raw little-endian NRRD of `type` ("uchar", "short", "ushort").
 template <class T>
 int write_nrrd(const char* path, const std::vector<T>& v, const std::array<int, 3>& n, const char* type, double spacing) {
   std::ofstream out(path, std::ios::binary);
@@ -50,14 +55,31 @@ int write_nrrd(const char* path, const std::vector<T>& v, const std::array<int, 
   return out ? 0 : 1;
 }
 
+/// The `thin` volume (see the top of the file), x fastest.
+std::vector<int16_t> thin_structures(int n) {
+  std::vector<int16_t> v(size_t(n) * size_t(n) * size_t(n), 0);
+  auto at = [&](int i, int j, int k) -> int16_t& { return v[size_t(i + n * (j + n * k))]; };
+  for (int i = 5; i < 35; ++i)
+    for (int j = 5; j < 35; ++j) at(i, j, 10) = 1;
+  for (int i = 8; i < 38; ++i) at(i, 30, 30) = 2;
+  for (const auto& [i, j, k] : {std::array{30, 8, 20}, std::array{33, 12, 25}, std::array{25, 25, 5}}) at(i, j, k) = 3;
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) at(15 + i, 15 + j, 20 + k) = 4, at(26 + i, 10 + j, 28 + k) = -5;
+  return v;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "thin")
+    return write_nrrd(argv[2], thin_structures(40), {40, 40, 40}, "short", 1);
   if (argc >= 3 && std::string(argv[1]) == "ct")
     return write_nrrd(argv[2], ct::volume(argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1), {ct::nx, ct::ny, ct::nz},
                       "uchar", 0.8);
   if (argc < 5) {
     std::fprintf(stderr, "usage: make_label_volume ellipsoids|grains SIZE LABELS OUT.nrrd [SEED]\n"
+                         "       make_label_volume thin OUT.nrrd\n"
                          "       make_label_volume ct OUT.nrrd [SEED]\n");
     return 2;
   }
