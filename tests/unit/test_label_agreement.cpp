@@ -10,6 +10,7 @@
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/run/meshing.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
 #include "fixtures.hpp"
@@ -111,6 +112,41 @@ TEST(LabelVolume, the_agreement_of_a_mesh_that_is_not_closed_is_refused) {
   NodeMesh closed = test::tetrahedron();
   closed.outside_phase = 0;
   EXPECT_THROW(label_agreement(closed, centres, std::vector<int32_t>(7, 1)), InvalidInput); // a label short
+}
+
+// A file whose x axis runs backwards, meshed in its own LPS frame and converted
+// to RAS: read_placed_volume() puts the voxels where load_input() put the
+// mesh, so the centres agree as well as on plain axes (the ellipsoids are not
+// symmetric: a voxel grid left unflipped would disagree across most of them).
+TEST(LabelVolume, voxel_centres_of_flipped_and_converted_volumes_are_placed_as_the_mesh_was) {
+  std::vector<uint8_t> voxels;
+  for (int k = 0; k < kSize; ++k)
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i) voxels.push_back(ellipsoid_label(i, j, k));
+  const std::string path =
+      test::write_nrrd("flipped_ellipsoids.nrrd",
+                       "type: uchar\ndimension: 3\nsizes: 40 40 40\nspace: left-posterior-superior\n"
+                       "space directions: (-1,0,0) (0,1,0) (0,0,1)\nspace origin: (39,0,0)\n",
+                       voxels);
+  for (const World world : {World::file, World::ras}) {
+    InputOptions options;
+    options.world = world;
+    MeshOptions close;
+    close.close = true;
+    close.iterations = 3;
+    const NodeMesh m = mesh_scene(load_input(path, options), close);
+    const io::Volume v = read_placed_volume(path, options);
+    EXPECT_TRUE(v.direction.isIdentity());
+    const LabelAgreement a = label_agreement(m, {v.origin, v.spacing, v.size}, v.labels);
+    EXPECT_EQ(a.interior_in_phase, a.interior) << "world " << int(world);
+    EXPECT_GT(double(a.in_phase), 0.97 * double(a.voxels)) << "world " << int(world);
+    // The file's own voxel order, placed as if its axes were plain, lands elsewhere: thousands
+    // of interior centres in another label's phase (4,400 in the file's frame, 2,000 in RAS,
+    // where only y is flipped).
+    const LabelAgreement unplaced =
+        label_agreement(m, {v.origin, v.spacing, v.size}, std::vector<int32_t>(voxels.begin(), voxels.end()));
+    EXPECT_LT(unplaced.interior_in_phase + 1000, a.interior_in_phase) << "world " << int(world);
+  }
 }
 
 // --voxels-per-cell 2: a mesh with about a quarter of the triangles, still
