@@ -254,8 +254,8 @@ PYBIND11_MODULE(_voronoimesh, m) {
               if (vm::io::is_volume_file(field) && self.mesh.outside_phase >= 0) {
                 const vm::io::Volume v = vm::read_placed_volume(field, o.input);
                 if (v.integer && v.components == 1)
-                  more.emplace_back("label_agreement",
-                                    vm::to_json(vm::label_agreement(self.mesh, {v.origin, v.spacing, v.size}, v.labels)));
+                  more.emplace_back("label_agreement", vm::to_json(vm::label_agreement(
+                                                           self.mesh, {v.origin, v.spacing, v.size}, v.labels)));
               }
             }
             return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
@@ -275,6 +275,9 @@ PYBIND11_MODULE(_voronoimesh, m) {
             if (labels.ndim() != 3)
               throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
                                     std::to_string(labels.ndim()) + " dimensions");
+            if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
+              throw py::type_error("labels: an integer array expected, got dtype " +
+                                   std::string(py::str(labels.dtype())));
             const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
             if (!fortran) throw py::error_already_set();
             const vm::PointGrid centres{Eigen::Map<const vm::Vec3>(origin.data()),

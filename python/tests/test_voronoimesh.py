@@ -72,6 +72,8 @@ def test_a_closed_meshs_voxel_centres_lie_in_their_labels_phases():
     assert mesh.label_agreement(swapped, spacing=(0.5, 1, 2), origin=(10, 20, 30))["in_phase"] < a["in_phase"]
     with pytest.raises(ValueError, match="not closed"):
         vm.mesh_labels(labels, iterations=1).label_agreement(labels)
+    with pytest.raises(TypeError, match="an integer array expected"):
+        mesh.label_agreement(labels.astype(np.float64))
 
 
 def test_any_integer_array_and_order_gives_the_same_mesh():

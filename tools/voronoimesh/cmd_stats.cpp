@@ -4,11 +4,11 @@
 #include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
-#include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/fields/input.hpp"
+#include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/improve/offsets.hpp"
-#include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/io/ply.hpp"
+#include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/run/meshing.hpp"
 
 #include <iostream>

@@ -22,6 +22,7 @@ LabelAgreement label_agreement(const NodeMesh& closed, const PointGrid& centres,
   const int64_t nx = centres.size[0], ny = centres.size[1], nz = centres.size[2];
   if (nx < 0 || ny < 0 || nz < 0 || int64_t(labels.size()) != nx * ny * nz)
     throw InvalidInput("label agreement: the labels do not fit the grid of voxel centres");
+  if (margin < 0) throw InvalidInput("label agreement: the margin must be 0 or more voxels");
   const std::vector<int32_t> located = locate_grid_points(closed, centres);
   auto label_at = [&](int64_t i, int64_t j, int64_t k) { return labels[size_t(i + nx * (j + ny * k))]; };
   LabelAgreement a;

@@ -45,7 +45,7 @@ struct LabelAgreement {
 /// @param margin  a voxel is interior when every voxel up to this many steps away along each axis
 ///                shares its label (1: its 26 neighbours)
 /// @return the counts
-/// @throws InvalidInput if the mesh is not closed or the labels do not fit the grid
+/// @throws InvalidInput if the mesh is not closed, the labels do not fit the grid or the margin is negative
 LabelAgreement label_agreement(const NodeMesh& closed, const PointGrid& centres, std::span<const int32_t> labels,
                                int margin = 1);
 
