@@ -10,11 +10,9 @@
 //                        [--voxel-faithful] [--snap S]
 //        label_agreement --header
 
-#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
-#include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/run/meshing.hpp"
 
 #include <tbb/global_control.h>
@@ -41,12 +39,11 @@ struct Options {
 int run(const std::string& path, const Options& o) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
   const auto t0 = std::chrono::steady_clock::now();
-  const vm::io::Volume volume = vm::read_placed_volume(path, o.input);
-  if (!volume.integer || volume.components != 1) {
-    std::fprintf(stderr, "label_agreement: %s: needs one integer label per voxel\n", path.c_str());
+  const vm::Scene scene = vm::load_input(path, o.input);
+  if (scene.phase_voxels.empty()) {
+    std::fprintf(stderr, "label_agreement: %s: needs a label volume (one integer label per voxel)\n", path.c_str());
     return 2;
   }
-  const vm::Scene scene = vm::load_input(path, o.input);
   // The CLI's `mesh --close` (run/meshing.hpp): a mesh made any other way
   // would be measured in place of the one users get.
   vm::MeshOptions options;
@@ -59,7 +56,7 @@ int run(const std::string& path, const Options& o) {
   const vm::NodeMesh m = vm::mesh_scene(scene, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const vm::LabelAgreement a = vm::label_agreement(m, {volume.origin, volume.spacing, volume.size}, volume.labels);
+  const vm::LabelAgreement a = *vm::label_agreement_from_input(m, scene, path, o.input); // m is closed
   const vm::LabelAgreement::Label* worst = a.worst();
   std::string missing;
   for (int32_t label : a.lost()) missing += (missing.empty() ? "" : " ") + std::to_string(label);

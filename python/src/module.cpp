@@ -248,15 +248,12 @@ PYBIND11_MODULE(_voronoimesh, m) {
             if (!field.empty()) {
               const vmpy::Options o = vmpy::options_from(kwargs, vmpy::Input::file);
               py::gil_scoped_release released;
-              const vm::MeshOffsets at = vm::offsets_from_input(self.mesh, "the mesh", vm::read_input(field, o.input), field);
+              const vm::Scene scene = vm::read_input(field, o.input);
+              const vm::MeshOffsets at = vm::offsets_from_input(self.mesh, "the mesh", scene, field);
               more.emplace_back("offsets", vm::to_json(at.offsets, self.mesh, at.spacing));
               // A label volume's voxel centres, located in a closed mesh (as 'voronoimesh stats --field').
-              if (vm::io::is_volume_file(field) && self.mesh.outside_phase >= 0) {
-                const vm::io::Volume v = vm::read_placed_volume(field, o.input);
-                if (v.integer && v.components == 1)
-                  more.emplace_back("label_agreement", vm::to_json(vm::label_agreement(
-                                                           self.mesh, {v.origin, v.spacing, v.size}, v.labels)));
-              }
+              if (const auto agreement = vm::label_agreement_from_input(self.mesh, scene, field, o.input))
+                more.emplace_back("label_agreement", vm::to_json(*agreement));
             }
             return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
                                vm::sharpest_folds(self.mesh, folds), more);

@@ -1,14 +1,11 @@
 #include "commands.hpp"
 
 #include "voronoimesh/check/intersections.hpp"
-#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
-#include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/improve/offsets.hpp"
 #include "voronoimesh/io/ply.hpp"
-#include "voronoimesh/io/volume.hpp"
 #include "voronoimesh/run/meshing.hpp"
 
 #include <iostream>
@@ -70,15 +67,11 @@ void add_stats_command(CLI::App& app, int& exit_code) {
       std::string not_located; // why a label volume's voxel centres were not located
       if (!o->field.empty()) {
         const vm::InputOptions options = input_options(o->input);
-        offsets = vm::offsets_from_input(mesh, o->mesh, vm::read_input(o->field, options), o->field);
-        if (vm::io::is_volume_file(o->field)) {
-          const vm::io::Volume volume = vm::read_placed_volume(o->field, options);
-          const bool labels = volume.integer && volume.components == 1;
-          if (labels && mesh.outside_phase < 0)
-            not_located = "voxel centres not located: the mesh is not closed (mesh --close makes it so)";
-          else if (labels)
-            agreement = vm::label_agreement(mesh, {volume.origin, volume.spacing, volume.size}, volume.labels);
-        }
+        const vm::Scene scene = vm::read_input(o->field, options);
+        offsets = vm::offsets_from_input(mesh, o->mesh, scene, o->field);
+        agreement = vm::label_agreement_from_input(mesh, scene, o->field, options);
+        if (!scene.phase_voxels.empty() && mesh.outside_phase < 0)
+          not_located = "voxel centres not located: the mesh is not closed (mesh --close makes it so)";
       }
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);

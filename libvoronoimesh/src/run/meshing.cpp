@@ -233,6 +233,13 @@ MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_pat
   return {interface_offsets(mesh, *phases_of_mesh(mesh, scene.field)), own ? mesh.grid_spacing : scene.grid.h(), own};
 }
 
+std::optional<LabelAgreement> label_agreement_from_input(const NodeMesh& mesh, const Scene& scene,
+                                                         const std::string& input, const InputOptions& options) {
+  if (scene.phase_voxels.empty() || mesh.outside_phase < 0) return std::nullopt;
+  const io::Volume v = read_placed_volume(input, options);
+  return label_agreement(mesh, {v.origin, v.spacing, v.size}, v.labels);
+}
+
 Scene read_input(const std::string& path, const InputOptions& options, RunObserver* observer) {
   if (path.empty()) {
     refuse_options_that_do_not_apply(options, false, false, "a scene", "the built-in demo");

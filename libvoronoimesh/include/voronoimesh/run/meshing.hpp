@@ -16,6 +16,7 @@
 /// (parse_scene(), fields/scene.hpp) or from any PhaseField of your own:
 /// Scene{grid, field}.
 
+#include "voronoimesh/check/label_agreement.hpp"
 #include "voronoimesh/create/create.hpp"
 #include "voronoimesh/fields/input.hpp"
 #include "voronoimesh/fields/scene.hpp"
@@ -340,6 +341,18 @@ struct MeshOffsets {
 /// @throws InvalidInput as check_field_matches()
 MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
                                const std::string& input);
+
+/// Where the voxel centres of the label volume `input` lie in `mesh`
+/// (label_agreement()), the volume placed as load_input() placed it
+/// (read_placed_volume()); none where `scene`, `input` as read with `options`,
+/// is no label volume (Scene::phase_voxels empty) or the mesh is not closed.
+/// `voronoimesh stats --field` and the Python module's stats() report it.
+/// @param mesh    the mesh, with its phases' labels
+/// @param scene   the input it was made from, as read (read_input())
+/// @param input   the input's file
+/// @param options how it was read
+std::optional<LabelAgreement> label_agreement_from_input(const NodeMesh& mesh, const Scene& scene,
+                                                         const std::string& input, const InputOptions& options);
 
 /// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
 /// `voronoimesh mesh` without the files. It never exits.
