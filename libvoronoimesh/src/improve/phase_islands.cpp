@@ -87,16 +87,21 @@ private:
 /// How far inside its phase's side a triangle's centre is sampled, in targets.
 constexpr double kInward = 0.1;
 
-/// True where `phase` leads nowhere the piece's triangles enclose: at the mean
-/// of their nodes, and a little inside each triangle's centre (on its side of
-/// `phase`), where a piece the phase functions have is led by its phase
+/// The mean of the nodes' positions.
+Vec3 mean_of(const NodeRings& mesh, const std::vector<int32_t>& nodes) {
+  Vec3 sum = Vec3::Zero();
+  for (int32_t n : nodes) sum += mesh.positions()[size_t(n)];
+  return sum / double(nodes.size());
+}
+
+/// True where `phase` leads nowhere the piece's triangles enclose: at `centre`
+/// (the mean of their nodes), and a little inside each triangle's centre (on its
+/// side of `phase`), where a piece the phase functions have is led by its phase
 /// (exactly at the centre, on the interface, either may lead).
-bool led_by_others(const NodeRings& mesh, std::span<const int32_t> triangles, const std::vector<int32_t>& nodes,
-                   int32_t phase, const PhaseField& field, double inward) {
+bool led_by_others(const NodeRings& mesh, std::span<const int32_t> triangles, const Vec3& centre, int32_t phase,
+                   const PhaseField& field, double inward) {
   const auto& pos = mesh.positions();
-  std::vector<Vec3> samples{Vec3::Zero()};
-  for (int32_t n : nodes) samples[0] += pos[size_t(n)];
-  samples[0] /= double(nodes.size());
+  std::vector<Vec3> samples{centre};
   for (int32_t t : triangles) {
     const auto& tri = mesh.mesh().triangles[size_t(t)];
     const Vec3 &a = pos[size_t(tri[0])], &b = pos[size_t(tri[1])], &c = pos[size_t(tri[2])];
@@ -115,17 +120,15 @@ bool led_by_others(const NodeRings& mesh, std::span<const int32_t> triangles, co
 }
 
 /// The merge of a piece's nodes: into the first node that lies on every box
-/// face any of them lies on, at their mean held on those faces; none where no
-/// node lies on all of them.
-std::optional<PointMerge> merge_of(const NodeRings& mesh, const std::vector<int32_t>& nodes) {
+/// face any of them lies on, at `centre` (their mean) held on those faces; none
+/// where no node lies on all of them.
+std::optional<PointMerge> merge_of(const NodeRings& mesh, const std::vector<int32_t>& nodes, const Vec3& centre) {
   uint8_t faces = 0;
   for (int32_t n : nodes) faces |= mesh.box_faces()[size_t(n)];
   const auto keep =
       std::find_if(nodes.begin(), nodes.end(), [&](int32_t n) { return mesh.box_faces()[size_t(n)] == faces; });
   if (keep == nodes.end()) return std::nullopt;
-  Vec3 to = Vec3::Zero();
-  for (int32_t n : nodes) to += mesh.positions()[size_t(n)];
-  to /= double(nodes.size());
+  Vec3 to = centre;
   for (int a = 0; a < 3; ++a)
     if (faces >> (2 * a) & 3u) to[a] = mesh.positions()[size_t(*keep)][a];
   PointMerge merge{*keep, {}, to};
@@ -170,8 +173,10 @@ std::vector<PointMerge> phase_islands(const NodeRings& mesh, std::span<const dou
           size = std::min(size, target[size_t(a)]);
           for (int32_t b : nodes) across = std::max(across, (m.points[size_t(a)] - m.points[size_t(b)]).norm());
         }
-        if (across > widest * size || !led_by_others(mesh, piece, nodes, phase, field, kInward * size)) continue;
-        if (auto merge = merge_of(mesh, nodes)) pieces.push_back({phase, piece.size(), std::move(*merge)});
+        if (across > widest * size) continue;
+        const Vec3 centre = mean_of(mesh, nodes);
+        if (!led_by_others(mesh, piece, centre, phase, field, kInward * size)) continue;
+        if (auto merge = merge_of(mesh, nodes, centre)) pieces.push_back({phase, piece.size(), std::move(*merge)});
       }
   }
   // A phase keeps the triangles of its other pieces: never all of them go.
