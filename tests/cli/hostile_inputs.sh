@@ -41,6 +41,9 @@ then pass; else fail "labels -5 and 5"; fi
 nrrd_labels extremes.nrrd int 8 -2147483648 2147483647
 if "$vm" create -q extremes.nrrd -o extremes.ply && grep -q "^comment phase -2147483648 " extremes.ply &&
   grep -q "^comment phase 2147483647 " extremes.ply; then pass; else fail "labels INT32_MIN and INT32_MAX"; fi
+# Closed, the exterior takes the label above the largest, which 2147483647 leaves none of.
+expect_error "--close with label 2147483647" 2 "^voronoimesh: --close: .*'label2147483647' has label 2147483647, the largest" -- \
+  "$vm" create -q extremes.nrrd --close -o out.ply
 
 # 3. No output is an input of the same run, by file identity; the input is untouched.
 cp "$examples/four_spheres.json" scene.json && cp scene.json scene.orig

@@ -4,11 +4,15 @@
 
 #include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/validate.hpp"
+#include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/create/create.hpp"
+#include "voronoimesh/fields/array_input.hpp"
 #include "voronoimesh/fields/outside_phase.hpp"
 #include "voronoimesh/fields/scene.hpp"
 #include "voronoimesh/improve/pipeline.hpp"
+#include "voronoimesh/io/ply.hpp"
 #include "voronoimesh/mesh/interface_mesh.hpp"
+#include "voronoimesh/run/meshing.hpp"
 
 #include "fixtures.hpp"
 
@@ -16,6 +20,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
 #include <map>
 
 namespace {
@@ -147,6 +154,60 @@ TEST(Close, the_outside_phase_wins_exactly_outside_the_box) {
   EXPECT_DOUBLE_EQ(v.back(), *std::max_element(v.begin(), v.end() - 1));
   const int winner = int(std::max_element(v.begin(), v.end() - 1) - v.begin());
   EXPECT_TRUE((f->gradient(out, on_face) - f->gradient(winner, on_face)).isApprox(Vec3(1, 0, 0)));
+}
+
+/// A label volume of two halves, labels `low` (x < 3) and `high`, 6 voxels a side.
+Scene two_labels(int32_t low, int32_t high) {
+  GridSpec grid;
+  grid.cells = {5, 5, 5};
+  grid.domain = {Vec3::Zero(), Vec3::Constant(5)};
+  std::vector<int32_t> labels;
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) labels.push_back(i < 3 ? low : high);
+  return scene_from_labels(grid, labels);
+}
+
+// The outside phase takes the label above every other (so it is the last by
+// label, where a mesh read back looks for it); labels at both ends of the
+// 32-bit range keep it so, and the mesh reads back closed.
+TEST(Close, the_outside_phase_has_the_label_above_the_largest_one_and_reads_back_last) {
+  constexpr int32_t lowest = std::numeric_limits<int32_t>::min(), highest = std::numeric_limits<int32_t>::max();
+  MeshOptions close;
+  close.close = true;
+  close.iterations = 2;
+  const NodeMesh m = mesh_scene(two_labels(lowest, highest - 1), close);
+  ASSERT_TRUE(validate(m).ok()) << validate(m).summary();
+  EXPECT_EQ(m.outside_phase, 2);
+  EXPECT_EQ(m.phase_labels, (std::vector<int32_t>{lowest, highest - 1, highest}));
+  const std::string file = "close_extreme_labels.ply";
+  io::write_ply(m, file);
+  const NodeMesh back = io::read_ply(file);
+  std::filesystem::remove(file);
+  ASSERT_TRUE(validate(back).ok()) << validate(back).summary();
+  EXPECT_EQ(back.outside_phase, 2);
+  EXPECT_EQ(back.phase_labels, m.phase_labels);
+  EXPECT_EQ(back.pairs, m.pairs);
+}
+
+// Label 2147483647 leaves no 32-bit label above it: closing is refused, naming
+// the label and the way out, before any sampling. (It once wrapped round to
+// -2147483648: a mesh whose outside phase came first by label, invalid when
+// read back, with exit 0.)
+TEST(Close, a_phase_of_the_largest_32_bit_label_cannot_be_closed_and_says_why) {
+  MeshOptions close;
+  close.close = true;
+  const Scene scene = two_labels(7, std::numeric_limits<int32_t>::max());
+  try {
+    create_mesh(scene, close);
+    FAIL() << "closed a domain with label 2147483647";
+  } catch (const InvalidOption& e) {
+    EXPECT_EQ(e.option(), "close");
+    EXPECT_NE(std::string(e.what()).find("'label2147483647' has label 2147483647"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--merge-labels"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(with_outside_phase(scene.field, scene.grid.domain), InvalidOption);
+  EXPECT_TRUE(validate(create_mesh(scene)).ok()); // unclosed, the label is a label like any other
 }
 
 } // namespace

@@ -1,7 +1,12 @@
 #include "voronoimesh/fields/outside_phase.hpp"
 
+#include "voronoimesh/core/errors.hpp"
+#include "core/text.hpp"
+
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace vm {
@@ -31,14 +36,14 @@ double signed_distance(const Box& box, const Vec3& x, Vec3* gradient) {
 class OutsidePhaseField : public PhaseField {
 public:
   OutsidePhaseField(std::shared_ptr<const PhaseField> inner, const Box& box)
-      : inner_(std::move(inner)), box_(box), n_(inner_->num_phases()) {}
+      : inner_(std::move(inner)), box_(box), n_(inner_->num_phases()), label_(outside_phase_label(*inner_)) {}
 
   int num_phases() const override { return n_ + 1; }
   std::string phase_name(int i) const override { return i == n_ ? kOutsidePhaseName : inner_->phase_name(i); }
   std::string describe_phase(int i) const override {
     return i == n_ ? "the phase outside the domain box" : inner_->describe_phase(i);
   }
-  int32_t phase_label(int i) const override { return i == n_ ? inner_->phase_label(n_ - 1) + 1 : inner_->phase_label(i); }
+  int32_t phase_label(int i) const override { return i == n_ ? label_ : inner_->phase_label(i); }
   std::optional<Rgb> phase_color(int i) const override { return i == n_ ? std::nullopt : inner_->phase_color(i); }
 
   void values(const Vec3& x, std::span<double> out) const override {
@@ -75,9 +80,24 @@ private:
   std::shared_ptr<const PhaseField> inner_;
   Box box_;
   int n_;
+  int32_t label_;
 };
 
 } // namespace
+
+int32_t outside_phase_label(const PhaseField& field) {
+  int32_t largest = 0; // of no phases: 0, the outside phase's label when it is the only one
+  for (int p = 0; p < field.num_phases(); ++p) {
+    const int32_t label = field.phase_label(p);
+    if (label == std::numeric_limits<int32_t>::max())
+      throw InvalidOption("close", detail::cat("the phase outside the box takes the label above every phase's, and ",
+                                               detail::quote(field.phase_name(p)), " has label ", label,
+                                               ", the largest a 32-bit label can be: give it another to close the domain (in "
+                                               "a label volume, --merge-labels or --drop-labels)"));
+    largest = p == 0 ? label : std::max(largest, label);
+  }
+  return field.num_phases() > 0 ? largest + 1 : 0;
+}
 
 std::shared_ptr<const PhaseField> with_outside_phase(std::shared_ptr<const PhaseField> field, const Box& box) {
   return std::make_shared<OutsidePhaseField>(std::move(field), box);

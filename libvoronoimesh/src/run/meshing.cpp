@@ -257,6 +257,7 @@ Scene read_input(const std::string& path, const InputOptions& options, RunObserv
 GridSpec create_grid(const Scene& scene, const MeshOptions& o) {
   require_field(scene);
   detail::check_options(o);
+  if (o.close) outside_phase_label(*scene.field); // refused before any sampling
   GridSpec grid = scene.grid;
   if (o.grid) grid.cells = *o.grid;
   return grid_for_lattice(grid, lattice_for(o, scene));

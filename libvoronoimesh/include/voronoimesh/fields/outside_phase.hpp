@@ -18,12 +18,23 @@ namespace vm {
 /// phase on the box and loses inside it, and the improvement passes treat the box
 /// faces like any other surface: projection onto (a, outside) lands on the box
 /// plane, the surface normal there is the box normal, and where an interface
-/// meets the box its nodes form a triple curve. Its label is one more than the
-/// last phase's.
+/// meets the box its nodes form a triple curve. Its label is
+/// outside_phase_label().
 /// @param field the phase functions of the phases inside the box
 /// @param box   the domain box
 /// @return `field` with the outside phase added as its last phase
+/// @throws InvalidOption as outside_phase_label()
 std::shared_ptr<const PhaseField> with_outside_phase(std::shared_ptr<const PhaseField> field, const Box& box);
+
+/// The label of the outside phase that with_outside_phase() adds to `field`:
+/// one more than the largest of its phases' labels, so that the outside phase,
+/// the last, also has the largest label (files list phases by label, and a
+/// mesh read back finds the outside phase last).
+/// @param field the phase functions of the phases inside the box
+/// @return the outside phase's label
+/// @throws InvalidOption ("close") where a phase has label 2147483647: no
+///         32-bit label is left above it
+int32_t outside_phase_label(const PhaseField& field);
 
 /// The phase functions of every phase of `mesh`, made from `field`: `field`
 /// itself, or for a closed mesh (NodeMesh::outside_phase) `field` with the
