@@ -145,6 +145,16 @@ for scale in 1e160 1e-160; do
   expect_error "a mesh scaled by $scale" 2 "scaled\.ply: not a valid interface mesh .*scale: the mesh spans" -- \
     "$vm" smooth scaled.ply --pipeline flip -o out.ply
 done
+# 14. A mesh whose triangles cross (its first node dragged through the
+# surfaces to the box's centre) is refused where the crossing guard would only
+# keep it crossing; without the guard it is improved as asked.
+awk 'header { print; if ($0 == "end_header") header = 0; next }
+  NF == 3 && !dragged { print "0.5 0.5 0.5"; dragged = 1; next } { print }' header=1 ascii.ply >dragged.ply
+crossing="dragged\.ply: [0-9]+ pairs of triangles cross \(the first: triangles [0-9]+ and [0-9]+\): improvement keeps"
+expect_error "flip on a mesh whose triangles cross" 2 "$crossing" -- "$vm" flip dragged.ply -o out.ply
+expect_error "smooth on a mesh whose triangles cross" 2 "$crossing" -- "$vm" smooth dragged.ply --pipeline flip -o out.ply
+if "$vm" smooth -q dragged.ply --pipeline flip --no-crossing-guard -o unguarded.ply 2>stderr.txt; then pass
+else fail "smooth --no-crossing-guard on a mesh whose triangles cross: $(cat stderr.txt)"; fi
 printf '0.5 0.5 0.5 1\n0.5 0.5 0.5 2\n' >onepoint.xyz
 expect_error "an input that meshes to nothing" 2 "onepoint\.xyz: meshes to nothing" -- "$vm" create -q onepoint.xyz --grid 8 -o out.ply
 

@@ -10,6 +10,7 @@
 #include "improve/node_merge.hpp"
 #include "run/run_job.hpp"
 #include "voronoimesh/check/history.hpp"
+#include "voronoimesh/check/intersections.hpp"
 #include "voronoimesh/check/stats.hpp"
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
@@ -196,6 +197,20 @@ NodeMesh read_mesh(const std::string& path, RunObserver* observer) {
   return mesh;
 }
 
+/// Refuses a mesh read from `path` whose triangles cross: the crossing guard
+/// undoes any edit that would make a crossing, it cannot take one away, so
+/// improving such a mesh would hand back one that still crosses as if it were
+/// sound (`flip` on a mesh with a node dragged through a surface did, with exit 0).
+void refuse_crossing_input(const NodeMesh& mesh, const std::string& path) {
+  const IntersectionReport crossings = find_self_intersections(mesh, 1);
+  if (crossings.ok()) return;
+  const auto [t, s] = crossings.pairs.front();
+  throw InvalidInput(located(path, cat(crossings.count, crossings.count == 1 ? " pair" : " pairs",
+                                       " of triangles cross (the first: triangles ", t, " and ", s,
+                                       "): improvement keeps a mesh free of crossings but cannot untangle one "
+                                       "(`smooth --no-crossing-guard` improves it anyway, without that guarantee)")));
+}
+
 } // namespace
 
 void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
@@ -373,6 +388,7 @@ NodeMesh run_job(const MeshJob& job, RunObserver* observer) {
     resolved.options = options_for_scene(job.options, scene);
   } else {
     mesh = read_mesh(job.mesh, observer);
+    if (job.options.guard_crossings) refuse_crossing_input(mesh, job.mesh);
     if (!job.input.empty()) {
       const Scene scene = read_input(job.input, input, observer);
       check_field_matches(mesh, job.mesh, scene, job.input);
