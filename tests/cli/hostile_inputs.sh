@@ -145,7 +145,12 @@ for scale in 1e160 1e-160; do
   expect_error "a mesh scaled by $scale" 2 "scaled\.ply: not a valid interface mesh .*scale: the mesh spans" -- \
     "$vm" smooth scaled.ply --pipeline flip -o out.ply
 done
-# 14. A mesh whose triangles cross (its first node dragged through the
+# 14. A target edge length far below the mesh's (a typo in --size) is refused with the
+# estimate before any split (it once took all 24 GB and the OOM killer ended it).
+expect_error "--size 1e-9" 2 "^voronoimesh: remesh: edges of .* make about .* triangles from its [0-9]+, which needs about .* GiB, this machine has" -- \
+  bash -c 'ulimit -v "$1" && exec "$0" mesh -q --grid 12 --size 1e-9 -o out.ply' "$vm" "$limit"
+
+# 15. A mesh whose triangles cross (its first node dragged through the
 # surfaces to the box's centre) is refused where the crossing guard would only
 # keep it crossing; without the guard it is improved as asked.
 awk 'header { print; if ($0 == "end_header") header = 0; next }

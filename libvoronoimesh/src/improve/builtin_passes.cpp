@@ -14,11 +14,13 @@
 #include "voronoimesh/improve/remesh.hpp"
 #include "voronoimesh/improve/smooth.hpp"
 
+#include "core/memory.hpp"
 #include "core/text.hpp"
 #include "improve/part_agreement.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace vm {
 namespace {
@@ -87,6 +89,7 @@ public:
       // Uniform refinement to a target `ratio` times the edges multiplies the
       // triangles by 1/ratio^2; four times that (at least 4x) is the most a run may make.
       const double ratio = std::min(1.0, params_.size * reference_ / rms);
+      refuse_beyond_memory(c.mesh.num_triangles(), ratio);
       max_triangles_ = c.mesh.num_triangles() * size_t(std::ceil(4 / (ratio * ratio)));
     }
     RemeshParams params = params_;
@@ -101,6 +104,22 @@ public:
   }
 
 private:
+  /// Peak bytes of an improvement run per triangle (the demo remeshed to
+  /// 336k triangles: 201 MB, 600 bytes each), with some room.
+  static constexpr double kBytesPerTriangle = 700;
+
+  /// A target far below the edges (a typo in --size) would split until memory
+  /// ran out: --size 1e-9 on the demo took the machine's 24 GB and was killed.
+  /// Refused with the estimate, before any split.
+  void refuse_beyond_memory(size_t triangles, double ratio) const {
+    const double expected = double(triangles) / (ratio * ratio);
+    char what[200];
+    std::snprintf(what, sizeof what, "edges of %.2g times the mesh's (%s) make about %.2g triangles from its %zu, which",
+                  ratio, length_ > 0 ? "--size or remesh:length" : "remesh:size", expected, triangles);
+    if (const std::string problem = detail::beyond_memory(expected * kBytesPerTriangle, what); !problem.empty())
+      throw InvalidInput(located("remesh", problem));
+  }
+
   RemeshParams params_;
   double length_;
   int last_;
