@@ -174,6 +174,11 @@ TEST_F(PlyPoints, ascii_float_phase_labels_and_errors) {
   EXPECT_EQ(ply.field->phase_label(1), 7);
   EXPECT_EQ(ply.grid.domain.min, xyz.grid.domain.min);
   EXPECT_EQ(ply.field->value(1, Vec3(0.5, 0.2, 0)), xyz.field->value(1, Vec3(0.5, 0.2, 0)));
+  // As a spreadsheet or a Windows editor saves them: a byte order mark first, CRLF line ends.
+  std::ofstream(path("windows.xyz")) << "\xEF\xBB\xBF" "0 0 0 7\r\n1 0 0 7\r\n0 1 0 -2\r\n";
+  const Scene windows = load_input(path("windows.xyz"));
+  EXPECT_EQ(windows.grid.domain.min, xyz.grid.domain.min);
+  EXPECT_EQ(windows.field->value(1, Vec3(0.5, 0.2, 0)), xyz.field->value(1, Vec3(0.5, 0.2, 0)));
 
   const std::string f = path("b.ply");
   EXPECT_EQ(error_of(f, head + "end_header\n0 0 0\n1 0 0\n0 1 0\n"),

@@ -164,7 +164,11 @@ namespace {
 /// "x y z label" lines (point_cloud_scene).
 LabelledPoints read_text_points(const std::string& path) {
   // Bounded by the memory the points will take (read_text_file checks it).
-  std::istringstream text(read_text_file(path, UINT64_MAX, "a point file"));
+  std::string contents = read_text_file(path, UINT64_MAX, "a point file");
+  // Spreadsheets and Windows editors start UTF-8 text with a byte order mark,
+  // which would otherwise make the first point a malformed line.
+  if (contents.starts_with("\xEF\xBB\xBF")) contents.erase(0, 3);
+  std::istringstream text(std::move(contents));
   LabelledPoints out;
   int line_no = 0;
   bool first = true;
