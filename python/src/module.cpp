@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -68,17 +69,34 @@ vm::GridSpec node_grid(const py::ssize_t* shape, const std::array<double, 3>& sp
   return grid;
 }
 
+/// A label array as the library takes it: 3-D, of integers that fit in 32 bits
+/// (a wider array's values are checked, not cut: numpy's cast would turn label
+/// 2^41 into 0 without a word), with x fastest in memory. An int32
+/// Fortran-ordered array (nibabel's) is read where it lies; any other is
+/// converted once.
+py::array_t<int32_t, py::array::f_style> int32_labels(const py::array& labels) {
+  if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
+                                                std::to_string(labels.ndim()) + " dimensions");
+  const char kind = labels.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
+  const bool wider = labels.dtype().itemsize() > 4 || (kind == 'u' && labels.dtype().itemsize() == 4);
+  if (wider && labels.size() > 0)
+    for (const char* end : {"min", "max"}) {
+      const py::int_ value(labels.attr(end)()); // a Python int: compared exactly
+      if (value < py::int_(std::numeric_limits<int32_t>::min()) || value > py::int_(std::numeric_limits<int32_t>::max()))
+        throw py::value_error("labels: value " + py::repr(value).cast<std::string>() +
+                              " is not a 32-bit label (-2147483648 to 2147483647)");
+    }
+  auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
+  if (!fortran) throw py::error_already_set();
+  return fortran;
+}
+
 /// The scene of a label array, made as options.input says.
 vm::Scene labels_scene(const py::array& labels, const std::array<double, 3>& spacing,
                        const std::array<double, 3>& origin, const vmpy::Options& o) {
-  if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
-                                                std::to_string(labels.ndim()) + " dimensions");
-  if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
-    throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
-  // x fastest in memory, as the library takes it: an int32 Fortran-ordered
-  // array (nibabel's) is read where it lies; anything else is converted once.
-  const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
-  if (!fortran) throw py::error_already_set();
+  const auto fortran = int32_labels(labels);
   const vm::GridSpec grid = node_grid(fortran.shape(), spacing, origin, "labels");
   py::gil_scoped_release released;
   return vm::scene_from_labels(grid, {fortran.data(), size_t(fortran.size())}, o.input, "labels");
@@ -269,14 +287,7 @@ PYBIND11_MODULE(_voronoimesh, m) {
           "label_agreement_json",
           [](const Mesh& self, const py::array& labels, const std::array<double, 3>& spacing,
              const std::array<double, 3>& origin, int margin) {
-            if (labels.ndim() != 3)
-              throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
-                                    std::to_string(labels.ndim()) + " dimensions");
-            if (labels.dtype().kind() != 'i' && labels.dtype().kind() != 'u')
-              throw py::type_error("labels: an integer array expected, got dtype " +
-                                   std::string(py::str(labels.dtype())));
-            const auto fortran = py::array_t<int32_t, py::array::f_style | py::array::forcecast>::ensure(labels);
-            if (!fortran) throw py::error_already_set();
+            const auto fortran = int32_labels(labels);
             const vm::PointGrid centres{Eigen::Map<const vm::Vec3>(origin.data()),
                                         Eigen::Map<const vm::Vec3>(spacing.data()),
                                         {fortran.shape(0), fortran.shape(1), fortran.shape(2)}};

@@ -83,6 +83,20 @@ def test_any_integer_array_and_order_gives_the_same_mesh():
         assert np.array_equal(other.points, reference.points) and np.array_equal(other.triangles, reference.triangles)
 
 
+def test_labels_beyond_32_bits_are_refused_not_cut_and_the_extremes_kept():
+    # numpy's cast to int32 would make label 2**41 a 0 (a phase merged into another) without a word.
+    wide = two_blocks(dtype=np.int64)
+    wide[wide == 7] = 2**41
+    with pytest.raises(ValueError, match="value 2199023255552 is not a 32-bit label"):
+        vm.mesh_labels(wide, iterations=1)
+    closed = vm.mesh_labels(two_blocks(), iterations=1, close=True)
+    with pytest.raises(ValueError, match="value 2199023255552 is not a 32-bit label"):
+        closed.label_agreement(wide.astype(np.uint64))
+    wide[wide == 2**41] = -2**31
+    wide[wide == 3] = 2**31 - 1
+    assert vm.mesh_labels(wide, iterations=1).phase_labels == [-2**31, 0, 2**31 - 1]
+
+
 def test_the_mesh_does_not_depend_on_the_thread_count():
     one = vm.mesh_labels(two_blocks(), iterations=4, threads=1)
     two = vm.mesh_labels(two_blocks(), iterations=4, threads=2)
