@@ -55,11 +55,16 @@ Removed removed_by(const InterfaceMesh& mesh, const MeshPart& part, const NodeMe
     for (const int32_t v : merged.triangles[t])
       std::atomic_ref<uint8_t>(used[size_t(v)]).store(1, std::memory_order_relaxed);
   });
+  // Looked up face by face: std::includes walks the part's faces up to the
+  // node's last, so a batch of many merges on a large part was quadratic (a
+  // quarter of the voxel-faithful closed liver's 90 s improvement).
   auto all_faces_in_part = [&](int32_t n) {
     if (part.is_whole) return true;
     const int32_t whole = part.whole_node(n);
     const std::vector<int32_t> faces = mesh.faces_at(std::span(&whole, 1));
-    return std::includes(part.triangles.begin(), part.triangles.end(), faces.begin(), faces.end());
+    return std::all_of(faces.begin(), faces.end(), [&](int32_t f) {
+      return std::binary_search(part.triangles.begin(), part.triangles.end(), f);
+    });
   };
   Removed r;
   indices_where(before.num_triangles(), [&](size_t t) { return !kept[t]; }, r.triangles);

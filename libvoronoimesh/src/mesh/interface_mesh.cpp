@@ -6,6 +6,7 @@
 
 #include "voronoimesh/mesh/interface_mesh.hpp"
 
+#include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "mesh/node_rings.hpp"
 #include "mesh/patch_connectivity.hpp"
@@ -240,10 +241,22 @@ void InterfaceMesh::place_nodes(std::span<const int32_t> nodes, std::span<const 
 }
 
 std::vector<int32_t> InterfaceMesh::faces_at(std::span<const int32_t> nodes) const {
-  std::vector<int32_t> faces;
-  for (int32_t n : nodes)
+  auto for_each_face = [&](int32_t n, auto&& f_of_face) {
     for (int32_t c : copies(n))
-      for (auto f : mesh_->vf_range(OMesh::VertexHandle(c))) faces.push_back(f.idx());
+      for (auto f : mesh_->vf_range(OMesh::VertexHandle(c))) f_of_face(f.idx());
+  };
+  // Many nodes (a batch of sliver collapses claims rings by the million, each
+  // node several times): faces marked in a table and read off in order, not
+  // every visit sorted (4.1 s for 1.1M faces from 7.3M nodes named).
+  if (nodes.size() > triangles_.size() / 8) {
+    std::vector<uint8_t> at(triangles_.size(), 0);
+    detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
+      for_each_face(nodes[i], [&](int f) { std::atomic_ref<uint8_t>(at[size_t(f)]).store(1, std::memory_order_relaxed); });
+    });
+    return detail::indices_where(at.size(), [&](size_t f) { return at[f] != 0; });
+  }
+  std::vector<int32_t> faces;
+  for (int32_t n : nodes) for_each_face(n, [&](int f) { faces.push_back(f); });
   // A face at two of the nodes is found twice.
   std::sort(faces.begin(), faces.end());
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
