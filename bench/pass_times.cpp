@@ -5,7 +5,7 @@
 // cannot show.
 //
 //   pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]
-//              [--voxels-per-cell F] [--voxel-faithful] [--stop-when-converged | --all-iterations]
+//              [--voxels-per-cell F] [--voxel-faithful] [--close] [--stop-when-converged | --all-iterations]
 //
 // Reads INPUT and creates its mesh as `voronoimesh mesh` does, then prints a
 // Markdown table: one row per iteration (triangles after it, its seconds, each
@@ -30,7 +30,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: pass_times INPUT [--grid N] [--threads T] [--iterations N] [--pipeline P] [--no-guard]\n"
-    "                  [--voxels-per-cell F] [--voxel-faithful] [--stop-when-converged | --all-iterations]\n";
+    "                  [--voxels-per-cell F] [--voxel-faithful] [--close] [--stop-when-converged | --all-iterations]\n";
 
 /// Prints each iteration's row as it ends, and keeps the sums.
 class PassTimes : public vm::RunObserver {
@@ -103,6 +103,8 @@ int main(int argc, char** argv) {
       options.guard_crossings = false;
     } else if (arg == "--voxel-faithful") {
       input_options.voxel_faithful = true;
+    } else if (arg == "--close") {
+      options.close = true;
     } else if (arg == "--voxels-per-cell") {
       char* end = nullptr;
       const double f = value ? std::strtod(value, &end) : 0;
