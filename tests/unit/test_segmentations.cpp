@@ -167,6 +167,10 @@ TEST(Segmentation, malformed_segment_headers_are_refused_naming_the_file) {
   EXPECT_NE(refused("word.seg.nrrd", 1, "Segment0_ID:=s\nSegment0_LabelValue:=one\n")
                 .find("Segment0_LabelValue is 'one'; expected an integer"),
             std::string::npos);
+  // A segment without its ID would end the list there, the names after it lost without a word.
+  EXPECT_NE(refused("gap.seg.nrrd", 1, "Segment0_Name:=liver\nSegment0_LabelValue:=1\n" + segment(1, "tumour", 2, 0))
+                .find("has Segment1_ID but no Segment0_ID: segments are numbered from 0 without gaps"),
+            std::string::npos);
   // In a layered file every value must be a segment's.
   EXPECT_NE(refused("stray.seg.nrrd", 2, segment(0, "a", 2, 0) + segment(1, "b", 1, 1))
                 .find("layer 0 holds value 1 at voxel"),

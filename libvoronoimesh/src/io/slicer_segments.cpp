@@ -30,6 +30,9 @@ std::optional<Rgb> parse_color(const std::string& text) {
   return rgb;
 }
 
+/// How far past the last segment read_segments() looks for a numbering gap.
+constexpr int kGapLooked = 16;
+
 } // namespace
 
 std::vector<Segment> read_segments(const HeaderValue& value_of, int layers, const std::string& path) {
@@ -38,7 +41,15 @@ std::vector<Segment> read_segments(const HeaderValue& value_of, int layers, cons
   for (int i = 0;; ++i) {
     const std::string key = cat("Segment", i, "_");
     const auto id = value_of(key + "ID");
-    if (!id) break;
+    if (!id) {
+      // Segments are numbered from 0 without gaps: one missing its ID would
+      // silently end the list, and the names of those after it with it.
+      for (int later = i + 1; later <= i + kGapLooked; ++later)
+        if (value_of(cat("Segment", later, "_ID")))
+          throw InvalidInput(located(path, cat("has Segment", later, "_ID but no ", key, "ID: segments are numbered "
+                                                                                    "from 0 without gaps")));
+      break;
+    }
     Segment s;
     s.name = value_of(key + "Name").value_or(*id);
     const auto label = value_of(key + "LabelValue"), layer = value_of(key + "Layer");
