@@ -211,6 +211,14 @@ if "$vm" create -q cloud.xyz -o c.ply && "$vm" stats c.ply | contains -E "^phase
 printf '0 0 0 1\n1 1 one 2\n' >badcloud.xyz
 : >later.nii.gz
 expect_error "oblique direction" 2 "oblique.*--ignore-direction" -- "$vm" create oblique.nrrd -o out.ply
+# Voxels too far from the origin for doubles to tell their centres apart (1 mm at 1e20
+# once crashed in create); a non-finite origin (DREAM.3D's is not checked on reading).
+nrrd_labels far.nrrd 'space dimension: 3\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (1e20,0,0)\n'
+expect_error "voxels at 1e20" 2 "far\.nrrd: cells of 0 along x at coordinates up to 1e\+20 are finer than doubles resolve there" -- \
+  "$vm" create far.nrrd -o out.ply
+nrrd_labels beyond.nrrd 'space dimension: 3\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,1e300,0)\n'
+expect_error "voxels at 1e300" 2 "beyond\.nrrd: the domain reaches 1e\+300 along y; it must lie within" -- \
+  "$vm" create beyond.nrrd -o out.ply
 expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$vm" create labels.nrrd --drop-labels 1,5 --background 3 -o out.ply
 expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
 expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1++5 -o out.ply

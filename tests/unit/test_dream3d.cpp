@@ -12,6 +12,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -208,6 +209,18 @@ TEST(Dream3d, files_that_are_no_grain_map_are_refused_naming_the_file) {
   const std::string absurd = refusal([&] { load_input(huge); });
   EXPECT_NE(absurd.find("Cell Feature Data/Phases: has 1099511627776 entries for grain ids up to 3"), std::string::npos)
       << absurd;
+
+  // An origin that is not finite (DREAM.3D's is read unchecked): refused where
+  // the grid is made, not crashed on in create.
+  const std::string nan_origin = write_nx("nan_origin.dream3d");
+  const hid_t g = H5Fopen(nan_origin.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(H5Adelete_by_name(g, "DataStructure/Image Geometry", "_ORIGIN", H5P_DEFAULT), 0);
+  const hid_t geometry_again = H5Gopen2(g, "DataStructure/Image Geometry", H5P_DEFAULT);
+  attribute(geometry_again, "_ORIGIN", H5T_NATIVE_FLOAT, std::vector<float>{std::nanf(""), 2, 3});
+  H5Gclose(geometry_again);
+  H5Fclose(g);
+  const std::string not_finite = refusal([&] { load_input(nan_origin); });
+  EXPECT_NE(not_finite.find(nan_origin + ": the domain along x is not finite"), std::string::npos) << not_finite;
 }
 
 TEST(Dream3d, grains_are_named_after_the_names_the_file_gives_their_phases) {

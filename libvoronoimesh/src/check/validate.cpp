@@ -13,6 +13,7 @@
 #include "check/problem_log.hpp"
 #include "check/validate_part.hpp"
 #include "core/parallel.hpp"
+#include "core/scale_limits.hpp"
 #include "core/union_find.hpp"
 #include "mesh/topology.hpp"
 
@@ -406,12 +407,12 @@ void check_nodes(const Tables& tables, ProblemLog& log) {
   });
 }
 
-/// Most a coordinate or the mesh's extent may be, and least its extent may be:
-/// within them squared lengths and areas neither overflow nor underflow.
-constexpr double kLargestCoordinate = 1e100, kSmallestExtent = 1e-100;
+/// Most a coordinate or the mesh's extent may be, and least its extent may be
+/// (core/scale_limits.hpp).
+constexpr double kLargestCoordinate = detail::kFarthestCoordinate, kSmallestExtent = detail::kFinestLength;
 
-/// False (and a problem logged) when the mesh's scale lies outside what double
-/// precision squares safely. (Coordinates that are not finite are the
+/// False (and a problem logged) when the mesh's scale lies outside what the
+/// checks and the improvement handle. (Coordinates that are not finite are the
 /// triangles' problems, reported with them.)
 bool check_scale(const NodeMesh& m, ProblemLog& log) {
   double largest = 0;

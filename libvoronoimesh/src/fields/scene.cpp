@@ -4,6 +4,7 @@
 
 #include "core/input_file.hpp"
 #include "core/json_object.hpp"
+#include "core/scale_limits.hpp"
 #include "core/text.hpp"
 #include "fields/phase_function.hpp"
 #include "fields/phase_reader.hpp"
@@ -51,8 +52,8 @@ Box read_domain(const JsonObject& domain) {
   for (int a = 0; a < 3; ++a)
     if (!(box.min[a] < box.max[a]))
       domain.fail("'min' must be below 'max' on every axis, not on axis " + std::string(1, "xyz"[a]));
-  // Distances across it are squared: beyond this they overflow, and every phase would be blamed.
-  constexpr double largest = 1e100;
+  // As every input's grid (core/scale_limits.hpp), said here with the scene's line.
+  constexpr double largest = detail::kFarthestCoordinate;
   if (box.min.cwiseAbs().maxCoeff() > largest || box.max.cwiseAbs().maxCoeff() > largest)
     domain.fail(detail::cat("must lie within -", largest, " and ", largest, " on every axis"));
   return box;

@@ -2,12 +2,34 @@
 
 #include "voronoimesh/core/errors.hpp"
 
+#include "core/scale_limits.hpp"
 #include "core/text.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace vm::detail {
+
+void require_resolvable(const GridSpec& grid, const std::string& source) {
+  for (int a = 0; a < 3; ++a) {
+    const std::string axis(1, "xyz"[a]);
+    const double lo = grid.domain.min[a], hi = grid.domain.max[a];
+    if (!(std::isfinite(lo) && std::isfinite(hi)))
+      throw InvalidInput(located(source, cat("the domain along ", axis, " is not finite (from ", lo, " to ", hi, ")")));
+    const double reach = std::max(std::abs(lo), std::abs(hi)), cell = (hi - lo) / grid.cells[size_t(a)];
+    if (reach > kFarthestCoordinate)
+      throw InvalidInput(located(source, cat("the domain reaches ", reach, " along ", axis, "; it must lie within -",
+                                             kFarthestCoordinate, " and ", kFarthestCoordinate)));
+    // Cells rounded away to nothing (a 1 mm voxel at 1e20) are too fine as well.
+    if (!(cell >= std::ldexp(reach, -40)))
+      throw InvalidInput(located(source, cat("cells of ", cell, " along ", axis, " at coordinates up to ", reach,
+                                             " are finer than doubles resolve there (a cell must be at least 1e-12 "
+                                             "of its coordinates): place the data nearer the origin")));
+    if (!(cell >= kFinestLength))
+      throw InvalidInput(located(source, cat("cells of ", cell, " along ", axis, " are smaller than ", kFinestLength,
+                                             ", the finest length voronoimesh works at: give the input in larger units")));
+  }
+}
 
 GridSpec voxel_grid(const std::array<int64_t, 3>& size, const Vec3& spacing, const Vec3& origin,
                     const std::string& source, const std::string& what) {
@@ -20,6 +42,7 @@ GridSpec voxel_grid(const std::array<int64_t, 3>& size, const Vec3& spacing, con
   }
   grid.domain.min = origin;
   grid.domain.max = origin + spacing.cwiseProduct(Vec3(double(grid.cells[0]), double(grid.cells[1]), double(grid.cells[2])));
+  require_resolvable(grid, source);
   return grid;
 }
 

@@ -12,10 +12,19 @@
 
 namespace vm::detail {
 
+/// Throws InvalidInput naming `source` unless every axis of `grid` spans a
+/// finite interval within kFarthestCoordinate of 0 whose cells are at least
+/// kFinestLength (core/scale_limits.hpp) and resolved by doubles where they
+/// lie: at least 2^-40 of the largest coordinate, so that a cell holds
+/// thousands of distinct positions. Beyond that, voxel centres coincide in floating point and
+/// create divides by zero (a NRRD whose origin was 1e20, with 1 mm voxels,
+/// crashed).
+void require_resolvable(const GridSpec& grid, const std::string& source);
+
 /// The grid whose nodes are the centres of `size` voxels of `spacing`, voxel
 /// (0, 0, 0) at `origin`. Throws InvalidInput naming `source` when an axis has
-/// fewer than 2 voxels (no cell to interpolate in); `what` names the input in
-/// that message ("a label volume").
+/// fewer than 2 voxels (no cell to interpolate in; `what` names the input in
+/// that message, "a label volume") or as require_resolvable().
 GridSpec voxel_grid(const std::array<int64_t, 3>& size, const Vec3& spacing, const Vec3& origin,
                     const std::string& source, const std::string& what);
 

@@ -7,6 +7,7 @@
 #include "core/memory.hpp"
 #include "core/staged_outputs.hpp"
 #include "core/text.hpp"
+#include "fields/voxel_grid.hpp"
 #include "improve/node_merge.hpp"
 #include "run/run_job.hpp"
 #include "voronoimesh/check/history.hpp"
@@ -275,7 +276,9 @@ GridSpec create_grid(const Scene& scene, const MeshOptions& o) {
   if (o.close) outside_phase_label(*scene.field); // refused before any sampling
   GridSpec grid = scene.grid;
   if (o.grid) grid.cells = *o.grid;
-  return grid_for_lattice(grid, lattice_for(o, scene));
+  grid = grid_for_lattice(grid, lattice_for(o, scene));
+  detail::require_resolvable(grid, "the grid"); // whatever the input: a scene's domain, --grid
+  return grid;
 }
 
 Lattice lattice_for(const MeshOptions& o, const Scene& scene) {
