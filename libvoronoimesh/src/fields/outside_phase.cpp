@@ -92,8 +92,8 @@ int32_t outside_phase_label(const PhaseField& field) {
     if (label == std::numeric_limits<int32_t>::max())
       throw InvalidOption("close", detail::cat("the phase outside the box takes the label above every phase's, and ",
                                                detail::quote(field.phase_name(p)), " has label ", label,
-                                               ", the largest a 32-bit label can be: give it another to close the domain (in "
-                                               "a label volume, --merge-labels or --drop-labels)"));
+                                               ", the largest a 32-bit label can be: give it another to close the "
+                                               "domain (in a label volume, --merge-labels or --drop-labels)"));
     largest = p == 0 ? label : std::max(largest, label);
   }
   return field.num_phases() > 0 ? largest + 1 : 0;

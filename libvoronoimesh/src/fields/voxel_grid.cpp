@@ -27,7 +27,8 @@ void require_resolvable(const GridSpec& grid, const std::string& source) {
                                              "of its coordinates): place the data nearer the origin")));
     if (!(cell >= kFinestLength))
       throw InvalidInput(located(source, cat("cells of ", cell, " along ", axis, " are smaller than ", kFinestLength,
-                                             ", the finest length voronoimesh works at: give the input in larger units")));
+                                             ", the finest length voronoimesh works at: give the input in larger "
+                                             "units")));
   }
 }
 

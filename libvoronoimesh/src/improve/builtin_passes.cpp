@@ -114,8 +114,9 @@ private:
   void refuse_beyond_memory(size_t triangles, double ratio) const {
     const double expected = double(triangles) / (ratio * ratio);
     char what[200];
-    std::snprintf(what, sizeof what, "edges of %.2g times the mesh's (%s) make about %.2g triangles from its %zu, which",
-                  ratio, length_ > 0 ? "--size or remesh:length" : "remesh:size", expected, triangles);
+    std::snprintf(what, sizeof what,
+                  "edges of %.2g times the mesh's (%s) make about %.2g triangles from its %zu, which", ratio,
+                  length_ > 0 ? "--size or remesh:length" : "remesh:size", expected, triangles);
     if (const std::string problem = detail::beyond_memory(expected * kBytesPerTriangle, what); !problem.empty())
       throw InvalidInput(located("remesh", problem));
   }

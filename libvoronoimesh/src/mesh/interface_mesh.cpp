@@ -251,7 +251,8 @@ std::vector<int32_t> InterfaceMesh::faces_at(std::span<const int32_t> nodes) con
   if (nodes.size() > triangles_.size() / 8) {
     std::vector<uint8_t> at(triangles_.size(), 0);
     detail::parallel_for_each_index(nodes.size(), [&](size_t i) {
-      for_each_face(nodes[i], [&](int f) { std::atomic_ref<uint8_t>(at[size_t(f)]).store(1, std::memory_order_relaxed); });
+      for_each_face(nodes[i],
+                    [&](int f) { std::atomic_ref<uint8_t>(at[size_t(f)]).store(1, std::memory_order_relaxed); });
     });
     return detail::indices_where(at.size(), [&](size_t f) { return at[f] != 0; });
   }
