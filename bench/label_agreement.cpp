@@ -67,7 +67,8 @@ int run(const std::string& path, const Options& o) {
               path.c_str(), o.pipeline.c_str(), per_cell, m.num_triangles(), stats.min_quality,
               stats.mean_quality, 100.0 * double(a.in_phase) / double(a.voxels),
               100.0 * double(a.interior_in_phase) / double(a.interior),
-              worst ? 100.0 * double(worst->in_phase) / double(worst->voxels) : 100.0, worst ? worst->label : 0, (long long)(worst ? worst->voxels : 0),
+              worst ? 100.0 * double(worst->in_phase) / double(worst->voxels) : 100.0, worst ? worst->label : 0,
+              (long long)(worst ? worst->voxels : 0),
               missing.empty() ? "none" : missing.c_str(), (long long)a.undecided, seconds);
   return 0;
 }

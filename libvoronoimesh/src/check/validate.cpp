@@ -407,12 +407,8 @@ void check_nodes(const Tables& tables, ProblemLog& log) {
   });
 }
 
-/// Most a coordinate or the mesh's extent may be, and least its extent may be
-/// (core/scale_limits.hpp).
-constexpr double kLargestCoordinate = detail::kFarthestCoordinate, kSmallestExtent = detail::kFinestLength;
-
 /// False (and a problem logged) when the mesh's scale lies outside what the
-/// checks and the improvement handle. (Coordinates that are not finite are the
+/// checks and the improvement handle (core/scale_limits.hpp). (Coordinates that are not finite are the
 /// triangles' problems, reported with them.)
 bool check_scale(const NodeMesh& m, ProblemLog& log) {
   double largest = 0;
@@ -424,10 +420,10 @@ bool check_scale(const NodeMesh& m, ProblemLog& log) {
     hi = hi.cwiseMax(p);
   }
   const double extent = largest > 0 || lo.allFinite() ? (hi - lo).maxCoeff() : 0;
-  if (largest > kLargestCoordinate || (extent > 0 && extent < kSmallestExtent)) {
+  if (largest > detail::kFarthestCoordinate || (extent > 0 && extent < detail::kFinestLength)) {
     log.add({}, [&] {
       return cat("scale: the mesh spans ", extent, " with coordinates up to ", largest,
-                 "; voronoimesh works on meshes between ", kSmallestExtent, " and ", kLargestCoordinate,
+                 "; voronoimesh works on meshes between ", detail::kFinestLength, " and ", detail::kFarthestCoordinate,
                  " in size (scale it into that range)");
     });
     return false;

@@ -16,9 +16,9 @@ namespace vm::detail {
 /// finite interval within kFarthestCoordinate of 0 whose cells are at least
 /// kFinestLength (core/scale_limits.hpp) and resolved by doubles where they
 /// lie: at least 2^-40 of the largest coordinate, so that a cell holds
-/// thousands of distinct positions. Beyond that, voxel centres coincide in floating point and
-/// create divides by zero (a NRRD whose origin was 1e20, with 1 mm voxels,
-/// crashed).
+/// thousands of distinct positions. Beyond that, voxel centres coincide in
+/// floating point and create divides by zero (a NRRD whose origin was 1e20,
+/// with 1 mm voxels, crashed).
 void require_resolvable(const GridSpec& grid, const std::string& source);
 
 /// The grid whose nodes are the centres of `size` voxels of `spacing`, voxel
