@@ -140,6 +140,14 @@ if out=$("$vm" mesh 'seq/step_%03d.json' -o 'seq_out/m_%02d.vtu' --iterations 2 
 else fail "a numbered sequence is not meshed step by step as lone runs mesh each step, with a .pvd"; fi
 expect_error "sequence without a numbered output" 2 "-o: a sequence needs a numbered output" -- "$vm" mesh seq/step_000.json seq/step_001.json -o out.ply
 expect_error "pattern without files" 2 "nothing_%03d.json: no file matches this numbered pattern" -- "$vm" mesh 'nothing_%03d.json' -o 'out_%d.ply'
+# A field too wide for any file name is no numbered output (it cut every step's name to one file, each
+# step writing over the last); a step number beyond a long was an internal error.
+expect_error "output field too wide" 2 "-o: a sequence needs a numbered output" -- "$vm" mesh 'seq/step_%03d.json' -o 'o_%9999d.ply'
+cp seq/step_000.json seq/step_99999999999999999999.json
+expect_error "step number too long" 2 "step_99999999999999999999.json: matches seq/step_%d.json with a step number of 20 digits" -- "$vm" mesh 'seq/step_%d.json' -o 'o_%d.ply'
+rm seq/step_99999999999999999999.json
+if out=$("$vm" mesh -q 'seq/step_%03d.json' -o 'seq_out/w_%5d.ply' --iterations 1 2>&1) && [ -f 'seq_out/w_    2.ply' ]; then pass
+else fail "a numbered output of width 5 does not pad with spaces as printf does: $out"; fi
 
 # Label volumes (NRRD written here): a 16^3 cube of label 1 inside label 3, and a cube of label 5 beside it.
 nrrd_labels() { # FILE [extra header lines]: 16x16x16 uchar

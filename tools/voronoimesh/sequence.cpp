@@ -6,7 +6,6 @@
 #include "voronoimesh/core/errors.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -17,8 +16,12 @@ namespace vmcli {
 
 namespace {
 
-/// The number conversion of `path`: %d or %0Nd (as a regex of its parts).
-const std::regex kConversion(R"(%(0?\d*)d)");
+/// The number conversion of `path`: %d, %Nd or %0Nd (as a regex of its parts),
+/// fields of at most 3 digits (wider ones name no file a system can hold).
+const std::regex kConversion(R"(%(0?\d{0,3})d)");
+
+/// The most digits a step number may have: every such number fits a long.
+constexpr size_t kLongestNumber = 18;
 
 } // namespace
 
@@ -30,8 +33,11 @@ bool is_numbered(const std::string& path) {
 std::string numbered(const std::string& pattern, long number) {
   std::smatch m;
   std::regex_search(pattern, m, kConversion);
-  char digits[32];
-  std::snprintf(digits, sizeof digits, ("%" + m[1].str() + "ld").c_str(), number);
+  // Padded as printf would (%04d: zeros, %4d: spaces), without a buffer whose size would cut a wide field.
+  const std::string flags = m[1].str();
+  std::string digits = std::to_string(number);
+  const size_t width = flags.empty() || flags == "0" ? 0 : std::stoul(flags);
+  if (digits.size() < width) digits.insert(0, width - digits.size(), flags[0] == '0' ? '0' : ' ');
   return m.prefix().str() + digits + m.suffix().str();
 }
 
@@ -54,6 +60,10 @@ std::vector<Step> sequence_steps(const std::vector<std::string>& inputs) {
     const std::string entry_name = entry.path().filename().string();
     std::smatch digits;
     if (!std::regex_match(entry_name, digits, file)) continue;
+    if (digits[1].str().size() > kLongestNumber)
+      throw vm::InvalidInput(entry_name + ": matches " + inputs[0] + " with a step number of " +
+                             std::to_string(digits[1].str().size()) + " digits (at most " + std::to_string(kLongestNumber) +
+                             "): rename it or move it out of the folder");
     const long number = std::stol(digits[1].str());
     // A padded pattern (%04d) names step 7 step_0007 only.
     if (numbered(name, number) != entry_name) continue;

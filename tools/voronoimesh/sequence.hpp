@@ -22,7 +22,8 @@ struct Step {
 /// matches no file.
 std::vector<Step> sequence_steps(const std::vector<std::string>& inputs);
 
-/// True when `path` holds one printf integer conversion (%d or %0Nd).
+/// True when `path` holds one printf integer conversion (%d, %Nd or %0Nd, N
+/// at most 3 digits).
 bool is_numbered(const std::string& path);
 
 /// `pattern` with its number conversion replaced by `number`.
