@@ -62,8 +62,8 @@ std::vector<Step> sequence_steps(const std::vector<std::string>& inputs) {
     if (!std::regex_match(entry_name, digits, file)) continue;
     if (digits[1].str().size() > kLongestNumber)
       throw vm::InvalidInput(entry_name + ": matches " + inputs[0] + " with a step number of " +
-                             std::to_string(digits[1].str().size()) + " digits (at most " + std::to_string(kLongestNumber) +
-                             "): rename it or move it out of the folder");
+                             std::to_string(digits[1].str().size()) + " digits (at most " +
+                             std::to_string(kLongestNumber) + "): rename it or move it out of the folder");
     const long number = std::stol(digits[1].str());
     // A padded pattern (%04d) names step 7 step_0007 only.
     if (numbered(name, number) != entry_name) continue;
