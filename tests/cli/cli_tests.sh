@@ -146,6 +146,9 @@ expect_error "output field too wide" 2 "-o: a sequence needs a numbered output" 
 cp seq/step_000.json seq/step_99999999999999999999.json
 expect_error "step number too long" 2 "step_99999999999999999999.json: matches seq/step_%d.json with a step number of 20 digits" -- "$vm" mesh 'seq/step_%d.json' -o 'o_%d.ply'
 rm seq/step_99999999999999999999.json
+"$vm" mesh -q --grid 8 -o seq/cloud.ply && "$vm" mesh -q --grid 8 -o seq/cloud_1.ply # any PLYs: checked before reading
+expect_error "sequence output over a later input" 2 "seq/cloud_1.ply: is also an input of this sequence \\(seq/cloud_1.ply\\)" -- \
+  "$vm" mesh seq/cloud_1.ply seq/cloud.ply -o 'seq/cloud_%d.ply'
 if out=$("$vm" mesh -q 'seq/step_%03d.json' -o 'seq_out/w_%5d.ply' --iterations 1 2>&1) && [ -f 'seq_out/w_    2.ply' ]; then pass
 else fail "a numbered output of width 5 does not pad with spaces as printf does: $out"; fi
 

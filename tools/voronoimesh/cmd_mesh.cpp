@@ -24,6 +24,21 @@ int mesh_with_mpi(const MeshCommandOptions&) {
 
 namespace {
 
+/// Refuses, before any step runs, a sequence whose numbered output for one step
+/// is the input of any step: each run checks its output against its own input
+/// only, so step 2 of `mesh p_1.ply p_2.ply -o p_%d.ply` would write over p_1.ply.
+void refuse_outputs_over_inputs(const std::vector<Step>& steps, const std::string& pattern) {
+  for (const Step& step : steps) {
+    const std::string output = numbered(pattern, step.number);
+    for (const Step& other : steps) {
+      std::error_code ec; // an output that does not exist yet is no input
+      if (std::filesystem::equivalent(output, other.input, ec))
+        throw vm::InvalidInput(output + ": is also an input of this sequence (" + other.input +
+                               "); an output may not replace what the run reads");
+    }
+  }
+}
+
 /// One run per step of the sequence o.inputs names, each written to the step's
 /// number in -o; then the .pvd of VTK outputs.
 int mesh_sequence(const MeshCommandOptions& o) {
@@ -35,6 +50,7 @@ int mesh_sequence(const MeshCommandOptions& o) {
       throw vm::InvalidInput("-o: a sequence needs a numbered output such as out/step_%04d.vtu, got '" +
                              o.output.path + "'");
     const std::vector<Step> steps = sequence_steps(o.inputs);
+    refuse_outputs_over_inputs(steps, o.output.path);
     const vm::PassRegistry registry = pass_registry(o.improve.plugins, o.common.quiet);
     std::vector<std::string> written;
     std::vector<double> times;
