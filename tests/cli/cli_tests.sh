@@ -234,6 +234,8 @@ expect_error "drop to one phase" 2 "1 phase\(s\) after the label options" -- "$v
 expect_error "absent label" 2 "label 7 is not in the volume" -- "$vm" create labels.nrrd --drop-labels 7 -o out.ply
 expect_error "bad merge group" 2 "merge-labels: expected groups" -- "$vm" create labels.nrrd --merge-labels 1++5 -o out.ply
 expect_error "bad point line" 2 "badcloud\.xyz: line 2" -- "$vm" create badcloud.xyz -o out.ply
+printf '0 0 0 1\n1 1 1 1\n0 1 0 1\n1 1 1 2\n' >twolabels.xyz # label 2's one point is also label 1's: it meshed to nothing
+expect_error "point with two labels" 2 "twolabels\.xyz: points 2 and 4 lie at the same place \(1, 1, 1\) with different labels \(1 and 2\)" -- "$vm" create twolabels.xyz -o out.ply
 # Point clouds as PLY (any vertex element with x, y, z and label), and bad point input.
 # The four-region mesh must come out free of self-intersections (stats exits 4 otherwise):
 # its interfaces are jagged, and without the crossing guard surfaces fold onto themselves.

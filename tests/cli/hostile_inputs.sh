@@ -160,8 +160,10 @@ expect_error "flip on a mesh whose triangles cross" 2 "$crossing" -- "$vm" flip 
 expect_error "smooth on a mesh whose triangles cross" 2 "$crossing" -- "$vm" smooth dragged.ply --pipeline flip -o out.ply
 if "$vm" smooth -q dragged.ply --pipeline flip --no-crossing-guard -o unguarded.ply 2>stderr.txt; then pass
 else fail "smooth --no-crossing-guard on a mesh whose triangles cross: $(cat stderr.txt)"; fi
-printf '0.5 0.5 0.5 1\n0.5 0.5 0.5 2\n' >onepoint.xyz
-expect_error "an input that meshes to nothing" 2 "onepoint\.xyz: meshes to nothing" -- "$vm" create -q onepoint.xyz --grid 8 -o out.ply
+printf '{"domain": {"min": [0, 0, 0], "max": [1, 1, 1]}, "phases": [{"name": "a", "kind": "constant", "value": 0}, {"name": "b", "kind": "constant", "value": 1}]}\n' >nothing.json
+expect_error "an input that meshes to nothing" 2 "nothing\.json: meshes to nothing" -- "$vm" create -q nothing.json --grid 8 -o out.ply
+printf '0.5 0.5 0.5 1\n0.5 0.5 0.5 2\n' >onepoint.xyz # it meshed to nothing, with no word of why
+expect_error "one point with two labels" 2 "onepoint\.xyz: points 1 and 2 lie at the same place" -- "$vm" create -q onepoint.xyz --grid 8 -o out.ply
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

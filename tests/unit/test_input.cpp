@@ -162,6 +162,15 @@ TEST(LabelVolume, three_labels_and_label_options) {
   InputOptions bg3;
   bg3.background = 3;
   EXPECT_EQ(load_input(path, bg3).field->phase_name(1), "background");
+  EXPECT_TRUE(load_input(path, bg3).notes.empty());
+  // A background label no voxel has is said: a mistyped one names no phase.
+  InputOptions bg5;
+  bg5.background = 5;
+  EXPECT_EQ(load_input(path, bg5).notes, (std::vector<std::string>{"--background 5: no voxel has this label, so no "
+                                                                   "phase is the background"}));
+  bg5.drop_labels = {9}; // label 9's voxels become background: no note
+  EXPECT_TRUE(load_input(path, bg5).notes.empty());
+  EXPECT_TRUE(load_input(path).notes.empty());
   InputOptions absent;
   absent.drop_labels = {4};
   EXPECT_THROW(load_input(path, absent), InvalidInput);

@@ -4,6 +4,7 @@
 
 #include "core/text.hpp"
 #include "core/input_file.hpp"
+#include "core/parallel.hpp"
 #include "fields/top_k.hpp"
 
 #include <nanoflann.hpp>
@@ -15,7 +16,9 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <sstream>
+#include <tuple>
 
 namespace vm::detail {
 
@@ -193,6 +196,33 @@ LabelledPoints read_text_points(const std::string& path) {
 
 } // namespace
 
+namespace {
+
+/// Refuses two points at the same place with different labels: each label's
+/// phase ties with the other's there, and a label whose every point is such a
+/// pair leads nowhere (the cloud "meshed to nothing" with no word of why).
+/// Points are named by their place in the file, counting from 1.
+void refuse_points_with_two_labels(const std::vector<Vec3>& points, const std::vector<int32_t>& labels,
+                                   const std::string& path) {
+  std::vector<size_t> order(points.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  auto before = [&](size_t a, size_t b) {
+    const Vec3 &p = points[a], &q = points[b];
+    return std::tie(p.x(), p.y(), p.z(), a) < std::tie(q.x(), q.y(), q.z(), b);
+  };
+  detail::parallel_sort(order.begin(), order.end(), before);
+  for (size_t i = 1; i < order.size(); ++i) {
+    const size_t a = order[i - 1], b = order[i];
+    if (points[a] != points[b] || labels[a] == labels[b]) continue;
+    const Vec3& p = points[a];
+    throw InvalidInput(located(path, cat("points ", a + 1, " and ", b + 1, " lie at the same place (", p.x(), ", ",
+                                         p.y(), ", ", p.z(), ") with different labels (", labels[a], " and ",
+                                         labels[b], "): each point needs one label")));
+  }
+}
+
+} // namespace
+
 Scene point_cloud_scene(const std::string& path, const InputOptions&) {
   return point_cloud_scene(lower(path).ends_with(".ply") ? read_ply_points(path) : read_text_points(path), path);
 }
@@ -204,6 +234,7 @@ Scene point_cloud_scene(LabelledPoints cloud, const std::string& path) {
   for (size_t i = 0; i < points.size(); ++i)
     if (!points[i].allFinite()) throw InvalidInput(located(path, cat("point ", i, ": coordinates must be finite")));
   if (points.empty()) throw InvalidInput(located(path, "has no points"));
+  refuse_points_with_two_labels(points, point_labels, path);
   std::vector<int32_t> labels = point_labels;
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());

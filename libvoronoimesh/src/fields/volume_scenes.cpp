@@ -75,6 +75,21 @@ std::vector<std::optional<int32_t>> label_targets(const std::vector<int32_t>& pr
   return target;
 }
 
+/// A note when --background or --no-background names a label that no voxel has
+/// or is given by the label options (a mistyped label would otherwise pass
+/// unseen, naming no phase or filling no gap); "" otherwise, and for the default
+/// background, which a volume need not have.
+std::string absent_background_note(const std::vector<int32_t>& present,
+                                   const std::vector<std::optional<int32_t>>& target, const InputOptions& o) {
+  if (o.background == InputOptions{}.background && !o.no_background) return {};
+  for (size_t i = 0; i < present.size(); ++i)
+    if (o.no_background ? !target[i] : target[i] == o.background) return {};
+  const bool relabelled = !o.keep_labels.empty() || !o.drop_labels.empty();
+  return cat("--background ", o.background, ": no voxel has this label",
+             relabelled ? " or is made background by --keep-labels or --drop-labels" : "",
+             o.no_background ? ", so --no-background changes nothing" : ", so no phase is the background");
+}
+
 /// The name of label l's phase: "background", its segment's name (from
 /// `segment_of`, label -> segment), or "label<l>".
 std::string label_name(int32_t l, const InputOptions& o,
@@ -234,6 +249,7 @@ Scene label_volume_scene(io::Volume v, const InputOptions& o, const std::string&
     pv.colors[p] = it->second->color;
   }
   std::vector<std::string> notes = std::move(v.notes);
+  if (const std::string note = absent_background_note(present, target, o); !note.empty()) notes.push_back(note);
   for (const io::Segment& s : v.segments)
     if (!std::binary_search(present.begin(), present.end(), s.label))
       notes.push_back(cat("segment ", quote(s.name), " (label ", s.label, ") has no voxels: it is no phase"));
