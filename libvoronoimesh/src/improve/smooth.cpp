@@ -141,12 +141,12 @@ void add_smoothing_forces_with_rest_length(const InterfaceMesh& mesh, const Phas
   std::vector<uint8_t> not_finite(mesh.num_nodes(), 0);
   detail::parallel_for_each_index(mesh.num_nodes(), [&](size_t vi) {
     const int32_t v = int32_t(vi);
-    const int order = junction_order(mesh, v);
+    const int order = detail::constraint_order(mesh, v);
     if (order > 3) return;
     auto ring = mesh.neighbours(v);
     if (ring.empty()) return;
     bool near_junction = order == 3;
-    for (int32_t w : ring) near_junction = near_junction || junction_order(mesh, w) >= 3;
+    for (int32_t w : ring) near_junction = near_junction || detail::constraint_order(mesh, w) >= 3;
 
     Vec3 force = Vec3::Zero();
     const Vec3& x = pos[vi];

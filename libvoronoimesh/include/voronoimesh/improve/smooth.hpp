@@ -42,7 +42,9 @@ int junction_order(const InterfaceMesh& mesh, int32_t n);
 /// @param box_faces the box faces the node lies on: bit 2a for the min side of axis a, bit 2a+1 for the max
 void constrain_to_box(Vec3& d, uint8_t box_faces);
 
-/// Adds to `delta` (one entry per node) the force on every node (Algorithm 4):
+/// Adds to `delta` (one entry per node) the force on every node (Algorithm 4),
+/// by its order of constraints: its phases and box faces, not counting the
+/// outside phase of a closed mesh (whose surfaces are the box faces):
 ///  - order > 3: none (quadruple and higher points are not moved by forces);
 ///  - order 3, or a neighbour of order >= 3: the half-Laplacian attraction
 ///    f_L = (y - x)/2 averaged over neighbours of the same or a higher type
