@@ -11,6 +11,7 @@
 #include "core/indices_where.hpp"
 #include "core/parallel.hpp"
 #include "improve/tangential.hpp"
+#include "mesh/node_rings.hpp"
 
 #include <algorithm>
 #include <array>
@@ -73,7 +74,7 @@ bool stays_in_box(const InterfaceMesh& mesh, int32_t n, const Vec3& x, const Vec
 std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& field, int32_t n, const Vec3& x,
                                    const Fan& fan) {
   std::vector<Vec3> directions;
-  if (junction_order(mesh, n) == 3) {
+  if (detail::constraint_order(mesh, n) == 3) {
     // An axis kept on the curve is the curve's tangent: of the three, the one
     // least across the curve.
     Vec3 tangent = Vec3::Zero();
@@ -87,7 +88,7 @@ std::vector<Vec3> trial_directions(const InterfaceMesh& mesh, const PhaseField& 
     tangent.normalize();
     return {tangent, -tangent};
   }
-  // A surface node off the box (order 2): an orthonormal pair spanning its
+  // A surface node (order 2, a box face's too): an orthonormal pair spanning its
   // tangent plane, from two directions across the fan's normal kept on the surface.
   Vec3 normal = Vec3::Zero();
   for (const Vec3& v : fan.normal) normal += v;
@@ -117,12 +118,13 @@ size_t add_polish_moves(const InterfaceMesh& mesh, const PhaseField& field, cons
   const auto& p = mesh.positions();
   const std::vector<int32_t> bad =
       detail::indices_where(triangles.size(), [&](size_t t) { return quality[t] < params.below; });
-  // The candidates: movable corners of bad triangles (junction order 2 or 3:
-  // box faces count), worst triangle first (ties by node).
+  // The candidates: movable corners of bad triangles (constraint order 2 or 3:
+  // box faces count, a closed mesh's outside phase does not), worst triangle
+  // first (ties by node).
   std::vector<std::pair<double, int32_t>> candidates;
   for (int32_t t : bad)
     for (int32_t n : triangles[size_t(t)]) {
-      const int order = junction_order(mesh, n);
+      const int order = detail::constraint_order(mesh, n);
       if (order == 2 || order == 3) candidates.emplace_back(quality[size_t(t)], n);
     }
   std::sort(candidates.begin(), candidates.end());
