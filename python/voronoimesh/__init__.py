@@ -31,8 +31,8 @@ def _stats(self, worst=0, folds=0, field="", **input_options):
 
 def _label_agreement(self, labels, spacing=(1, 1, 1), origin=(0, 0, 0), margin=1):
     """Where the voxel centres of a label array lie in this closed mesh (one meshed with
-    close=True), as a dict: 'voxels' located (the array's outer layer, on the box faces, left
-    out), 'in_phase' (those in a phase of their own label), 'interior' and 'interior_in_phase'
+    close=True), as a dict: 'voxels' located (every centre; the outer layer's, on the box faces,
+    a thousandth of a spacing inside), 'in_phase' (those in a phase of their own label), 'interior' and 'interior_in_phase'
     (those whose neighbours within margin voxels share their label), 'undecided', and
     'labels': per label its 'voxels' and 'in_phase'. What 'voronoimesh stats --field' prints
     for a label volume."""

@@ -167,7 +167,7 @@ if "$vm" stats l.ply | contains -E "^topology +valid"; then pass; else fail "lab
 if "$vm" mesh -q labels.nrrd --iterations 3 -o lm.ply && "$vm" stats lm.ply | contains -E "^topology +valid"; then pass; else fail "mesh on a label volume"; fi
 # stats --field on a label volume: where the voxel centres lie in a closed mesh, or why not.
 if "$vm" mesh -q labels.nrrd --close --iterations 3 -o lclosed.ply &&
-  "$vm" stats lclosed.ply --field labels.nrrd | contains -E "^voxel centres in their label's phase: 9[0-9]\.[0-9]{3}% of 2744 \(interior ones 100\.000%" &&
+  "$vm" stats lclosed.ply --field labels.nrrd | contains -E "^voxel centres in their label's phase: 9[0-9]\.[0-9]{3}% of 4096 \(interior ones 100\.000%" &&
   "$vm" stats lclosed.ply --field labels.nrrd | contains -E "^  labels with none in their phase: none$" &&
   "$vm" stats lm.ply --field labels.nrrd | contains "voxel centres not located: the mesh is not closed"; then pass
 else fail "stats --field on a label volume: voxel centres"; fi

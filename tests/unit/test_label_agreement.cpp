@@ -170,4 +170,29 @@ TEST(LabelVolume, remeshed_mesh_agrees_with_the_voxel_labels) {
   EXPECT_LT(a.undecided, a.voxels / 100);
 }
 
+// Every voxel centre counts, the outer layer's too: on the box faces of the low
+// sides, located a hair inside, and on the high sides, where a grid of an odd
+// number of cells reaches one voxel beyond them. Two slabs of 6 and 5 voxels
+// (x < 6: label 1, else 2) across an 11 x 6 x 5 volume: every centre lies a
+// voxel or more from the flat interface between them, so all are in their phase.
+// (Before, only the 9 x 4 x 3 centres off the outer layer were counted.)
+TEST(LabelVolume, the_outer_layer_of_voxel_centres_is_located_too) {
+  std::vector<uint8_t> voxels;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 11; ++i) voxels.push_back(i < 6 ? 1 : 2);
+  const std::string path = test::write_nrrd("slabs.nrrd", "type: uchar\ndimension: 3\nsizes: 11 6 5\n", voxels);
+  const Scene scene = load_input(path);
+  CreateParams close;
+  close.close = true;
+  const auto phases = with_outside_phase(scene.field, scene.grid.domain);
+  NodeMesh m = test::created_mesh(scene, close, phases.get());
+  for (int p = 0; p < scene.field->num_phases(); ++p) m.phase_labels.push_back(scene.field->phase_label(p));
+  const io::Volume v = read_placed_volume(path, {});
+  const LabelAgreement a = label_agreement(m, {v.origin, v.spacing, v.size}, {v.labels.data(), v.labels.size()});
+  EXPECT_EQ(a.voxels, 11 * 6 * 5);
+  EXPECT_EQ(a.undecided, 0);
+  EXPECT_EQ(a.in_phase, a.voxels);
+}
+
 } // namespace

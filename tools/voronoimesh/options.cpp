@@ -81,7 +81,7 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
                 "Keep labels one or two voxels thin: each voxel's label leads at its centre, and --lattice auto takes "
                 "cube6 where bcc would lose more than 1% of a label; the grid is then the voxel grid unless "
                 "--voxels-per-cell says otherwise. Off by default: on CGAL's liver (whose 2-voxel label 84 then needs "
-                "cube6) it takes the voxel centres in their label from 99.867% to 99.981%, but about 5x the time, "
+                "cube6) it takes the voxel centres in their label from 99.870% to 99.976%, but about 5x the time, "
                 "min q from 0.695 to 0.165 and folds along the rims of its one-voxel structures")
       ->group(labels);
   cmd->add_option("--band", o.input.band, "Half-width of the signed-distance band, in voxels")

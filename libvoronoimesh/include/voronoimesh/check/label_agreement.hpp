@@ -14,8 +14,9 @@
 namespace vm {
 
 /// Voxel centres of a label volume located in a closed mesh made from it
-/// (label_agreement()). Centres in the volume's outer layer of voxels, on the
-/// box's faces or a hair inside, are left out of every count.
+/// (label_agreement()). Every centre counts: those of the volume's outer layer
+/// of voxels, which lie on the box faces, are located a thousandth of a spacing
+/// inside (on the faces no ray tells a phase from the outside).
 struct LabelAgreement {
   /// One label's voxel centres, and how many of them lie in a phase of that label.
   struct Label {
