@@ -51,7 +51,7 @@ struct LabelShare {
   int64_t voxels = 0, inside = 0;
 };
 
-/// Per label, its voxel centres (off the box's faces; voxels of `spacing`) and how many lie in its phase of `mesh`.
+/// Per label, its voxel centres (all of them; voxels of `spacing`) and how many lie in its phase of `mesh`.
 std::map<int, LabelShare> shares(const NodeMesh& mesh, const Scene& scene, const std::vector<int16_t>& labels,
                                  const Vec3& spacing) {
   PointGrid centres;
@@ -285,6 +285,28 @@ TEST(VoxelFaithful, bcc_losses_are_counted_for_the_snap_create_is_given) {
   std::remove(path.c_str());
   EXPECT_GT(unsnapped, 0);
   EXPECT_GT(snapped, unsnapped);
+}
+
+// A sheet one voxel thin in the volume's last layer along x: 32 voxels are 31
+// cells, which the grid makes 32 with one node past the last voxel, where the
+// field holds the last voxel's values. Its centres between lattice nodes lie
+// on edges from the background's layer to that node, which the bcc lattice
+// lets the background win; --lattice auto took them for held (a voxel's
+// neighbour beyond the volume taken as itself), and the sheet was lost.
+TEST(VoxelFaithful, a_sheet_in_the_last_layer_keeps_its_centres) {
+  std::vector<int16_t> labels(size_t(kSize * kSize * kSize), 0);
+  for (int k = 8; k < 24; ++k)
+    for (int j = 8; j < 24; ++j) labels[size_t(kSize - 1 + kSize * (j + kSize * k))] = 3;
+  const std::string path = test::write_nrrd("last_layer.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
+  const Scene scene = load_input(path, faithful());
+  std::remove(path.c_str());
+  EXPECT_EQ(lattice_for(MeshOptions{}, scene), Lattice::cube6);
+  MeshOptions o;
+  o.close = true;
+  o.threads = 2;
+  const auto by_label = shares(create_mesh(scene, o), scene, labels, Vec3::Ones());
+  EXPECT_EQ(by_label.at(3).voxels, 16 * 16);
+  EXPECT_EQ(by_label.at(3).inside, 16 * 16);
 }
 
 // The tiny test image of mesher suites: label 1 is one voxel.

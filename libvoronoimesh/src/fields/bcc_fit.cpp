@@ -44,18 +44,23 @@ std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v, const PhaseFie
         while (int(at[axis] & 1) != (odd == 1 ? 1 : 0)) ++axis;
         const int64_t here = i + stride[1] * j + stride[2] * int64_t(k);
         const int16_t own = v.phase[size_t(here)];
-        const int64_t lo = at[axis] > 0 ? here - stride[axis] : here, hi = at[axis] + 1 < n[axis] ? here + stride[axis] : here;
-        const int16_t a = v.phase[size_t(lo)], b = v.phase[size_t(hi)];
-        if (own < 0 || a == own || b == own) continue; // (at the volume's edge a neighbour is `here`)
-        if (a == b) {
-          count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
-          continue;
-        }
+        const bool first = at[axis] == 0, last = at[axis] + 1 == n[axis];
+        constexpr int16_t kBeyond = -2; // no voxel: beyond the volume
+        const int16_t a = first ? kBeyond : v.phase[size_t(here - stride[axis])];
+        const int16_t b = last ? kBeyond : v.phase[size_t(here + stride[axis])];
+        if (own < 0 || a == own || b == own) continue;
         const Vec3 centre = v.origin + v.spacing.cwiseProduct(Vec3(double(i), double(j), double(k)));
         Vec3 step = Vec3::Zero();
         step[int(axis)] = v.spacing[int(axis)];
-        if (!leads_between(field, own, centre - step, centre + step, margin))
-          count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
+        // Past the last voxel of an odd number of cells the grid has one node
+        // more, where the field holds the last voxel's values: the edge's far
+        // end is that node, not the voxel itself (which held every such voxel,
+        // and a one-voxel sheet in the last layer was lost without a word).
+        // Past any other end of the volume the edge leaves the grid.
+        const bool padded = last && !first && (n[axis] - 1) % 2 == 1;
+        const bool held = (first || last) ? padded && leads_between(field, own, centre - step, centre + step, margin)
+                                          : a != b && leads_between(field, own, centre - step, centre + step, margin);
+        if (!held) count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
       }
   }, 1);
   std::vector<int64_t> total(count.size());

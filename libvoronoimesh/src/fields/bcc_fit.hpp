@@ -22,7 +22,9 @@ namespace vm::detail {
 /// edge's ends (`field`, on the voxel grid) sum to more than any other
 /// phase's by `margin` (what snapping may take from it: a two-voxel label of
 /// CGAL's liver lay between two others, and the bcc lattice lost it).
-/// Beyond the volume a voxel's neighbour is itself, as the field extends.
+/// At the volume's edge, an edge whose far end is the node the grid adds past
+/// the last voxel (an odd number of cells) is judged as any other, the field
+/// holding the last voxel's values there; one that leaves the grid is not held.
 std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& voxels, const PhaseField& field, double margin);
 
 } // namespace vm::detail
