@@ -243,19 +243,25 @@ std::vector<int16_t> two_voxels_between_two_labels() {
   return labels;
 }
 
-// Two voxels of label 3 between labels 1 and 2 (two_voxels_between_two_labels()):
-// --lattice auto sees that bcc cannot hold them, and create keeps both
-// centres in their label.
-TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
-  const std::vector<int16_t> labels = two_voxels_between_two_labels();
-  const std::string path = test::write_nrrd("between_two.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
+/// The shares of kSize^3 `labels`, written to `file` and read --voxel-faithful,
+/// in the closed mesh create makes of them, once --lattice auto has taken cube6
+/// for them (expected: bcc cannot hold some of their centres).
+std::map<int, LabelShare> shares_on_cube6(const std::vector<int16_t>& labels, const std::string& file) {
+  const std::string path = test::write_nrrd(file, "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
   const Scene scene = load_input(path, faithful());
   std::remove(path.c_str());
   EXPECT_EQ(lattice_for(MeshOptions{}, scene), Lattice::cube6);
   MeshOptions o;
   o.close = true;
   o.threads = 2;
-  const auto by_label = shares(create_mesh(scene, o), scene, labels, Vec3::Ones());
+  return shares(create_mesh(scene, o), scene, labels, Vec3::Ones());
+}
+
+// Two voxels of label 3 between labels 1 and 2 (two_voxels_between_two_labels()):
+// --lattice auto sees that bcc cannot hold them, and create keeps both
+// centres in their label.
+TEST(VoxelFaithful, a_two_voxel_label_between_two_others_keeps_its_centres) {
+  const auto by_label = shares_on_cube6(two_voxels_between_two_labels(), "between_two.nrrd");
   EXPECT_EQ(by_label.at(3).voxels, 2);
   EXPECT_EQ(by_label.at(3).inside, 2);
 }
@@ -297,14 +303,7 @@ TEST(VoxelFaithful, a_sheet_in_the_last_layer_keeps_its_centres) {
   std::vector<int16_t> labels(size_t(kSize * kSize * kSize), 0);
   for (int k = 8; k < 24; ++k)
     for (int j = 8; j < 24; ++j) labels[size_t(kSize - 1 + kSize * (j + kSize * k))] = 3;
-  const std::string path = test::write_nrrd("last_layer.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
-  const Scene scene = load_input(path, faithful());
-  std::remove(path.c_str());
-  EXPECT_EQ(lattice_for(MeshOptions{}, scene), Lattice::cube6);
-  MeshOptions o;
-  o.close = true;
-  o.threads = 2;
-  const auto by_label = shares(create_mesh(scene, o), scene, labels, Vec3::Ones());
+  const auto by_label = shares_on_cube6(labels, "last_layer.nrrd");
   EXPECT_EQ(by_label.at(3).voxels, 16 * 16);
   EXPECT_EQ(by_label.at(3).inside, 16 * 16);
 }
