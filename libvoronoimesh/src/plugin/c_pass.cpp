@@ -1,8 +1,8 @@
 #include "plugin/c_pass.hpp"
 
 #include "core/text.hpp"
+#include "mesh/node_rings.hpp"
 #include "voronoimesh/core/errors.hpp"
-#include "voronoimesh/improve/smooth.hpp"
 
 #include <array>
 #include <vector>
@@ -46,7 +46,7 @@ struct MeshArrays {
     order.resize(n);
     neighbour_offsets.assign(1, 0);
     for (size_t v = 0; v < n; ++v) {
-      order[v] = junction_order(m, int32_t(v));
+      order[v] = detail::constraint_order(m, int32_t(v)); // a closed mesh's outside phase adds no constraint
       for (int32_t w : m.neighbours(int32_t(v))) neighbours.push_back(w);
       neighbour_offsets.push_back(int32_t(neighbours.size()));
     }

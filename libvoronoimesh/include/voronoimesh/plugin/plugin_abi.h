@@ -55,9 +55,10 @@ typedef struct vm_param_spec {
 /** The mesh as a pass sees it during one call of `run`. Node-level arrays: node
  *  i has position positions[3i..3i+2]; its phases phases[8i..8i+7] (sorted,
  *  padded with -1); its box faces box_faces[i] (bit 2a: on the min side of axis
- *  a, bit 2a+1: on the max side); junction_order[i] = phases + box faces (2: a
- *  surface node, 3: on a triple curve or where a surface meets the box, 4 and
- *  more: a point); its neighbours neighbours[neighbour_offsets[i] ..
+ *  a, bit 2a+1: on the max side); junction_order[i] = phases + box faces, the
+ *  outside phase of a closed mesh not counted (its surfaces are the box faces)
+ *  (2: a surface node, the box faces' too, 3: on a triple curve or where a
+ *  surface meets the box, 4 and more: a point); its neighbours neighbours[neighbour_offsets[i] ..
  *  neighbour_offsets[i+1]-1], sorted. Triangle t has nodes triangles[3t..3t+2],
  *  oriented so that its right-hand normal points from phase pairs[2t] into
  *  pairs[2t+1] (pairs[2t] < pairs[2t+1]). */
@@ -66,7 +67,7 @@ typedef struct vm_mesh_view {
   const double* positions;          /**< 3 x num_nodes: x, y, z of each node */
   const int16_t* phases;            /**< 8 x num_nodes: the phases at each node, sorted, padded with -1 */
   const uint8_t* box_faces;         /**< num_nodes: bit 2a on the min side of axis a, bit 2a+1 on the max */
-  const int32_t* junction_order;    /**< num_nodes: phases + box faces of each node */
+  const int32_t* junction_order;    /**< num_nodes: phases + box faces of each node (closed: less the outside) */
   const int32_t* neighbour_offsets; /**< num_nodes + 1: where each node's neighbours start in `neighbours` */
   const int32_t* neighbours;        /**< the neighbours of every node, sorted, node after node */
   size_t num_triangles;             /**< triangles */
