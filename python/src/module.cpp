@@ -259,6 +259,7 @@ PYBIND11_MODULE(_voronoimesh, m) {
           "stats_json",
           [](const Mesh& self, size_t worst, size_t folds, const std::string& field, const py::kwargs& kwargs) {
             std::vector<std::pair<std::string, std::string>> more;
+            std::string not_located; // said as a warning once the GIL is held again
             // Input options only say how to read the field: without one they would do nothing.
             if (field.empty() && !kwargs.empty())
               throw py::value_error("stats: " + py::str(kwargs.begin()->first).cast<std::string>() +
@@ -272,7 +273,10 @@ PYBIND11_MODULE(_voronoimesh, m) {
               // A label volume's voxel centres, located in a closed mesh (as 'voronoimesh stats --field').
               if (const auto agreement = vm::label_agreement_from_input(self.mesh, scene, field, o.input))
                 more.emplace_back("label_agreement", vm::to_json(*agreement));
+              not_located = vm::voxel_centres_not_located(self.mesh, scene);
             }
+            if (!not_located.empty() && PyErr_WarnEx(PyExc_UserWarning, not_located.c_str(), 1) < 0)
+              throw py::error_already_set();
             return vm::to_json(vm::compute_stats(self.mesh), vm::worst_triangles(self.mesh, worst), &self.mesh,
                                vm::sharpest_folds(self.mesh, folds), more);
           },

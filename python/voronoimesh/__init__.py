@@ -25,7 +25,8 @@ def _stats(self, worst=0, folds=0, field="", **input_options):
     voxels_per_cell=, as keywords) also 'offsets': how far the surface, triple-curve and
     quadruple-point nodes lie from its interface, in world units and in h (the grid spacing
     the mesh was created on), and for a label volume and a closed mesh 'label_agreement':
-    where its voxel centres lie (as Mesh.label_agreement())."""
+    where its voxel centres lie (as Mesh.label_agreement()); for a label volume and a mesh
+    that is not closed, a UserWarning says why there is none."""
     return _json.loads(self.stats_json(worst, folds, field, **input_options))
 
 

@@ -70,8 +70,7 @@ void add_stats_command(CLI::App& app, int& exit_code) {
         const vm::Scene scene = vm::read_input(o->field, options);
         offsets = vm::offsets_from_input(mesh, o->mesh, scene, o->field);
         agreement = vm::label_agreement_from_input(mesh, scene, o->field, options);
-        if (!scene.phase_voxels.empty() && mesh.outside_phase < 0)
-          not_located = "voxel centres not located: the mesh is not closed (mesh --close makes it so)";
+        not_located = vm::voxel_centres_not_located(mesh, scene);
       }
       vm::MeshStats s = vm::compute_stats(mesh);
       vm::ValidationReport report = vm::validate(mesh);

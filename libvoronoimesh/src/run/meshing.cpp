@@ -249,6 +249,11 @@ MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_pat
   return {interface_offsets(mesh, *phases_of_mesh(mesh, scene.field)), own ? mesh.grid_spacing : scene.grid.h(), own};
 }
 
+std::string voxel_centres_not_located(const NodeMesh& mesh, const Scene& scene) {
+  if (scene.phase_voxels.empty() || mesh.outside_phase >= 0) return {};
+  return "voxel centres not located: the mesh is not closed (mesh it with --close; in Python, close=True)";
+}
+
 std::optional<LabelAgreement> label_agreement_from_input(const NodeMesh& mesh, const Scene& scene,
                                                          const std::string& input, const InputOptions& options) {
   if (scene.phase_voxels.empty() || mesh.outside_phase < 0) return std::nullopt;

@@ -354,6 +354,14 @@ MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_pat
 std::optional<LabelAgreement> label_agreement_from_input(const NodeMesh& mesh, const Scene& scene,
                                                          const std::string& input, const InputOptions& options);
 
+/// Why label_agreement_from_input() locates no voxel centres of a label volume
+/// in `mesh`: "" when it does, or when `scene` is no label volume (nothing to
+/// locate, nothing to explain); else the reason, one line, for the report.
+/// @param mesh  the mesh
+/// @param scene the input it was made from, as read (read_input())
+/// @return the reason, or ""
+std::string voxel_centres_not_located(const NodeMesh& mesh, const Scene& scene);
+
 /// create_mesh() then improve_mesh() with pipeline_for() the scene: the CLI's
 /// `voronoimesh mesh` without the files. It never exits.
 /// @param scene    the scene to mesh; its field must not be null
