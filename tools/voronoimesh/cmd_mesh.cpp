@@ -10,7 +10,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <utility>
+
+#include <sys/stat.h>
 
 namespace vmcli {
 
@@ -27,15 +31,19 @@ namespace {
 /// Refuses, before any step runs, a sequence whose numbered output for one step
 /// is the input of any step: each run checks its output against its own input
 /// only, so step 2 of `mesh p_1.ply p_2.ply -o p_%d.ply` would write over p_1.ply.
+/// Each file is looked up once (device and inode, so that a link and its
+/// target are one file), not each pair of files.
 void refuse_outputs_over_inputs(const std::vector<Step>& steps, const std::string& pattern) {
+  std::map<std::pair<dev_t, ino_t>, const std::string*> inputs;
+  struct stat st {};
+  for (const Step& step : steps)
+    if (::stat(step.input.c_str(), &st) == 0) inputs.emplace(std::pair{st.st_dev, st.st_ino}, &step.input);
   for (const Step& step : steps) {
     const std::string output = numbered(pattern, step.number);
-    for (const Step& other : steps) {
-      std::error_code ec; // an output that does not exist yet is no input
-      if (std::filesystem::equivalent(output, other.input, ec))
-        throw vm::InvalidInput(output + ": is also an input of this sequence (" + other.input +
-                               "); an output may not replace what the run reads");
-    }
+    if (::stat(output.c_str(), &st) != 0) continue; // an output that does not exist yet is no input
+    if (const auto it = inputs.find({st.st_dev, st.st_ino}); it != inputs.end())
+      throw vm::InvalidInput(output + ": is also an input of this sequence (" + *it->second +
+                             "); an output may not replace what the run reads");
   }
 }
 
