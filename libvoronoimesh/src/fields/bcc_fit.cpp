@@ -56,11 +56,11 @@ std::vector<int64_t> voxels_bcc_cannot_hold(const PhaseVoxels& v, const PhaseFie
         // more, where the field holds the last voxel's values: the edge's far
         // end is that node, not the voxel itself (which held every such voxel,
         // and a one-voxel sheet in the last layer was lost without a word).
-        // Past any other end of the volume the edge leaves the grid.
-        const bool padded = last && !first && (n[axis] - 1) % 2 == 1;
-        const bool held = (first || last) ? padded && leads_between(field, own, centre - step, centre + step, margin)
-                                          : a != b && leads_between(field, own, centre - step, centre + step, margin);
-        if (!held) count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
+        // Past any other end of the volume the edge leaves the grid. Inside it,
+        // two neighbours of one other label outvote the voxel whatever the values.
+        const bool may_lead = first || last ? last && (n[axis] - 1) % 2 == 1 : a != b;
+        if (!may_lead || !leads_between(field, own, centre - step, centre + step, margin))
+          count[size_t(own)].fetch_add(1, std::memory_order_relaxed);
       }
   }, 1);
   std::vector<int64_t> total(count.size());
