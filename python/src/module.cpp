@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <span>
@@ -69,17 +70,43 @@ vm::GridSpec node_grid(const py::ssize_t* shape, const std::array<double, 3>& sp
   return grid;
 }
 
+/// The labels of a real array whose every value is a whole number that fits in
+/// 32 bits, as volume files of reals are read (nibabel's get_fdata() gives
+/// float64 for any segmentation); a value that is not one is refused by its index.
+py::array_t<int32_t, py::array::f_style> labels_from_whole_reals(const py::array& labels) {
+  const auto reals = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(labels);
+  if (!reals) throw py::error_already_set();
+  py::array_t<int32_t, py::array::f_style> out(std::vector<py::ssize_t>(reals.shape(), reals.shape() + 3));
+  const double* in = reals.data();
+  int32_t* to = out.mutable_data();
+  for (py::ssize_t i = 0; i < reals.size(); ++i) {
+    const double x = in[i];
+    if (!(x >= std::numeric_limits<int32_t>::min() && x <= std::numeric_limits<int32_t>::max() && x == std::trunc(x))) {
+      const py::ssize_t nx = reals.shape(0), ny = reals.shape(1);
+      throw py::value_error("labels: labels[" + std::to_string(i % nx) + ", " + std::to_string(i / nx % ny) + ", " +
+                            std::to_string(i / nx / ny) + "] is " + py::repr(py::float_(x)).cast<std::string>() +
+                            ", not a label: a real array is read as labels when every value is a whole 32-bit "
+                            "number (a label map resampled with linear interpolation? resample it with nearest "
+                            "neighbour)");
+    }
+    to[i] = int32_t(x);
+  }
+  return out;
+}
+
 /// A label array as the library takes it: 3-D, of integers that fit in 32 bits
 /// (a wider array's values are checked, not cut: numpy's cast would turn label
 /// 2^41 into 0 without a word), with x fastest in memory. An int32
 /// Fortran-ordered array (nibabel's) is read where it lies; any other is
-/// converted once.
+/// converted once. A boolean mask is labels 0 and 1; reals are labels when whole.
 py::array_t<int32_t, py::array::f_style> int32_labels(const py::array& labels) {
   if (labels.ndim() != 3) throw py::value_error("labels: a 3-D array indexed [x, y, z] expected, got " +
                                                 std::to_string(labels.ndim()) + " dimensions");
   const char kind = labels.dtype().kind();
-  if (kind != 'i' && kind != 'u')
-    throw py::type_error("labels: an integer array expected, got dtype " + std::string(py::str(labels.dtype())));
+  if (kind == 'f') return labels_from_whole_reals(labels);
+  if (kind != 'i' && kind != 'u' && kind != 'b')
+    throw py::type_error("labels: an array of integers (or of reals that are whole numbers) expected, got dtype " +
+                         std::string(py::str(labels.dtype())));
   const bool wider = labels.dtype().itemsize() > 4 || (kind == 'u' && labels.dtype().itemsize() == 4);
   if (wider && labels.size() > 0)
     for (const char* end : {"min", "max"}) {
@@ -302,10 +329,10 @@ PYBIND11_MODULE(_voronoimesh, m) {
           py::arg("labels"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
           py::arg("origin") = std::array<double, 3>{0, 0, 0}, py::arg("margin") = 1,
           "Where the voxel centres of a label array (indexed [x, y, z], voxel centres at origin + spacing * "
-          "index, as for mesh_labels()) lie in this closed mesh (close=True), as JSON: 'voxels' counted (the outer "
-          "layer, on the box faces, left out), 'in_phase' (in a phase of their own label), 'interior' (those whose "
-          "neighbours within `margin` voxels share their label) and 'interior_in_phase', 'undecided', and per label "
-          "'labels'")
+          "index, as for mesh_labels()) lie in this closed mesh (close=True), as JSON: 'voxels' counted "
+          "(every centre; the outer layer's, on the box faces, a thousandth of a spacing inside), 'in_phase' (in a "
+          "phase of their own label), 'interior' (those whose neighbours within `margin` voxels share their label) "
+          "and 'interior_in_phase', 'undecided', and per label 'labels'")
       .def(
           "write", [](const Mesh& self, const std::string& path, bool ascii) {
             vm::RunOutputs outputs;
@@ -321,8 +348,9 @@ PYBIND11_MODULE(_voronoimesh, m) {
 
   m.def("mesh_labels", &mesh_labels, py::arg("labels"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
         py::arg("origin") = std::array<double, 3>{0, 0, 0},
-        "Meshes a label volume given as a 3-D integer array indexed [x, y, z] (voxel centres at origin + spacing * "
-        "index), with the options of 'voronoimesh mesh' as keywords.");
+        "Meshes a label volume given as a 3-D array of integer labels (or of reals that are whole numbers, or a "
+        "boolean mask) indexed [x, y, z] (voxel centres at origin + spacing * index), with the options of "
+        "'voronoimesh mesh' as keywords.");
   m.def("mesh_values", &mesh_values, py::arg("values"), py::arg("spacing") = std::array<double, 3>{1, 1, 1},
         py::arg("origin") = std::array<double, 3>{0, 0, 0}, py::arg("names") = std::vector<std::string>{},
         py::arg("labels") = std::vector<int32_t>{},

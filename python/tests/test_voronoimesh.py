@@ -72,8 +72,11 @@ def test_a_closed_meshs_voxel_centres_lie_in_their_labels_phases():
     assert mesh.label_agreement(swapped, spacing=(0.5, 1, 2), origin=(10, 20, 30))["in_phase"] < a["in_phase"]
     with pytest.raises(ValueError, match="not closed"):
         vm.mesh_labels(labels, iterations=1).label_agreement(labels)
-    with pytest.raises(TypeError, match="an integer array expected"):
-        mesh.label_agreement(labels.astype(np.float64))
+    reals = labels.astype(np.float64)  # as nibabel's get_fdata() gives them: the same labels
+    assert mesh.label_agreement(reals, spacing=(0.5, 1, 2), origin=(10, 20, 30)) == a
+    reals[0, 0, 0] = 0.5
+    with pytest.raises(ValueError, match=r"labels\[0, 0, 0\] is 0.5, not a label"):
+        mesh.label_agreement(reals)
 
 
 def test_any_integer_array_and_order_gives_the_same_mesh():
@@ -81,6 +84,23 @@ def test_any_integer_array_and_order_gives_the_same_mesh():
     for dtype, order in [(np.uint8, "C"), (np.int64, "F"), (np.int16, "C")]:
         other = vm.mesh_labels(two_blocks(dtype=dtype, order=order), iterations=2)
         assert np.array_equal(other.points, reference.points) and np.array_equal(other.triangles, reference.triangles)
+
+
+def test_reals_that_are_whole_numbers_and_masks_are_labels():
+    # nibabel's get_fdata() gives float64 for any segmentation.
+    reference = vm.mesh_labels(two_blocks(), iterations=2)
+    for dtype in [np.float64, np.float32]:
+        reals = vm.mesh_labels(two_blocks(dtype=dtype), iterations=2)
+        assert np.array_equal(reals.points, reference.points) and np.array_equal(reals.triangles, reference.triangles)
+    blurred = two_blocks(dtype=np.float64)
+    blurred[3, 4, 5] = 2.5  # linear interpolation's work
+    with pytest.raises(ValueError, match=r"labels\[3, 4, 5\] is 2.5, not a label"):
+        vm.mesh_labels(blurred)
+    blurred[3, 4, 5] = 2**31
+    with pytest.raises(ValueError, match=r"is 2147483648.0, not a label"):
+        vm.mesh_labels(blurred)
+    mask = vm.mesh_labels(two_blocks() > 0, iterations=1)
+    assert mask.phase_labels == [0, 1] and mask.validate() == []
 
 
 def test_labels_beyond_32_bits_are_refused_not_cut_and_the_extremes_kept():
@@ -118,8 +138,8 @@ def test_options_are_the_command_lines_and_bad_ones_raise():
         vm.mesh_labels(two_blocks(), iteratons=3)
     with pytest.raises(TypeError, match="unknown option 'world'"):  # a file's option, not an array's
         vm.mesh_labels(two_blocks(), world="ras")
-    with pytest.raises(TypeError, match="an integer array"):
-        vm.mesh_labels(two_blocks().astype(np.float32))
+    with pytest.raises(TypeError, match="an array of integers .* got dtype complex128"):
+        vm.mesh_labels(two_blocks().astype(np.complex128))
     with pytest.raises(ValueError, match="3-D array"):
         vm.mesh_labels(np.zeros((4, 4), dtype=np.int32))
 

@@ -194,6 +194,13 @@ else fail "a label volume's run did not stop when converged ('$done_its' of 60),
 if out=$("$vm" mesh two.nrrd -o two.ply 2>&1) && grep -q "^label 1: 1 voxel, no surface in the mesh.*--voxel-faithful" <<<"$out" &&
   out=$("$vm" mesh two.nrrd --voxel-faithful -o two.ply 2>&1) && ! grep -q "no surface in the mesh" <<<"$out"; then pass
 else fail "a lost label is not reported, or --voxel-faithful loses it"; fi
+# Labels saved as reals (float NIfTI from ITK and deep-learning tools): the same mesh as the
+# integers, with a note; a value that is no label (linear interpolation's) is refused by its voxel.
+{ printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\n\n'; echo 0 0 0 1 2 3 2 3; } >two_reals.nrrd
+if out=$("$vm" mesh two_reals.nrrd -o two_reals.ply 2>&1) && grep -q "^voxels stored as reals, every one a whole number" <<<"$out" &&
+  "$vm" mesh -q two.nrrd -o two_integers.ply && cmp -s two_integers.ply two_reals.ply; then pass; else fail "a label volume saved as reals: $out"; fi
+sed 's/^0 0 0 1 2 3 2 3$/0 0 0 1 2.5 3 2 3/' two_reals.nrrd >blurred.nrrd
+expect_error "labels saved as reals, one not whole" 2 "blurred\.nrrd: .*voxel \(0, 0, 1\) holds 2\.5, not a label" -- "$vm" mesh blurred.nrrd -o out.ply
 if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&
   "$vm" stats sd.ply | contains -E "^topology +valid"; then pass; else fail "--signed-distance changes nothing"; fi
 if "$vm" create -q labels.nrrd --merge-labels 1+5 -o m.ply && "$vm" stats m.ply | contains -E "^phases +2"; then pass; else fail "--merge-labels"; fi

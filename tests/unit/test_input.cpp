@@ -72,6 +72,16 @@ std::vector<int32_t> labels_of(const PhaseField& f) {
   return out;
 }
 
+/// What f throws, or "no error".
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 /// Largest distance, in voxels, from a vertex of the sphere's surface to the true sphere.
 double sphere_error_voxels(const NodeMesh& mesh) {
   double worst = 0;
@@ -174,6 +184,31 @@ TEST(LabelVolume, three_labels_and_label_options) {
   InputOptions absent;
   absent.drop_labels = {4};
   EXPECT_THROW(load_input(path, absent), InvalidInput);
+}
+
+// Labels saved as reals (float NIfTI from ITK filters and deep-learning tools):
+// one real value per voxel, every one whole, is the label volume of those
+// integers, the same mesh; a value that is no label is refused naming its voxel.
+TEST(LabelVolume, reals_that_are_all_whole_numbers_are_labels) {
+  const std::vector<uint16_t> labels = sphere_labels(7);
+  const std::string as_reals = "type: double\n" + sphere_header.substr(sphere_header.find('\n') + 1);
+  std::vector<double> reals(labels.begin(), labels.end());
+  const Scene from_integers = load_input(write_nrrd("sphere_u16.nrrd", sphere_header, labels));
+  const Scene from_reals = load_input(write_nrrd("sphere_f64.nrrd", as_reals, reals));
+  EXPECT_EQ(labels_of(*from_reals.field), (std::vector<int32_t>{0, 7}));
+  EXPECT_EQ(from_reals.notes,
+            (std::vector<std::string>{"voxels stored as reals, every one a whole number: read as labels"}));
+  const NodeMesh a = create(from_integers), b = create(from_reals);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.triangles, b.triangles);
+
+  reals[size_t(3 + n * (4 + n * 5))] = 6.5; // voxel (3, 4, 5): linear interpolation's work
+  const std::string blurred = write_nrrd("sphere_blurred.nrrd", as_reals, reals);
+  EXPECT_NE(error_of([&] { load_input(blurred); }).find("voxel (3, 4, 5) holds 6.5, not a label"), std::string::npos);
+  // Beyond 2^24 a float no longer tells neighbouring labels apart.
+  reals[size_t(3 + n * (4 + n * 5))] = 16777218;
+  const std::string wide = write_nrrd("sphere_wide.nrrd", as_reals, reals);
+  EXPECT_NE(error_of([&] { load_input(wide); }).find("holds 16777218, not a label"), std::string::npos);
 }
 
 // Grain maps: unindexed voxels (label 0) between two grains are filled by the
@@ -447,15 +482,6 @@ std::string write_scene(const std::string& name, const std::string& phases, cons
 
 std::string grid_phase(const std::string& file, const std::string& more = "") {
   return "{\"kind\": \"grid\", \"file\": \"" + file + "\"" + more + "}";
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(GridPhases, one_file_per_phase_meshes_as_one_multi_component_file) {

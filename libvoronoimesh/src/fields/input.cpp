@@ -10,6 +10,8 @@
 #include "fields/voxel_grid.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 
 namespace vm {
 
@@ -18,11 +20,40 @@ namespace {
 using detail::cat;
 using detail::lower;
 
+/// Whole numbers a float tells apart: beyond 2^24 neighbouring ones round to one value.
+constexpr double kLargestWholeFloatLabel = 16777216;
+
+/// A volume of one real value per voxel is a label volume saved as reals, as
+/// many segmenters (ITK filters, deep-learning tools, writers of float arrays)
+/// save labels: it cannot be a distance grid, which has a value per phase. Makes
+/// it one when every value is a whole number (of at most 2^24 in magnitude),
+/// and otherwise refuses it naming the first voxel that is not; voxel indices
+/// as in the file, so call it before axis_align().
+void labels_from_whole_values(io::Volume& v, const std::string& path) {
+  if (v.integer || v.components != 1) return;
+  const auto not_label = std::find_if(v.values.begin(), v.values.end(), [](float x) {
+    return !(std::abs(double(x)) <= kLargestWholeFloatLabel && x == std::trunc(x));
+  });
+  if (not_label != v.values.end()) {
+    const auto n = int64_t(not_label - v.values.begin());
+    char value[32];
+    *std::to_chars(value, value + sizeof value - 1, *not_label).ptr = '\0';
+    throw InvalidInput(located(
+        path, cat("holds one real value per voxel, but voxel (", n % v.size[0], ", ", n / v.size[0] % v.size[1], ", ",
+                  n / v.size[0] / v.size[1], ") holds ", value,
+                  ", not a label (labels saved as reals must be whole numbers, of at most 2^24: a label map resampled "
+                  "with linear interpolation? resample it with nearest neighbour); a distance grid needs one value "
+                  "per phase (2 or more), or one file per phase through a scene's \"grid\" phases")));
+  }
+  v.labels.assign(v.values.begin(), v.values.end());
+  v.values = {};
+  v.integer = true;
+  v.notes.push_back("voxels stored as reals, every one a whole number: read as labels");
+}
+
 /// A distance grid: one real component per phase per voxel.
+/// (One real component is a label volume: read_placed_volume() makes it one or refuses it.)
 Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
-  if (v.components < 2)
-    throw InvalidInput(located(path, "has one real component per voxel; a distance grid needs one per phase (2 or more), "
-                                     "or one file per phase through a scene's \"grid\" phases"));
   const GridSpec grid = detail::voxel_grid(v.size, v.spacing, v.origin, path, "a distance grid");
   const size_t c = size_t(v.components);
   const auto fill = [&](int64_t n, std::span<float> out) {
@@ -96,6 +127,7 @@ void refuse_options_that_do_not_apply(const InputOptions& o, bool volume, bool l
 
 io::Volume read_placed_volume(const std::string& path, const InputOptions& options, std::string* world) {
   io::Volume v = io::read_volume(path);
+  labels_from_whole_values(v, path);
   const std::string frame = convert_world(v, options.world, path);
   detail::axis_align(v, path, options.ignore_direction);
   if (world) *world = frame;
