@@ -6,7 +6,8 @@
 # which the api_docs test builds the API reference with; with
 # --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi); with
 # --paraview ParaView's development files and pvpython, for the ParaView plugin
-# (scripts/build.sh --paraview; about 850 MB).
+# (scripts/build.sh --paraview; about 850 MB), and OpenMPI's development files:
+# ParaView's VTK links MPI's C library, which paraview-dev does not bring.
 # ParaView's python3-paraview conflicts with python3-vtk9 (one removes the
 # other): where ParaView is (or is to be) installed, the VTK tests use its VTK
 # and python3-vtk9 is not installed.
@@ -27,7 +28,7 @@ for arg in "$@"; do
   case "$arg" in
     --test-readers) readers=1; packages+=(python3-meshio python3-h5py gmsh tetgen doxygen) ;;
     --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
-    --paraview) paraview=1; packages+=(paraview-dev paraview python3-paraview) ;;
+    --paraview) paraview=1; packages+=(paraview-dev paraview python3-paraview libopenmpi-dev) ;;
     *) echo "usage: scripts/setup.sh [--test-readers] [--mpi] [--paraview]" >&2; exit 2 ;;
   esac
 done

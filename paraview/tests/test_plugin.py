@@ -121,6 +121,13 @@ def test_labels_as_the_cli_meshes_them(tmp):
     g.Labels = ["CELLS", "labels"]
     same_mesh(fetch(g), points, tris, phases, "cell labels against the CLI")
 
+    # The same labels as unsigned 32-bit integers (each was once refused as not
+    # fitting in 32 bits) and as reals (a float NIfTI's, a resampled map's).
+    for dtype in (np.uint32, np.float32, np.float64):
+        h = VoronoiMesh(Input=producer(image({"labels": labels.astype(dtype)})))
+        h.Labels = ["POINTS", "labels"]
+        same_mesh(fetch(h), points, tris, phases, f"{np.dtype(dtype).name} labels against the CLI")
+
     # Triple curves: polylines on the surfaces' points, three phases each.
     curves = fetch(f, 1)
     assert curves.GetNumberOfLines() >= 3, "the three balls meet along triple curves"
@@ -204,9 +211,12 @@ def test_progress_abort_and_errors():
     t.Labels = ["POINTS", "labels"]
     assert fetch(t).GetNumberOfCells() == 0
 
-    # A real-valued array is no label array: an error, an empty output.
+    # A real-valued array is a label array only if every value is a whole
+    # number: one that is not (linear interpolation's 2.5) is an error, an empty output.
     print("an error about label array 'density' is expected next:", flush=True)
-    h = VoronoiMesh(Input=producer(image({"density": labels.astype(np.float32)})))
+    density = labels.astype(np.float32)
+    density[3, 4, 5] = 2.5
+    h = VoronoiMesh(Input=producer(image({"density": density})))
     h.Labels = ["POINTS", "density"]
     assert fetch(h).GetNumberOfCells() == 0
 

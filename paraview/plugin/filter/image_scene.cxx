@@ -4,9 +4,13 @@
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 
+#include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <span>
 #include <type_traits>
+#include <utility>
 
 namespace vmpv {
 
@@ -44,13 +48,29 @@ ImageFrame image_frame(vtkImageData& image, Association where) {
 
 namespace {
 
+/// The labels of an array of integers that fit in 32 bits, or of reals that
+/// are all whole numbers that do (as volume files of reals are read: a label
+/// map loaded from a float NIfTI, or resampled, holds floats).
 template <class T>
 void copy_labels(const T* values, vtkIdType count, std::vector<int32_t>& out, const std::string& name) {
   out.resize(size_t(count));
   for (vtkIdType n = 0; n < count; ++n) {
     const T v = values[n];
-    if constexpr (sizeof(T) >= sizeof(int32_t) && !std::is_same_v<T, int32_t>) {
-      if (v < T(std::numeric_limits<int32_t>::min()) || v > T(std::numeric_limits<int32_t>::max()))
+    if constexpr (std::is_floating_point_v<T>) {
+      const double d = double(v); // compared as doubles: float(INT32_MAX) is 2^31, beyond the range
+      if (!(d >= std::numeric_limits<int32_t>::min() && d <= std::numeric_limits<int32_t>::max() &&
+            d == std::trunc(d))) {
+        std::ostringstream value;
+        value << std::setprecision(std::numeric_limits<T>::max_digits10) << v;
+        throw vm::InvalidInput("label array '" + name + "': value " + value.str() + " at tuple " + std::to_string(n) +
+                               " is not a label (a real array is read as labels when every value is a whole 32-bit "
+                               "number: resampled with linear interpolation? resample it with nearest neighbour; "
+                               "name phase arrays to mesh real values as phase functions)");
+      }
+    } else if constexpr (sizeof(T) >= sizeof(int32_t)) {
+      // std::cmp_*: T(INT32_MIN) of an unsigned T is 2^31, which every small label is below.
+      if (std::cmp_less(v, std::numeric_limits<int32_t>::min()) ||
+          std::cmp_greater(v, std::numeric_limits<int32_t>::max()))
         throw vm::InvalidInput("label array '" + name + "': label " + std::to_string(v) +
                                " does not fit in 32 bits (voronoimesh keeps labels as 32-bit integers)");
     }
@@ -66,17 +86,13 @@ vm::Scene labels_scene(const ImageFrame& frame, vtkDataArray& labels, const vm::
     throw vm::InvalidInput("label array '" + name + "': one component expected, it has " +
                            std::to_string(labels.GetNumberOfComponents()));
   std::vector<int32_t> values;
-  bool integral = true;
   switch (labels.GetDataType()) {
-    vtkTemplateMacro(if constexpr (std::is_integral_v<VTK_TT>) copy_labels(
-                         static_cast<const VTK_TT*>(labels.GetVoidPointer(0)), labels.GetNumberOfTuples(), values, name);
-                     else integral = false);
-  default: integral = false;
+    vtkTemplateMacro(copy_labels(static_cast<const VTK_TT*>(labels.GetVoidPointer(0)), labels.GetNumberOfTuples(),
+                                 values, name));
+  default:
+    throw vm::InvalidInput("label array '" + name + "': an array of numbers expected, it holds " +
+                           std::string(labels.GetDataTypeAsString()) + " values");
   }
-  if (!integral)
-    throw vm::InvalidInput("label array '" + name + "': an integer array expected, it holds " +
-                           std::string(labels.GetDataTypeAsString()) +
-                           " values (name phase arrays to mesh real values as phase functions)");
   return vm::scene_from_labels(frame.grid, values, options, name);
 }
 
