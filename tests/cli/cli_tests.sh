@@ -366,6 +366,8 @@ if "$vm" create grids/scene.json -o surf.stl --per-phase phases 2>&1 | contains 
 then pass; else fail "an earlier run's per-phase STL files are not named"; fi
 if "$vm" create --help | contains "\.vtp" && "$vm" create --help | contains "per-phase"; then pass; else fail "--help lists the formats"; fi
 if "$vm" flip -q demo.ply -o fl.msh && grep -q '^\$PhysicalNames' fl.msh; then pass; else fail "flip -o .msh"; fi
+# A mesh written in another format given back to stats or smooth: read from PLY only, and said so.
+expect_error "stats of a .msh" 3 "fl\.msh: a \.msh file, not a PLY: voronoimesh reads meshes back from PLY only \(mesh with -o NAME\.ply" -- "$vm" stats fl.msh
 : >blocker
 expect_error "unknown extension" 2 "out\.xyz: unknown output format '\.xyz' \(known: \.ply, \.obj, \.stl, \.msh, \.vtu, \.vtp, \.mesh\)" \
   -- "$vm" create --grid 4096 -o out.xyz

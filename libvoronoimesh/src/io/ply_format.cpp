@@ -8,6 +8,7 @@
 #include "core/memory.hpp"
 #include "core/text.hpp"
 #include "voronoimesh/core/errors.hpp"
+#include "voronoimesh/io/write_mesh.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -56,6 +57,17 @@ std::string slurp(const std::string& path) {
   f.read(data.data(), std::streamsize(size));
   if (f.gcount() != std::streamsize(size)) throw IoError(located(path, cat("read failed: ", std::strerror(errno))));
   return data;
+}
+
+/// "not a PLY file", and for a mesh format voronoimesh writes (a .msh or .vtu
+/// given to stats or smooth) that meshes are read back from PLY only.
+std::string not_a_ply(const std::string& path) {
+  const std::string extension = detail::lower(std::filesystem::path(path).extension().string());
+  const auto& writable = output_extensions();
+  if (extension == ".ply" || std::find(writable.begin(), writable.end(), extension) == writable.end())
+    return "not a PLY file (no 'ply' line)";
+  return cat("a ", extension, " file, not a PLY: voronoimesh reads meshes back from PLY only (mesh with -o NAME.ply, "
+             "which keeps the phases, their names and the grid spacing)");
 }
 
 } // namespace
@@ -108,14 +120,14 @@ Header File::parse_header() {
   for (;;) {
     const size_t nl = data_.find('\n', at);
     if (nl == std::string::npos) {
-      if (line_no == 0 && data_.compare(0, 3, "ply") != 0) fail("not a PLY file (no 'ply' line)");
+      if (line_no == 0 && data_.compare(0, 3, "ply") != 0) fail(not_a_ply(path_));
       fail("header has no end_header line (truncated or not a PLY file)");
     }
     std::string_view line(data_.data() + at, nl - at);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     at = nl + 1;
     if (line_no++ == 0) {
-      if (line != "ply") fail("not a PLY file (no 'ply' line)");
+      if (line != "ply") fail(not_a_ply(path_));
       continue;
     }
     const auto w = split_words(line);
