@@ -45,6 +45,21 @@ TEST(Pipeline, parses_passes_and_parameters_against_the_registry) {
       EXPECT_NE(std::string(e.what()).find("pipeline"), std::string::npos) << e.what();
     }
   }
+  // Numbers are decimal, with a point: what each refusal says.
+  const std::pair<const char*, const char*> said[] = {
+      {"smooth:rest_factor=1e400", "smooth.rest_factor: 1e400 is out of range"},
+      {"smooth:rest_factor=0x2", "smooth.rest_factor: '0x2' is not a number"}, // std::stod read hex
+      {"smooth:rest_factor=inf", "'inf' is not a number"},
+      {"smooth:rest_factor=1,5", "'5' is not a pass: a decimal comma?"}};
+  for (const auto& [bad, message] : said) {
+    try {
+      Pipeline::parse(bad, registry);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(Pipeline::parse("smooth:rest_factor=+1.5", registry).steps()[0].params.at("rest_factor"), 1.5);
 }
 
 TEST(Pipeline, refuses_to_run_field_passes_without_a_field) {

@@ -10,6 +10,8 @@
 #include "improve/field_checks.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -33,14 +35,18 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
-double parse_number(const std::string& text, const std::string& where) {
-  try {
-    size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  throw InvalidInput(located("pipeline", where + ": '" + text + "' is not a number"));
+/// A parameter's value: a finite decimal number ("+" allowed; no hex, which
+/// std::stod took, "0x10" for 16).
+double parameter_value(const std::string& text, const std::string& where) {
+  const char* begin = text.data() + (text.starts_with('+') ? 1 : 0);
+  const char* end = text.data() + text.size();
+  double v = 0;
+  const auto [ptr, error] = std::from_chars(begin, end, v);
+  if (error == std::errc::result_out_of_range && ptr == end)
+    throw InvalidInput(located("pipeline", where + ": " + text + " is out of range"));
+  if (error != std::errc() || ptr != end || begin == end || !std::isfinite(v))
+    throw InvalidInput(located("pipeline", where + ": '" + text + "' is not a number"));
+  return v;
 }
 
 } // namespace
@@ -52,6 +58,9 @@ Pipeline Pipeline::parse(const std::string& spec, const PassRegistry& registry) 
     if (item.empty()) throw InvalidInput(located("pipeline", "empty pass name in '" + spec + "'"));
     auto parts = split(item, ':');
     const std::string name = trim(parts[0]);
+    if (std::isdigit(static_cast<unsigned char>(name[0])) && !p.steps_.empty())
+      throw InvalidInput(located("pipeline", "'" + name + "' is not a pass: a decimal comma? Passes are separated by "
+                                             "commas, so numbers take a point (1.5, not 1,5)"));
     ParamValues given;
     for (size_t i = 1; i < parts.size(); ++i) {
       const auto eq = parts[i].find('=');
@@ -60,7 +69,7 @@ Pipeline Pipeline::parse(const std::string& spec, const PassRegistry& registry) 
       const std::string key = trim(parts[i].substr(0, eq));
       if (given.count(key))
         throw InvalidInput(located("pipeline", "'" + item + "' gives " + name + "." + key + " twice"));
-      given[key] = parse_number(trim(parts[i].substr(eq + 1)), name + "." + key);
+      given[key] = parameter_value(trim(parts[i].substr(eq + 1)), name + "." + key);
     }
     p.steps_.push_back({registry.get(name), registry.resolve(name, given)});
   }
