@@ -8,6 +8,7 @@
 #include "observer.hpp"
 #include "options.hpp"
 
+#include <voronoimesh/io/ply.hpp>
 #include <voronoimesh/voronoimesh.hpp>
 
 #include <pybind11/numpy.h>
@@ -361,6 +362,20 @@ PYBIND11_MODULE(_voronoimesh, m) {
         "Meshes any input 'voronoimesh mesh' reads (a scene, volume, segmentation, grain map or point cloud), "
         "with its options as keywords.");
   m.def("output_extensions", &vm::io::output_extensions, "The extensions Mesh.write() knows");
+  m.def(
+      "read_mesh",
+      [](const std::string& path) {
+        auto out = std::make_unique<Mesh>();
+        py::gil_scoped_release released;
+        out->mesh = vm::io::read_ply(path);
+        return out;
+      },
+      py::arg("path"),
+      "Reads a mesh written as PLY (Mesh.write('out.ply'), 'voronoimesh mesh -o out.ply'), as 'voronoimesh "
+      "stats' reads it: its phases, their names and colours, the grid spacing and whether it is closed, so that "
+      "stats() and label_agreement() of the mesh read back are those of the mesh written. A mesh that is not "
+      "valid is read too: validate() names its problems. Raises OSError naming the file for one that cannot be "
+      "read or is not a PLY.");
 
   py::class_<Mesher>(m, "Mesher",
                      "Meshes input after input with one set of options (a simulation's steps, a series of volumes): "

@@ -205,6 +205,23 @@ def test_meshes_round_trip_through_meshio(tmp_path):
         mesh.write(str(tmp_path / "blocks.xyz"))
 
 
+def test_a_written_mesh_reads_back_as_the_mesh_it_was(tmp_path):
+    # Meshed in one session, measured in the next: the PLY keeps what stats() and
+    # label_agreement() need (the phases, their names, that the mesh is closed).
+    mesh = vm.mesh_labels(two_blocks(), iterations=2, close=True)
+    mesh.write(str(tmp_path / "blocks.ply"))
+    back = vm.read_mesh(str(tmp_path / "blocks.ply"))
+    assert np.array_equal(back.points, mesh.points) and np.array_equal(back.triangles, mesh.triangles)
+    assert np.array_equal(back.phases, mesh.phases) and back.phase_names == mesh.phase_names
+    assert back.validate() == [] and back.stats() == mesh.stats()
+    assert back.label_agreement(two_blocks()) == mesh.label_agreement(two_blocks())
+    mesh.write(str(tmp_path / "blocks.vtu"))
+    with pytest.raises(OSError, match="blocks.vtu: a .vtu file, not a PLY: voronoimesh reads meshes back from PLY"):
+        vm.read_mesh(str(tmp_path / "blocks.vtu"))
+    with pytest.raises(OSError, match="gone.ply"):
+        vm.read_mesh(str(tmp_path / "gone.ply"))
+
+
 def big_labels():
     labels = np.zeros((48, 48, 48), dtype=np.int32, order="F")
     grid = np.indices(labels.shape)

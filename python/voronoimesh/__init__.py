@@ -12,9 +12,9 @@ KeyboardInterrupt (Ctrl-C, which stops a run), voronoimesh.Error (anything else)
 """
 import json as _json
 
-from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_values, output_extensions
+from ._voronoimesh import Error, Mesh, Mesher, mesh_file, mesh_labels, mesh_values, output_extensions, read_mesh
 
-__all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions"]
+__all__ = ["Error", "Mesh", "Mesher", "mesh_file", "mesh_labels", "mesh_values", "output_extensions", "read_mesh"]
 
 
 def _stats(self, worst=0, folds=0, field="", **input_options):
