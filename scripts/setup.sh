@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything voronoimesh needs to build, from Debian 12 packages; with
 # --test-readers also the independent readers the tests check every output format
-# with (meshio, VTK, Gmsh, TetGen, and h5py to write DREAM.3D files: large, and only the
+# with (meshio, VTK, Gmsh, TetGen; h5py and Pillow to write DREAM.3D and TIFF files: large, and only the
 # tests need them) and doxygen,
 # which the api_docs test builds the API reference with; with
 # --mpi also OpenMPI, for the distributed build (scripts/build.sh --mpi); with
@@ -19,14 +19,14 @@ packages=(
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev libgtest-dev
   libmuparser-dev nlohmann-json3-dev libbenchmark-dev
   libteem-dev libnanoflann-dev
-  zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev
+  zlib1g-dev libbz2-dev libnifti2-dev libhdf5-dev libtiff-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
 )
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep "install ok installed" >/dev/null; }
 readers=0 paraview=0
 for arg in "$@"; do
   case "$arg" in
-    --test-readers) readers=1; packages+=(python3-meshio python3-h5py gmsh tetgen doxygen) ;;
+    --test-readers) readers=1; packages+=(python3-meshio python3-h5py python3-pil gmsh tetgen doxygen) ;;
     --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
     --paraview) paraview=1; packages+=(paraview-dev paraview python3-paraview libopenmpi-dev) ;;
     *) echo "usage: scripts/setup.sh [--test-readers] [--mpi] [--paraview]" >&2; exit 2 ;;

@@ -187,6 +187,23 @@ def test_files_are_read_as_the_cli_reads_them(tmp_path):
         assert "label_agreement" not in coarse.stats(field=str(path), voxels_per_cell=2)
 
 
+def test_a_tiff_stack_written_by_pillow_is_the_volume_of_its_pages(tmp_path):
+    # Fiji and micro-CT tools save label volumes as multi-page TIFFs: page k is slice z = k,
+    # row j of it y = j. Pillow (an independent writer; LZW) writes one; the mesh is that of
+    # the same labels as an array.
+    image = pytest.importorskip("PIL.Image")
+    labels = two_blocks(dtype=np.uint16)
+    pages = [image.fromarray(np.ascontiguousarray(labels[:, :, k].T)) for k in range(labels.shape[2])]
+    pages[0].save(tmp_path / "blocks.tif", save_all=True, append_images=pages[1:], compression="tiff_lzw")
+    from_tiff = vm.mesh_file(str(tmp_path / "blocks.tif"), iterations=2)
+    from_array = vm.mesh_labels(labels, iterations=2)
+    assert np.array_equal(from_tiff.points, from_array.points)
+    assert np.array_equal(from_tiff.triangles, from_array.triangles) and from_tiff.phase_labels == [0, 3, 7]
+    pages[0].save(tmp_path / "slice.tif")
+    with pytest.raises(ValueError, match="slice.tif: has one page, a 2-D image"):
+        vm.mesh_file(str(tmp_path / "slice.tif"))
+
+
 def test_meshes_round_trip_through_meshio(tmp_path):
     meshio = pytest.importorskip("meshio")
     mesh = vm.mesh_labels(two_blocks(), iterations=3)

@@ -122,6 +122,27 @@ got=$?
 if [ "$got" -eq 3 ] && grep -q "big.ply: cannot write (File too large)" xfsz.txt && ! ls big.ply* >/dev/null 2>&1; then pass
 else fail "SIGXFSZ: exit $got, $(cat xfsz.txt)"; fi
 
+# 12b. TIFF stacks: a header that claims 2 x 100,000 x 100,000 pixels in 200 bytes (refused
+# before anything is allocated), a text file named .tif, a stack cut in its last page directory.
+python3 - <<'PY'
+import struct
+def ifd(next_offset):
+    entries = [(256, 4, 1, 100000), (257, 4, 1, 100000), (258, 3, 1, 8), (259, 3, 1, 1), (262, 3, 1, 1),
+               (273, 4, 1, 0), (277, 3, 1, 1), (278, 4, 1, 100000), (279, 4, 1, 1410065408)]
+    return struct.pack("<H", len(entries)) + b"".join(struct.pack("<HHII", *e) for e in entries) + \
+        struct.pack("<I", next_offset)
+first = ifd(0)
+with open("huge.tif", "wb") as f:
+    f.write(b"II*\x00" + struct.pack("<I", 8) + ifd(8 + len(first)) + ifd(0))
+with open("cut.tif", "wb") as f:
+    f.write(b"II*\x00" + struct.pack("<I", 8) + ifd(8 + len(first))[:-2])
+PY
+expect_error "a TIFF claiming 2e10 voxels" 2 "huge\.tif: reading 20000000000 voxels needs about .* GiB, this machine has" -- \
+  "$vm" mesh huge.tif -o out.ply
+echo "not an image" >text.tif
+expect_error "a text file named .tif" 2 "text\.tif: not a TIFF file" -- "$vm" mesh text.tif -o out.ply
+expect_error "a TIFF cut in a page directory" 2 "cut\.tif: " -- "$vm" mesh cut.tif -o out.ply
+
 # 13. The minor ones.
 expect_error "--snap checked before reading" 2 "^voronoimesh: --snap: must be between 0 and 0\.5" -- \
   "$vm" create nonexistent.json --snap 2 -o out.ply

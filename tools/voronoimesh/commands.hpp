@@ -36,7 +36,7 @@ int run_guarded(const std::function<int()>& body, bool report = true);
 /// What INPUT (create, mesh) and --field (smooth) accept.
 inline constexpr const char* kInputHelp =
     "Input: a scene (.json, docs/scenes.md); a label volume or distance grid (.nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, "
-    ".mhd, .inr, .inr.gz); or a labelled point cloud (.xyz, .txt, .pts, .csv, or .ply with a vertex 'label'); see "
+    ".mhd, .inr, .inr.gz, .dream3d, or a TIFF stack: .tif, .tiff); or a labelled point cloud (.xyz, .txt, .pts, .csv, or .ply with a vertex 'label'); see "
     "docs/inputs.md.";
 
 /// Options every command that computes has.

@@ -153,7 +153,7 @@ Scene load_input(const std::string& path, const InputOptions& options) {
     return detail::point_cloud_scene(path, options);
   }
   throw InvalidInput(located(path, "unknown input type: expected a scene (.json), a volume (.nrrd, .nhdr, .nii, .nii.gz, "
-                                   ".mha, .mhd, .inr, .inr.gz, .dream3d) or a point file (.xyz, .txt, .pts, .csv, .ply)"));
+                                   ".mha, .mhd, .inr, .inr.gz, .dream3d, .tif, .tiff) or a point file (.xyz, .txt, .pts, .csv, .ply)"));
 }
 
 } // namespace vm

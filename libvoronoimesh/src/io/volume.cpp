@@ -23,7 +23,7 @@ struct Format {
 };
 
 /// Every extension read_volume() knows (.hdr: the header of a NIfTI .hdr/.img pair).
-constexpr std::array<Format, 10> formats{{{".nrrd", read_nrrd},
+constexpr std::array<Format, 12> formats{{{".nrrd", read_nrrd},
                                          {".nhdr", read_nrrd},
                                          {".nii", read_nifti},
                                          {".nii.gz", read_nifti},
@@ -32,7 +32,9 @@ constexpr std::array<Format, 10> formats{{{".nrrd", read_nrrd},
                                          {".mhd", read_metaimage},
                                          {".inr", read_inr},
                                          {".inr.gz", read_inr},
-                                         {".dream3d", read_dream3d}}};
+                                         {".dream3d", read_dream3d},
+                                         {".tif", read_tiff},
+                                         {".tiff", read_tiff}}};
 
 /// The format whose extension ends `path` (longest match, so ".nii.gz" wins over ".gz").
 const Format* format_of(const std::string& path) {
@@ -51,7 +53,8 @@ Volume read_volume(const std::string& path) {
   const Format* f = format_of(path);
   if (!f)
     throw InvalidInput(
-        located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr, .inr.gz or .dream3d)"));
+        located(path, "not a volume file (expected .nrrd, .nhdr, .nii, .nii.gz, .hdr, .mha, .mhd, .inr, .inr.gz, .dream3d, "
+                     ".tif or .tiff)"));
   detail::require_regular_file(path); // the files it names are checked by its reader
   return f->read(path);
 }

@@ -2,8 +2,8 @@
 /// @file io/volume.hpp
 /// Voxel volumes as scanners, segmenters, grain-map and level-set codes write
 /// them: NRRD (.nrrd/.nhdr, 3D Slicer's .seg.nrrd), NIfTI-1 (.nii/.nii.gz),
-/// MetaImage (.mha/.mhd), INR (.inr/.inr.gz) and DREAM.3D (.dream3d). One
-/// reader per format; read_volume() picks by extension.
+/// MetaImage (.mha/.mhd), INR (.inr/.inr.gz), DREAM.3D (.dream3d) and TIFF
+/// stacks (.tif/.tiff). One reader per format; read_volume() picks by extension.
 
 #include "voronoimesh/core/types.hpp"
 
@@ -108,6 +108,16 @@ Volume read_inr(const std::string& path);
 /// @throws InvalidInput for a file that is not HDF5, has no grain map or several, or malformed geometry
 /// @throws IoError      if it cannot be read
 Volume read_dream3d(const std::string& path);
+/// Reads a TIFF stack (.tif, .tiff: one page per z slice, as Fiji/ImageJ and
+/// micro-CT and FIB-SEM software save volumes) with libtiff. The voxel size is
+/// ImageJ's (its X/YResolution tags and `spacing=`); another writer's TIFF has
+/// voxels of 1 x 1 x 1, said in Volume::notes.
+/// @param path the file to read
+/// @return the volume
+/// @throws InvalidInput for a file that is not a TIFF, has one page, pages unlike the first, more than one
+///         sample per pixel (RGB), or samples other than 8/16/32-bit integers and 32/64-bit reals
+/// @throws IoError      if it cannot be read
+Volume read_tiff(const std::string& path);
 
 /// @}
 
