@@ -88,6 +88,14 @@ Options options_from(const py::kwargs& kwargs, Input input) {
   const std::map<std::string, Set> files_only{
       {"voxels_per_cell", [&](const py::handle& v) { in.voxels_per_cell = v.cast<double>(); }},
       {"ignore_direction", [&](const py::handle& v) { in.ignore_direction = v.cast<bool>(); }},
+      {"voxel_size", [&](const py::handle& v) {
+         if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) {
+           in.voxel_size = vm::Vec3::Constant(v.cast<double>());
+         } else {
+           const auto s = v.cast<std::array<double, 3>>();
+           in.voxel_size = vm::Vec3(s[0], s[1], s[2]);
+         }
+       }},
       {"world", [&](const py::handle& v) {
          const auto name = v.cast<std::string>();
          if (name != "file" && name != "lps" && name != "ras")

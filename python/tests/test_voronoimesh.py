@@ -199,6 +199,9 @@ def test_a_tiff_stack_written_by_pillow_is_the_volume_of_its_pages(tmp_path):
     from_array = vm.mesh_labels(labels, iterations=2)
     assert np.array_equal(from_tiff.points, from_array.points)
     assert np.array_equal(from_tiff.triangles, from_array.triangles) and from_tiff.phase_labels == [0, 3, 7]
+    # Pillow's TIFF says no voxel size: voxel_size gives one, as spacing gives an array's.
+    sized = vm.mesh_file(str(tmp_path / "blocks.tif"), iterations=2, voxel_size=(0.5, 0.5, 0.55))
+    assert np.array_equal(sized.points, vm.mesh_labels(labels, spacing=(0.5, 0.5, 0.55), iterations=2).points)
     pages[0].save(tmp_path / "slice.tif")
     with pytest.raises(ValueError, match="slice.tif: has one page, a 2-D image"):
         vm.mesh_file(str(tmp_path / "slice.tif"))

@@ -199,6 +199,12 @@ else fail "a lost label is not reported, or --voxel-faithful loses it"; fi
 { printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\n\n'; echo 0 0 0 1 2 3 2 3; } >two_reals.nrrd
 if out=$("$vm" mesh two_reals.nrrd -o two_reals.ply 2>&1) && grep -q "^voxels stored as reals, every one a whole number" <<<"$out" &&
   "$vm" mesh -q two.nrrd -o two_integers.ply && cmp -s two_integers.ply two_reals.ply; then pass; else fail "a label volume saved as reals: $out"; fi
+# A volume that says no voxel size has unit voxels, said; --voxel-size gives them theirs.
+if out=$("$vm" mesh two.nrrd -o two_unit.ply 2>&1) && grep -q "^the file says no voxel size along some axis" <<<"$out" &&
+  out=$("$vm" mesh two.nrrd --voxel-size 2 -o two_sized.ply 2>&1) && grep -q "^voxels of 2 x 2 x 2 (--voxel-size; the file's: none)" <<<"$out" &&
+  "$vm" stats --json two_sized.ply | python3 -c 'import json, sys; sys.exit(not json.load(sys.stdin)["max_edge"] > 1.5)'
+then pass; else fail "--voxel-size: $out"; fi
+expect_error "--voxel-size of two sizes" 2 "--voxel-size: one size \(S\) or three \(SX,SY,SZ\), got 2" -- "$vm" mesh two.nrrd --voxel-size 1,2 -o out.ply
 sed 's/^0 0 0 1 2 3 2 3$/0 0 0 1 2.5 3 2 3/' two_reals.nrrd >blurred.nrrd
 expect_error "labels saved as reals, one not whole" 2 "blurred\.nrrd: .*voxel \(0, 0, 1\) holds 2\.5, not a label" -- "$vm" mesh blurred.nrrd -o out.ply
 if "$vm" create -q labels.nrrd --signed-distance --band 2 -o sd.ply && ! cmp -s sd.ply l.ply &&

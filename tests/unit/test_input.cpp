@@ -1,7 +1,8 @@
-// Tests of load_input on label volumes, distance grids and labelled point
-// clouds written by the tests themselves: the right phases and labels, valid
-// meshes before and after improvement, sub-voxel accuracy against the surface
-// the labels were rasterised from, and label options.
+// Tests of load_input on label volumes written by the tests themselves: the
+// right phases and labels, valid meshes before and after improvement, sub-voxel
+// accuracy against the surface the labels were rasterised from, label options,
+// labels saved as reals and voxel sizes. (Distance grids and point clouds:
+// test_grid_inputs.cpp.)
 #include "voronoimesh/check/validate.hpp"
 #include "voronoimesh/core/errors.hpp"
 #include "voronoimesh/create/create.hpp"
@@ -13,6 +14,7 @@
 
 #include "fields/top_k_grid_field.hpp"
 #include "nrrd_file.hpp"
+#include "sphere_volume.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -33,71 +35,7 @@ using namespace vm;
 
 using test::temp_path;
 using test::write_nrrd;
-
-constexpr int n = 32;                     // voxels per axis
-constexpr double voxel = 0.5;             // spacing
-const Vec3 origin(1, 2, 3);               // centre of voxel 0
-const Vec3 centre_vox(15.3, 15.6, 15.8);  // sphere centre, voxel units
-constexpr double radius_vox = 10.0;
-
-Vec3 world(const Vec3& vox) { return origin + voxel * vox; }
-
-/// Labels of a 32^3 volume: `inside` within the sphere, 0 elsewhere, and
-/// `more(i, j, k)` may override (returning -1 keeps the sphere's label).
-std::vector<uint16_t> sphere_labels(uint16_t inside, const std::function<int(int, int, int)>& more = {}) {
-  std::vector<uint16_t> v;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        int l = (Vec3(i, j, k) - centre_vox).norm() < radius_vox ? inside : 0;
-        if (more && more(i, j, k) >= 0) l = more(i, j, k);
-        v.push_back(uint16_t(l));
-      }
-  return v;
-}
-
-const std::string sphere_header = "type: ushort\ndimension: 3\nsizes: 32 32 32\nspace: left-posterior-superior\n"
-                                  "space directions: (0.5,0,0) (0,0.5,0) (0,0,0.5)\nspace origin: (1,2,3)\n";
-
-NodeMesh create(const Scene& scene) {
-  SampledField field = SampledField::sample(*scene.field, grid_for_lattice(scene.grid, Lattice::bcc));
-  NodeMesh mesh;
-  create_initial_mesh(field, {}, mesh);
-  return mesh;
-}
-
-std::vector<int32_t> labels_of(const PhaseField& f) {
-  std::vector<int32_t> out;
-  for (int i = 0; i < f.num_phases(); ++i) out.push_back(f.phase_label(i));
-  return out;
-}
-
-/// What f throws, or "no error".
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-/// Largest distance, in voxels, from a vertex of the sphere's surface to the true sphere.
-double sphere_error_voxels(const NodeMesh& mesh) {
-  double worst = 0;
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int32_t node : mesh.triangles[t])
-      worst = std::max(worst, std::abs((mesh.points[size_t(node)] - world(centre_vox)).norm() / voxel - radius_vox));
-  return worst;
-}
-
-void improve(NodeMesh& node_mesh, const PhaseField& field) {
-  InterfaceMesh mesh = InterfaceMesh::from_node_mesh(node_mesh);
-  RunOptions run;
-  run.iterations = 10;
-  Pipeline::parse(kDefaultPipeline, builtin_registry()).run(mesh, &field, run);
-  node_mesh = mesh.to_node_mesh();
-}
+using namespace test::sphere_volume;
 
 TEST(Nrrd, reads_geometry_and_labels) {
   const io::Volume v = io::read_volume(write_nrrd("geometry.nrrd", sphere_header, sphere_labels(7)));
@@ -209,6 +147,30 @@ TEST(LabelVolume, reals_that_are_all_whole_numbers_are_labels) {
   reals[size_t(3 + n * (4 + n * 5))] = 16777218;
   const std::string wide = write_nrrd("sphere_wide.nrrd", as_reals, reals);
   EXPECT_NE(error_of([&] { load_input(wide); }).find("holds 16777218, not a label"), std::string::npos);
+}
+
+// A file that says no voxel size (a NRRD without spacings, a TIFF not written
+// by ImageJ) has unit voxels, and says so; voxel_size (--voxel-size) gives the
+// voxels theirs, along the file's axes: the mesh of the file that states them.
+TEST(LabelVolume, voxel_size_stands_in_for_the_files) {
+  const std::vector<uint16_t> labels = sphere_labels(7);
+  const std::string bare = write_nrrd("sphere_bare.nrrd", "type: ushort\ndimension: 3\nsizes: 32 32 32\n", labels);
+  const std::string sized = write_nrrd("sphere_sized.nrrd", "type: ushort\ndimension: 3\nsizes: 32 32 32\n"
+                                                            "spacings: 0.5 0.5 0.55\n", labels);
+  EXPECT_EQ(load_input(bare).notes, (std::vector<std::string>{"the file says no voxel size along some axis: voxels "
+                                                              "of 1 x 1 x 1 (--voxel-size gives them theirs)"}));
+  EXPECT_TRUE(load_input(sized).notes.empty());
+  InputOptions given;
+  given.voxel_size = Vec3(0.5, 0.5, 0.55);
+  const Scene from_option = load_input(bare, given);
+  EXPECT_EQ(from_option.notes,
+            (std::vector<std::string>{"voxels of 0.5 x 0.5 x 0.55 (--voxel-size; the file's: none)"}));
+  const NodeMesh a = create(from_option), b = create(load_input(sized));
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.triangles, b.triangles);
+  given.voxel_size = Vec3(0.5, 0, 1);
+  EXPECT_NE(error_of([&] { load_input(bare, given); }).find("--voxel-size: every size must be above 0"),
+            std::string::npos);
 }
 
 // Grain maps: unindexed voxels (label 0) between two grains are filled by the
@@ -430,158 +392,6 @@ TEST(LabelVolume, axis_flips_are_honoured_and_oblique_directions_refused) {
     EXPECT_NE(std::string(e.what()).find("--ignore-direction"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(load_input(path, InputOptions{.ignore_direction = true}));
-}
-
-/// Three distance components per voxel of the 32^3 volume, interleaved: the
-/// outside (0), a sphere, and the same sphere beyond i = 15.4.
-std::vector<float> distance_components() {
-  std::vector<float> d;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double r = (Vec3(i, j, k) - centre_vox).norm();
-        d.push_back(0.f);                                      // outside
-        d.push_back(float(radius_vox - r));                    // sphere, i <= 15
-        d.push_back(float(radius_vox - r - (15.4 - i > 0 ? 15.4 - i : 0))); // the same sphere, beyond i = 15.4
-      }
-  return d;
-}
-
-const std::string components_header = "type: float\ndimension: 4\nsizes: 3 32 32 32\nkinds: vector domain domain domain\n";
-
-// A 3-component float NRRD, components first: one phase per component.
-TEST(DistanceGrid, components_are_phases) {
-  const std::vector<float> d = distance_components();
-  const Scene scene = load_input(write_nrrd("dist.nrrd", components_header, d));
-  EXPECT_EQ(scene.field->num_phases(), 3);
-  const NodeMesh mesh = create(scene);
-  EXPECT_TRUE(validate(mesh).ok());
-  EXPECT_THROW(load_input(write_nrrd("dist4.nrrd", "type: float\ndimension: 4\nsizes: 32 32 32 3\nkinds: domain domain domain vector\n", d)), InvalidInput);
-}
-
-// One file per phase, as level-set codes write them: the same geometry as the
-// sphere volume, voxels 0.5 apart from (1, 2, 3).
-std::string geometry(const std::string& directions = "(0.5,0,0) (0,0.5,0) (0,0,0.5)", const std::string& origin = "(1,2,3)") {
-  return "space: left-posterior-superior\nspace directions: " + directions + "\nspace origin: " + origin + "\n";
-}
-
-/// Writes component c of distance_components() as a scalar float NRRD.
-std::string write_phase_file(const std::string& name, int c, const std::string& space = geometry()) {
-  const std::vector<float> all = distance_components();
-  std::vector<float> one;
-  for (size_t v = 0; v < all.size() / 3; ++v) one.push_back(all[3 * v + size_t(c)]);
-  return write_nrrd(name, "type: float\ndimension: 3\nsizes: 32 32 32\n" + space, one);
-}
-
-/// Writes a scene with these phases (a JSON array) next to the NRRD files.
-std::string write_scene(const std::string& name, const std::string& phases, const std::string& more = "") {
-  const std::string path = temp_path(name);
-  std::ofstream(path) << "{" << more << "\"phases\": " << phases << "}\n";
-  return path;
-}
-
-std::string grid_phase(const std::string& file, const std::string& more = "") {
-  return "{\"kind\": \"grid\", \"file\": \"" + file + "\"" + more + "}";
-}
-
-TEST(GridPhases, one_file_per_phase_meshes_as_one_multi_component_file) {
-  const std::string all = write_nrrd("gp_all.nrrd",
-                                     components_header + geometry("none (0.5,0,0) (0,0.5,0) (0,0,0.5)"),
-                                     distance_components());
-  for (int c = 0; c < 3; ++c) write_phase_file("gp" + std::to_string(c) + ".nrrd", c);
-  const Scene multi = load_input(all);
-  // Relative names are found next to the scene; an absolute one is taken as it is.
-  const Scene files = load_input(write_scene("gp.json", "[" + grid_phase("vm_test_input_gp0.nrrd") + ", " +
-                                                            grid_phase("vm_test_input_gp1.nrrd") + ", " +
-                                                            grid_phase(temp_path("gp2.nrrd")) + "]"));
-  // Closed-form and grid phases together: the outside is 0 in both.
-  const Scene mixed = load_input(write_scene("gp_mixed.json", "[{\"kind\": \"constant\", \"value\": 0}, " +
-                                                                  grid_phase("vm_test_input_gp_all.nrrd", ", \"component\": 1") + ", " +
-                                                                  grid_phase("vm_test_input_gp_all.nrrd", ", \"component\": 2") + "]"));
-  const NodeMesh expected = create(multi);
-  ASSERT_GT(expected.num_triangles(), 1000u);
-  for (const Scene* scene : {&files, &mixed}) {
-    EXPECT_EQ(scene->grid.cells, multi.grid.cells);
-    EXPECT_EQ(scene->grid.domain.min, multi.grid.domain.min);
-    EXPECT_EQ(scene->grid.domain.max, multi.grid.domain.max);
-    const NodeMesh mesh = create(*scene);
-    EXPECT_EQ(mesh.points, expected.points);
-    EXPECT_EQ(mesh.triangles, expected.triangles);
-    EXPECT_EQ(mesh.pairs, expected.pairs);
-    EXPECT_TRUE(validate(mesh).ok());
-  }
-  // A domain inside the voxels (centres +- half a voxel) and a coarser grid are the scene's to choose.
-  const Scene part = load_input(write_scene("gp_part.json", "[" + grid_phase("vm_test_input_gp0.nrrd") + ", " +
-                                                                grid_phase("vm_test_input_gp1.nrrd") + "]",
-                                            "\"domain\": {\"min\": [0.75, 1.75, 2.75], \"max\": [9, 10, 11]}, \"grid\": 16, "));
-  EXPECT_EQ(part.grid.cells[0], 16);
-  EXPECT_TRUE(validate(create(part)).ok());
-}
-
-TEST(GridPhases, errors_name_the_scene_and_the_phase) {
-  write_phase_file("gp0.nrrd", 0);
-  write_nrrd("gp_labels.nrrd", sphere_header, sphere_labels(7));
-  write_nrrd("gp_short.nrrd", "type: float\ndimension: 3\nsizes: 32 32 16\n", std::vector<float>(32 * 32 * 16));
-  write_phase_file("gp_spacing.nrrd", 1, geometry("(0.25,0,0) (0,0.5,0) (0,0,0.5)"));
-  write_phase_file("gp_origin.nrrd", 1, geometry("(0.5,0,0) (0,0.5,0) (0,0,0.5)", "(1,2,4)"));
-  write_phase_file("gp_flipped.nrrd", 1, geometry("(-0.5,0,0) (0,0.5,0) (0,0,0.5)"));
-  // Phase 1 beside a good phase 0; the message must start with the scene and the phase.
-  const std::string scene = temp_path("gp_err.json");
-  auto error = [&](const std::string& phase1, const std::string& more = "") {
-    write_scene("gp_err.json", "[" + grid_phase("vm_test_input_gp0.nrrd") + ", " + phase1 + "]", more);
-    return error_of([&] { load_input(scene); });
-  };
-  EXPECT_THROW(load_input(write_scene("gp_err.json", "[" + grid_phase("vm_test_input_gp0.nrrd") + ", " +
-                                                         grid_phase("vm_test_input_nothere.nrrd") + "]")),
-               IoError);
-  EXPECT_EQ(error(grid_phase("vm_test_input_nothere.nrrd")),
-            scene + ": phase 1: " + temp_path("nothere.nrrd") + ": cannot open (No such file or directory)");
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp0.nrrd", ", \"component\": 1")),
-            scene + ": phase 1: 'component' 1 is out of range: 'vm_test_input_gp0.nrrd' has 1 component(s), 0 to 0");
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp_labels.nrrd")),
-            scene + ": phase 1: 'vm_test_input_gp_labels.nrrd' holds integers (a label volume?); a grid phase needs real values");
-  const std::string other = scene + ": phase 1: 'vm_test_input_gp_";
-  const std::string grid0 = " is not on the grid of 'vm_test_input_gp0.nrrd' (phase 0): ";
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp_short.nrrd")),
-            other + "short.nrrd'" + grid0 + "sizes 32x32x16 vs 32x32x32; all grid phases must share one voxel grid");
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp_spacing.nrrd")),
-            other + "spacing.nrrd'" + grid0 + "spacing [0.25, 0.5, 0.5] vs [0.5, 0.5, 0.5]; all grid phases must share one voxel grid");
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp_origin.nrrd")),
-            other + "origin.nrrd'" + grid0 + "origin [1, 2, 4] vs [1, 2, 3] (after applying each file's direction); all grid phases must share one voxel grid");
-  // A flipped axis moves every voxel but one: a different grid in world coordinates.
-  EXPECT_NE(error(grid_phase("vm_test_input_gp_flipped.nrrd")).find("origin [-14.5, 2, 3]"), std::string::npos);
-  EXPECT_EQ(error(grid_phase("vm_test_input_gp0.nrrd"), "\"domain\": {\"min\": [0, 0, 0], \"max\": [10, 10, 10]}, "),
-            scene + ": domain: reaches beyond the voxels of the grid phases along x (they cover [0.75, 1.75, 2.75] to "
-                    "[16.75, 17.75, 18.75]); give a domain inside them, or none to mesh all of them");
-  EXPECT_EQ(error(grid_phase("")), scene + ": phase 1: 'file' must not be empty");
-  EXPECT_EQ(error("{\"kind\": \"grid\", \"file\": \"x.nrrd\", \"radius\": 1}"),
-            scene + ": phase 1: unknown key 'radius' (expected kind, name, file, component)");
-}
-
-// Eq. 7: two clusters of points; the surface lies halfway between them.
-TEST(PointCloud, surface_lies_halfway_between_labelled_points) {
-  const std::string path = temp_path("cloud.xyz");
-  {
-    std::ofstream out(path);
-    out << "# x y z label\n";
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) out << 0.0 << " " << i * 0.2 << " " << j * 0.2 << " 4\n" << 1.0 << " " << i * 0.2 << " " << j * 0.2 << " 11\n";
-  }
-  const Scene scene = load_input(path);
-  EXPECT_EQ(labels_of(*scene.field), (std::vector<int32_t>{4, 11}));
-  NodeMesh mesh = create(scene);
-  EXPECT_TRUE(validate(mesh).ok());
-  improve(mesh, *scene.field);
-  EXPECT_TRUE(validate(mesh).ok());
-  for (const Vec3& p : mesh.points) EXPECT_NEAR(p.x(), 0.5, 1e-6);
-
-  std::ofstream(temp_path("bad.xyz")) << "0 0 0 1\n0 0 zero 2\n";
-  try {
-    load_input(temp_path("bad.xyz"));
-    FAIL() << "a bad line was accepted";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
-  }
 }
 
 } // namespace

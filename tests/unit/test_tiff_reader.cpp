@@ -100,9 +100,7 @@ TEST_F(VolumeReaders, tiff_stacks_in_strips_and_tiles_compressed_or_not) {
     expect_size(c.read);
     expect_labels(c.read, c.is_signed);
     expect_geometry(c.read, Vec3::Ones(), Vec3::Zero());
-    // Another writer's TIFF says no voxel size: the unit voxels are said.
-    EXPECT_EQ(c.read.notes,
-              (std::vector<std::string>{"the TIFF says no voxel size (only ImageJ's do): voxels of 1 x 1 x 1"}));
+    EXPECT_FALSE(c.read.spacing_stated); // another writer's TIFF says no voxel size
   }
   const io::Volume reals = io::read_tiff(write_stack<float>(path("f.tif"), values(), {.rows_per_strip = 2}));
   expect_values(reals);
@@ -115,7 +113,7 @@ TEST_F(VolumeReaders, tiff_voxel_size_from_imagej) {
   const io::Volume v = io::read_tiff(write_stack<uint8_t>(path("ij.tif"), labels(false), imagej));
   expect_labels(v, false);
   expect_geometry(v, Vec3(0.5, 0.25, 2.5), Vec3::Zero());
-  EXPECT_TRUE(v.notes.empty());
+  EXPECT_TRUE(v.spacing_stated);
   // read_volume() knows both extensions, in any case.
   EXPECT_EQ(io::read_volume(write_stack<uint8_t>(path("IJ.TIFF"), labels(false), imagej)).spacing, v.spacing);
 }

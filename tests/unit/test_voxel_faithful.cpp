@@ -208,8 +208,8 @@ TEST(VoxelFaithful, the_default_loses_one_voxel_islands) {
 // --lattice auto is bcc unless the volume is read voxel-faithful and bcc would
 // lose more than 1% of a label (the sheet, the tube and some islands here).
 TEST(VoxelFaithful, auto_lattice_is_bcc_unless_voxel_faithful) {
-  const std::string path = test::write_nrrd("auto_lattice.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n",
-                                            thin_structures());
+  const std::string path = test::write_nrrd(
+      "auto_lattice.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\nspacings: 1 1 1\n", thin_structures());
   const Scene plain = load_input(path), kept = load_input(path, faithful());
   InputOptions distance;
   distance.label_function = LabelFunction::signed_distance;
@@ -276,7 +276,8 @@ TEST(VoxelFaithful, bcc_losses_are_counted_for_the_snap_create_is_given) {
     random = random * 1664525u + 1013904223u; // labels 1 and 2 in halves, 8% of voxels label 3
     labels[v] = int16_t((random >> 24) < 20 ? 3 : v / (kSize * kSize) % kSize < 16 ? 1 : 2);
   }
-  const std::string path = test::write_nrrd("snap_losses.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\n", labels);
+  const std::string path =
+      test::write_nrrd("snap_losses.nrrd", "type: short\ndimension: 3\nsizes: 32 32 32\nspacings: 1 1 1\n", labels);
   auto centres_lost_at = [&](double snap) {
     MeshOptions o;
     o.snap = snap;

@@ -76,6 +76,7 @@ struct InputCliOptions {
   std::vector<std::string> merge;      ///< "A+B" groups
   std::string world = "file";          ///< --world
   bool signed_distance = false;
+  std::vector<double> voxel_size;      ///< --voxel-size: S, or SX,SY,SZ
 };
 /// Adds the options of label volumes to `cmd`. Where the input is an option
 /// (`--field` of stats and smooth), pass it as `input`: the label options then

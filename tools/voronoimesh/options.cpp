@@ -94,6 +94,12 @@ void add_input_options(CLI::App* cmd, InputCliOptions& o, CLI::Option* input) {
                   "volume, as many as the voxels (bcc tetrahedra on flat cells cut the surfaces into slivers); with "
                   "--voxel-faithful the voxel grid")
       ->group(labels);
+  cmd->add_option("--voxel-size", o.voxel_size,
+                  "The voxel size of a volume, S or SX,SY,SZ along the file's axes, instead of the file's: for a file "
+                  "that says none (a TIFF not written by ImageJ, a NRRD without spacings; the output says so) or a "
+                  "wrong one")
+      ->delimiter(',')
+      ->group(labels);
   cmd->add_flag("--ignore-direction", o.input.ignore_direction,
                 "Use the voxel axes as they are when the volume's direction matrix is oblique")
       ->group(labels);
@@ -198,6 +204,11 @@ vm::InputOptions input_options(const InputCliOptions& o) {
     input.merge_labels.push_back(labels);
   }
   input.world = o.world == "lps" ? vm::World::lps : o.world == "ras" ? vm::World::ras : vm::World::file;
+  if (o.voxel_size.size() == 1) input.voxel_size = vm::Vec3::Constant(o.voxel_size[0]);
+  else if (o.voxel_size.size() == 3) input.voxel_size = vm::Vec3(o.voxel_size[0], o.voxel_size[1], o.voxel_size[2]);
+  else if (!o.voxel_size.empty())
+    throw vm::InvalidInput("--voxel-size: one size (S) or three (SX,SY,SZ), got " +
+                           std::to_string(o.voxel_size.size()));
   input.label_function = o.signed_distance ? vm::LabelFunction::signed_distance : vm::LabelFunction::smoothed_indicator;
   return input;
 }

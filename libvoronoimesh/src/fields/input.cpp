@@ -51,6 +51,21 @@ void labels_from_whole_values(io::Volume& v, const std::string& path) {
   v.notes.push_back("voxels stored as reals, every one a whole number: read as labels");
 }
 
+/// Puts `size` (--voxel-size) in place of the file's voxel size, along the
+/// file's axes, and says so; or says that the file gives none.
+void set_voxel_size(io::Volume& v, const std::optional<Vec3>& size) {
+  const auto sizes = [](const Vec3& s) { return cat(s.x(), " x ", s.y(), " x ", s.z()); };
+  if (size) {
+    v.notes.push_back(cat("voxels of ", sizes(*size), " (--voxel-size; the file's: ",
+                          v.spacing_stated ? sizes(v.spacing) : std::string("none"), ")"));
+    v.spacing = *size;
+    v.spacing_stated = true;
+  } else if (!v.spacing_stated) {
+    v.notes.push_back(cat("the file says no voxel size along some axis: voxels of ", sizes(v.spacing),
+                          " (--voxel-size gives them theirs)"));
+  }
+}
+
 /// A distance grid: one real component per phase per voxel.
 /// (One real component is a label volume: read_placed_volume() makes it one or refuses it.)
 Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::string& path) {
@@ -60,6 +75,7 @@ Scene distance_scene(const io::Volume& v, const InputOptions& o, const std::stri
     std::copy_n(v.values.begin() + ptrdiff_t(size_t(n) * c), c, out.begin());
   };
   Scene scene = detail::phase_values_scene(grid, v.components, fill, {}, {}, o.top_k, path);
+  scene.notes = v.notes;
   scene.grid = detail::volume_scene_grid(grid, o.voxels_per_cell, path, scene.notes);
   return scene;
 }
@@ -83,6 +99,7 @@ std::vector<std::string> options_that_do_not_apply(const InputOptions& o, bool v
   }
   if (!volume) {
     if (o.voxels_per_cell != defaults.voxels_per_cell) given.push_back("--voxels-per-cell");
+    if (o.voxel_size) given.push_back("--voxel-size");
     if (o.ignore_direction) given.push_back("--ignore-direction");
     if (o.world != defaults.world) given.push_back("--world");
   }
@@ -127,6 +144,7 @@ void refuse_options_that_do_not_apply(const InputOptions& o, bool volume, bool l
 
 io::Volume read_placed_volume(const std::string& path, const InputOptions& options, std::string* world) {
   io::Volume v = io::read_volume(path);
+  set_voxel_size(v, options.voxel_size);
   labels_from_whole_values(v, path);
   const std::string frame = convert_world(v, options.world, path);
   detail::axis_align(v, path, options.ignore_direction);

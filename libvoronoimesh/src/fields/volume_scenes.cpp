@@ -216,6 +216,9 @@ void check_input_options(const InputOptions& o) {
     throw InvalidInput(cat("--voxels-per-cell: must be in [1, 64] (or 0, the default grid), got ", o.voxels_per_cell));
   for (const auto& group : o.merge_labels)
     if (group.size() < 2) throw InvalidInput("--merge-labels: each group needs two labels or more, as A+B");
+  if (o.voxel_size && !(o.voxel_size->allFinite() && o.voxel_size->minCoeff() > 0))
+    throw InvalidInput(cat("--voxel-size: every size must be above 0, got ", o.voxel_size->x(), ", ",
+                           o.voxel_size->y(), ", ", o.voxel_size->z()));
   if (o.world != World::file && o.ignore_direction)
     throw InvalidInput("--world: not with --ignore-direction (the mesh is then in the voxel axes, in no anatomical frame)");
   // An option of the other label function would change nothing: refused, not ignored.

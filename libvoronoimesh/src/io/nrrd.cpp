@@ -119,7 +119,10 @@ void read_geometry(const std::string& path, const Nrrd& n, unsigned first, Volum
     double dir[NRRD_SPACE_DIM_MAX];
     const int status = nrrdSpacingCalculate(&n, first + a, &spacing, dir);
     switch (status) {
-    case nrrdSpacingStatusNone: spacing = 1; break;
+    case nrrdSpacingStatusNone:
+      spacing = 1;
+      v.spacing_stated = false;
+      break;
     case nrrdSpacingStatusScalarNoSpace: break;
     case nrrdSpacingStatusDirection: v.direction.col(a) = Vec3(dir[0], dir[1], dir[2]); break;
     default:

@@ -5,7 +5,7 @@
 /// decodes, either byte order, BigTIFF). Voxel (i, j, k) is column i, row j (from
 /// the top, as ImageJ counts them) of page k. The voxel size is ImageJ's: its
 /// description's `spacing=` (z) and the X/YResolution tags (pixels per unit);
-/// any other TIFF says none, and its voxels are 1 x 1 x 1, which a note says.
+/// any other TIFF says none (Volume::spacing_stated), and its voxels are 1 x 1 x 1.
 
 #include "voronoimesh/io/volume.hpp"
 
@@ -194,7 +194,7 @@ Volume read_tiff(const std::string& path) {
                                                      !detail::parse_number(spacing->second, steps(2, 2)))
       throw InvalidInput(located(path, cat("ImageJ's spacing=", spacing->second, " is not a number")));
   } else {
-    v.notes.push_back("the TIFF says no voxel size (only ImageJ's do): voxels of 1 x 1 x 1");
+    v.spacing_stated = false;
   }
   detail::set_voxel_axes(v, steps, Vec3::Zero(), path);
 

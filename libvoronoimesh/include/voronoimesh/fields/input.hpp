@@ -78,6 +78,10 @@ struct InputOptions {
   /// slices thicker than their pixels): then cubic cells of the voxels' volume,
   /// about as many as the voxels (with voxel_faithful, the voxel grid always).
   double voxels_per_cell = 0;
+  /// The voxel size along the file's axes, instead of the file's (for a file
+  /// that says none, such as a TIFF not written by ImageJ, or a wrong one);
+  /// each > 0 and finite. Unset: the file's.
+  std::optional<Vec3> voxel_size;
 };
 
 /// Reads `path` as whatever it is, by extension: .json a scene (load_scene);

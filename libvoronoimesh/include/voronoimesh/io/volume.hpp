@@ -39,6 +39,9 @@ struct Volume {
   std::array<int64_t, 3> size{0, 0, 0}; ///< voxels per axis
   int components = 1;                  ///< values per voxel (e.g. one per phase of a distance grid)
   Vec3 spacing = Vec3::Ones();         ///< voxel size along each axis, > 0
+  /// False when the file says no voxel size (a NRRD axis without spacing, a TIFF
+  /// not written by ImageJ): `spacing` is then 1 along those axes.
+  bool spacing_stated = true;
   Vec3 origin = Vec3::Zero();          ///< centre of voxel (0, 0, 0)
   /// Unit axis directions as columns (identity where the format has none).
   Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();
@@ -111,7 +114,7 @@ Volume read_dream3d(const std::string& path);
 /// Reads a TIFF stack (.tif, .tiff: one page per z slice, as Fiji/ImageJ and
 /// micro-CT and FIB-SEM software save volumes) with libtiff. The voxel size is
 /// ImageJ's (its X/YResolution tags and `spacing=`); another writer's TIFF has
-/// voxels of 1 x 1 x 1, said in Volume::notes.
+/// voxels of 1 x 1 x 1 and Volume::spacing_stated false.
 /// @param path the file to read
 /// @return the volume
 /// @throws InvalidInput for a file that is not a TIFF, has one page, pages unlike the first, more than one
