@@ -33,6 +33,7 @@ TEST_F(VolumeReaders, metaimage_local_short_with_transform) {
   expect_size(v);
   expect_labels(v, true);
   expect_geometry(v, Vec3(0.5, 1.25, 3), Vec3(-1, 2.5, 7), r);
+  EXPECT_TRUE(v.spacing_stated);
 }
 
 TEST_F(VolumeReaders, metaimage_big_endian_float_and_uint) {
@@ -41,6 +42,7 @@ TEST_F(VolumeReaders, metaimage_big_endian_float_and_uint) {
   io::Volume v = io::read_metaimage(path("f.mha"));
   expect_values(v);
   expect_geometry(v, Vec3::Ones(), Vec3(1, 2, 3));
+  EXPECT_FALSE(v.spacing_stated); // no ElementSpacing nor ElementSize
 
   write("u.mha", mha_header("MET_UINT", "BinaryDataByteOrderMSB = True\n") + encode<uint32_t>(labels(false), true));
   v = io::read_metaimage(path("u.mha"));
@@ -190,6 +192,7 @@ TEST_F(VolumeReaders, inr_uchar_little_endian_with_origin) {
   expect_size(v);
   expect_labels(v, false);
   expect_geometry(v, Vec3(0.5, 1.5, 2.5), Vec3(-3, 4.25, 10));
+  EXPECT_TRUE(v.spacing_stated);
 }
 
 TEST_F(VolumeReaders, inr_big_endian_short_and_int) {
@@ -197,6 +200,7 @@ TEST_F(VolumeReaders, inr_big_endian_short_and_int) {
   io::Volume v = io::read_inr(path("s.inr"));
   expect_labels(v, true);
   expect_geometry(v, Vec3::Ones(), Vec3::Zero());
+  EXPECT_FALSE(v.spacing_stated); // no VX, VY, VZ: unit voxels, which load_input() says
   write("i.inr", inr_header("TYPE=signed fixed\nPIXSIZE=32 bits\nCPU=sgi\n") + encode<int32_t>(labels(true), true));
   expect_labels(io::read_inr(path("i.inr")), true);
   write("u.inr", inr_header("TYPE=unsigned fixed\nPIXSIZE=16 bits\nCPU=pc\n") + encode<uint16_t>(labels(false), false));

@@ -167,6 +167,8 @@ void read_geometry(const std::string& path, const std::map<std::string, std::str
     if (const std::string* value = get(spacing[a])) {
       steps(a, a) = number(path, spacing[a], *value);
       if (!(steps(a, a) > 0)) throw InvalidInput(located(path, cat(spacing[a], "=", *value, " is not > 0")));
+    } else {
+      v.spacing_stated = false;
     }
     if (const std::string* value = get(translation[a])) origin[a] = number(path, translation[a], *value);
   }

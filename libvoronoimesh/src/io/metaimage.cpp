@@ -165,6 +165,8 @@ void read_geometry(const std::string& path, const Fields& f, Volume& v) {
       if (!(s[a] > 0)) throw InvalidInput(located(path, cat(key, " value ", s[a], " is not > 0")));
       steps(a, a) = s[a];
     }
+  } else {
+    v.spacing_stated = false;
   }
   if (const char* key = f.one_of({"TransformMatrix", "Rotation", "Orientation"})) {
     // Row-major as written, each run of NDims values one axis direction (ITK's reading).

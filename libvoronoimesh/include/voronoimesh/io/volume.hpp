@@ -39,8 +39,9 @@ struct Volume {
   std::array<int64_t, 3> size{0, 0, 0}; ///< voxels per axis
   int components = 1;                  ///< values per voxel (e.g. one per phase of a distance grid)
   Vec3 spacing = Vec3::Ones();         ///< voxel size along each axis, > 0
-  /// False when the file says no voxel size (a NRRD axis without spacing, a TIFF
-  /// not written by ImageJ): `spacing` is then 1 along those axes.
+  /// False when the file says no voxel size along some axis (a NRRD axis without
+  /// spacing, MetaImage without ElementSpacing or ElementSize, INR without VX,
+  /// VY or VZ, a TIFF not written by ImageJ): `spacing` is then 1 along it.
   bool spacing_stated = true;
   Vec3 origin = Vec3::Zero();          ///< centre of voxel (0, 0, 0)
   /// Unit axis directions as columns (identity where the format has none).
