@@ -118,6 +118,38 @@ TEST_F(VolumeReaders, tiff_voxel_size_from_imagej) {
   EXPECT_EQ(io::read_volume(write_stack<uint8_t>(path("IJ.TIFF"), labels(false), imagej)).spacing, v.spacing);
 }
 
+/// An OME-TIFF's description: the OME-XML of one image whose Pixels element has `pixels`.
+std::string ome_xml(const std::string& pixels) {
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?><OME xmlns=\"http://www.openmicroscopy.org/Schemas/OME/2016-06\">"
+         "<Image ID=\"Image:0\"><Pixels DimensionOrder=\"XYZCT\" ID=\"Pixels:0\" " + pixels +
+         " SizeX=\"5\" SizeY=\"4\" Type=\"uint8\"><TiffData/></Pixels></Image></OME>";
+}
+
+// OME-TIFF (Bio-Formats, Fiji's OME export, microscopes): the voxel size from
+// PhysicalSizeX/Y/Z; pages that are not all z slices of one channel at one time refused.
+TEST_F(VolumeReaders, tiff_voxel_size_and_dimensions_from_ome_xml) {
+  const std::string sizes = "PhysicalSizeX=\"0.5\" PhysicalSizeY=\"0.25\" PhysicalSizeZ=\"2\" ";
+  const io::Volume v = io::read_tiff(write_stack<uint8_t>(
+      path("a.ome.tif"), labels(false), {.description = ome_xml(sizes + "SizeC=\"1\" SizeT=\"1\" SizeZ=\"3\"")}));
+  expect_labels(v, false);
+  expect_geometry(v, Vec3(0.5, 0.25, 2), Vec3::Zero());
+  EXPECT_TRUE(v.spacing_stated);
+  const io::Volume no_sizes = io::read_tiff(
+      write_stack<uint8_t>(path("b.ome.tif"), labels(false), {.description = ome_xml("SizeC=\"1\" SizeZ=\"3\"")}));
+  EXPECT_FALSE(no_sizes.spacing_stated);
+  EXPECT_REFUSED(io::read_tiff,
+                 write_stack<uint8_t>(path("c.ome.tif"), labels(false),
+                                      {.description = ome_xml("SizeC=\"3\" SizeT=\"1\" SizeZ=\"1\"")}),
+                 "an OME-TIFF of 3 channels");
+  EXPECT_REFUSED(io::read_tiff,
+                 write_stack<uint8_t>(path("d.ome.tif"), labels(false), {.description = ome_xml("SizeZ=\"30\"")}),
+                 "its OME-XML says SizeZ=30, but it has 3 pages");
+  EXPECT_REFUSED(io::read_tiff,
+                 write_stack<uint8_t>(path("e.ome.tif"), labels(false),
+                                      {.description = ome_xml(sizes + "PhysicalSizeZUnit=\"nm\" SizeZ=\"3\"")}),
+                 "gives the voxel size in \u00b5m and nm: give it with --voxel-size");
+}
+
 TEST_F(VolumeReaders, tiff_files_that_are_no_volume_are_refused) {
   EXPECT_REFUSED(io::read_tiff, write_stack<uint8_t>(path("one.tif"), labels(false), {.pages = 1}),
                  "has one page, a 2-D image; a volume is a stack of pages");

@@ -3,9 +3,10 @@
 /// segmentation tools save label volumes: one page (image file directory) per z
 /// slice, read with libtiff (strips or tiles, any compression and predictor it
 /// decodes, either byte order, BigTIFF). Voxel (i, j, k) is column i, row j (from
-/// the top, as ImageJ counts them) of page k. The voxel size is ImageJ's: its
-/// description's `spacing=` (z) and the X/YResolution tags (pixels per unit);
-/// any other TIFF says none (Volume::spacing_stated), and its voxels are 1 x 1 x 1.
+/// the top, as ImageJ counts them) of page k. The voxel size is an OME-TIFF's
+/// (PhysicalSizeX/Y/Z of its OME-XML) or ImageJ's (its description's `spacing=`
+/// along z, the X/YResolution tags in pixels per unit); any other TIFF says none
+/// (Volume::spacing_stated), and its voxels are 1 x 1 x 1.
 
 #include "voronoimesh/io/volume.hpp"
 
@@ -26,6 +27,8 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace vm::io {
@@ -102,6 +105,59 @@ std::map<std::string, std::string> imagej_fields(TIFF* t) {
     line = end + 1;
   }
   return fields;
+}
+
+/// The attributes of the Pixels element of an OME-TIFF's OME-XML description
+/// (SizeZ, SizeC, SizeT, PhysicalSizeX, ...), or empty for another writer's.
+std::map<std::string, std::string> ome_pixels(TIFF* t) {
+  std::map<std::string, std::string> attributes;
+  const char* text = nullptr;
+  if (!TIFFGetField(t, TIFFTAG_IMAGEDESCRIPTION, &text) || !text) return attributes;
+  const std::string_view xml(text);
+  if (xml.find("<OME") == std::string_view::npos && xml.find(":OME") == std::string_view::npos) return attributes;
+  size_t at = xml.find("<Pixels ");
+  if (at == std::string_view::npos) at = xml.find(":Pixels "); // a prefixed element, <ome:Pixels
+  const size_t end = at == std::string_view::npos ? at : xml.find('>', at);
+  if (end == std::string_view::npos) return attributes;
+  const std::string_view element = xml.substr(at, end - at);
+  for (size_t eq = element.find("=\""); eq != std::string_view::npos; eq = element.find("=\"", eq + 2)) {
+    const size_t name = element.find_last_of(" \t\n", eq) + 1, close = element.find('"', eq + 2);
+    if (close == std::string_view::npos) break;
+    attributes.emplace(element.substr(name, eq - name), element.substr(eq + 2, close - eq - 2));
+  }
+  return attributes;
+}
+
+/// The voxel size an OME-TIFF's Pixels element gives, where it gives all three
+/// in one unit; refuses one of several channels or time points, whose pages are
+/// not all z slices, or whose pages are not its SizeZ (a multi-file dataset).
+std::optional<Vec3> ome_voxel_size(const std::string& path, const std::map<std::string, std::string>& ome,
+                                   tdir_t pages) {
+  auto get = [&](const char* key) {
+    const auto it = ome.find(key);
+    return it == ome.end() ? std::string() : it->second;
+  };
+  for (const auto& [key, what] : {std::pair{"SizeC", " channels"}, std::pair{"SizeT", " time points"}})
+    if (const std::string n = get(key); !n.empty() && n != "1")
+      throw InvalidInput(located(path, cat("an OME-TIFF of ", n, what, "; a volume of labels has one channel at one "
+                                                                "time")));
+  if (const std::string z = get("SizeZ"); !z.empty() && z != std::to_string(pages))
+    throw InvalidInput(located(path, cat("its OME-XML says SizeZ=", z, ", but it has ", pages,
+                                         " pages (one file of a multi-file OME-TIFF dataset?)")));
+  auto unit = [&](const std::string& size_key) { // OME's default unit is the micrometre
+    const std::string u = get((size_key + "Unit").c_str());
+    return u.empty() ? std::string("\u00b5m") : u;
+  };
+  static const char* const axes[] = {"X", "Y", "Z"};
+  Vec3 size;
+  for (int a = 0; a < 3; ++a) {
+    const std::string key = cat("PhysicalSize", axes[a]);
+    if (!detail::parse_number(get(key.c_str()), size[a]) || !(size[a] > 0)) return std::nullopt;
+    if (unit(key) != unit("PhysicalSizeX"))
+      throw InvalidInput(located(path, cat("its OME-XML gives the voxel size in ", unit("PhysicalSizeX"), " and ",
+                                           unit(key), ": give it with --voxel-size")));
+  }
+  return size;
 }
 
 /// The pixel size along x or y: the inverse of ImageJ's resolution tag.
@@ -187,7 +243,11 @@ Volume read_tiff(const std::string& path) {
   Volume v;
   v.size = {int64_t(first.width), int64_t(first.height), int64_t(pages)};
   Eigen::Matrix3d steps = Eigen::Matrix3d::Identity();
-  if (!imagej.empty()) {
+  const auto ome = ome_pixels(t.get());
+  const std::optional<Vec3> ome_size = ome.empty() ? std::nullopt : ome_voxel_size(path, ome, pages);
+  if (ome_size) {
+    steps = ome_size->asDiagonal();
+  } else if (!imagej.empty()) {
     steps(0, 0) = pixel_size(path, t.get(), TIFFTAG_XRESOLUTION, "x");
     steps(1, 1) = pixel_size(path, t.get(), TIFFTAG_YRESOLUTION, "y");
     if (const auto spacing = imagej.find("spacing"); spacing != imagej.end() &&
