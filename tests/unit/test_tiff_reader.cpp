@@ -89,10 +89,11 @@ TEST_F(VolumeReaders, tiff_stacks_in_strips_and_tiles_compressed_or_not) {
                                           {.compression = COMPRESSION_ADOBE_DEFLATE, .rows_per_strip = 3})),
        false},
       {"ushort, big-endian, LZW",
-       io::read_tiff(write_stack<uint16_t>(path("b.tif"), labels(false), {.mode = "wb", .compression = COMPRESSION_LZW})),
+       io::read_tiff(
+           write_stack<uint16_t>(path("b.tif"), labels(false), {.mode = "wb", .compression = COMPRESSION_LZW})),
        false},
-      {"int tiles, BigTIFF", io::read_tiff(write_stack<int32_t>(path("c.tiff"), labels(true), {.mode = "w8", .tile = 16})),
-       true},
+      {"int tiles, BigTIFF",
+       io::read_tiff(write_stack<int32_t>(path("c.tiff"), labels(true), {.mode = "w8", .tile = 16})), true},
       {"short, packbits",
        io::read_tiff(write_stack<int16_t>(path("d.tif"), labels(true), {.compression = COMPRESSION_PACKBITS})), true}};
   for (const Case& c : cases) {
