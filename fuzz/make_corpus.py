@@ -176,6 +176,56 @@ put("inr", "short_sun.inr", inr("TYPE=signed fixed\nPIXSIZE=16 bits\nCPU=sun\n",
 put("inr", "float_vectors.inr.gz", gzip.compress(
     inr("VDIM=2\nTYPE=float\nPIXSIZE=32 bits\nCPU=pc\nVX=2\nVY=2\nVZ=3\n", raw("f", dists))))
 
+# ---- TIFF stacks: two pages of 2 x 2 (one strip each), classic little- and big-endian
+#      with ImageJ's description and resolution, and a BigTIFF of floats
+
+
+def tiff(fmt, values, big=False, imagej=False, bigtiff=False):
+    """A 2-page TIFF of 2 x 2 samples packed with struct format `fmt` (B, h, f...)."""
+    e = "<>"[big]
+    sample = struct.calcsize(fmt)
+    bits = 8 * sample
+    kind = 3 if fmt in "fd" else 2 if fmt in "bhi" else 1
+    description = b"ImageJ=1.54f\nimages=2\nslices=2\nspacing=2\n\0" if imagej else b""
+    head = 16 if bigtiff else 8
+    entry, count, offset = ("HHQQ", "Q", "Q") if bigtiff else ("HHII", "H", "I")
+    pages = [raw(fmt, values[4 * k:4 * k + 4], big) for k in range(2)]
+    data = b"".join(pages) + description + (struct.pack(e + "II", 1, 2) * 2 if imagej else b"")
+    place = head  # pixels first, then the extras, then the directories
+    strips = [place, place + len(pages[0])]
+    text_at = place + len(pages[0]) * 2
+    resolution_at = text_at + len(description)
+    directories = b""
+    first_directory = head + len(data)
+    for k in range(2):
+        tags = [(256, 3, 1, 2), (257, 3, 1, 2), (258, 3, 1, bits), (259, 3, 1, 1), (262, 3, 1, 1),
+                (273, 4, 1, strips[k]), (277, 3, 1, 1), (278, 3, 1, 2), (279, 4, 1, len(pages[k])),
+                (339, 3, 1, kind)]
+        if imagej and k == 0:
+            tags += [(270, 2, len(description), text_at), (282, 5, 1, resolution_at),
+                     (283, 5, 1, resolution_at + 8), (296, 3, 1, 1)]
+        tags.sort()
+        size = struct.calcsize(e + count) + len(tags) * struct.calcsize(e + entry) + struct.calcsize(e + offset)
+        next_directory = first_directory + len(directories) + size if k == 0 else 0
+        body = struct.pack(e + count, len(tags))
+        for tag, type_, n, value in tags:
+            # A SHORT value sits in the entry's first bytes, in the file's byte order.
+            if type_ == 3 and n == 1:
+                pad = struct.calcsize(e + offset) - 2
+                body += struct.pack(e + "HH", tag, type_) + struct.pack(e + offset, n) + \
+                    struct.pack(e + "H", value) + b"\0" * pad
+            else:
+                body += struct.pack(e + entry, tag, type_, n, value)
+        directories += body + struct.pack(e + offset, next_directory)
+    magic = (b"MM" if big else b"II") + struct.pack(e + "H", 43 if bigtiff else 42)
+    magic += struct.pack(e + "HHQ", 8, 0, first_directory) if bigtiff else struct.pack(e + "I", first_directory)
+    return magic + data + directories
+
+
+put("tiff", "uchar.tif", tiff("B", labels))
+put("tiff", "short_big_imagej.tif", tiff("h", labels, big=True, imagej=True))
+put("tiff", "float_bigtiff.tif", tiff("f", [float(v) for v in labels], bigtiff=True))
+
 # ---- text points ("x y z label"; .csv may have a header row)
 put("points", "header.csv", "x,y,z,label\n0,0,0,1\n1,0,0,2\n0,1,0.5,1\n# comment\n1,1,1,2\n")
 put("points", "spaces.csv", "0 0 0 3\n1e-3 2 -1.5 7\n\n0.5 0.5 0.5 3 # near\n")

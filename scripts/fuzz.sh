@@ -6,7 +6,7 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [READER...]
 #   readers (targets, default: all): scene nrrd nrrd_detached nrrd_compressed nifti
-#   nifti_gz nifti_gzipped metaimage metaimage_detached inr points ply_points ply_mesh
+#   nifti_gz nifti_gzipped metaimage metaimage_detached inr tiff points ply_points ply_mesh
 #   (_detached: a header and its data files from one input; nifti_gz: the gzip
 #   stream as it is; nifti_gzipped, nrrd_compressed: data the target compresses)
 # The corpus of each reader grows across runs in build-fuzz/fuzz_runs/corpus/<reader>;
@@ -19,7 +19,7 @@ seconds=${1:-60}
 shift || true
 readers=("$@")
 [ ${#readers[@]} -gt 0 ] || readers=(scene nrrd nrrd_detached nrrd_compressed nifti nifti_gz nifti_gzipped metaimage
-  metaimage_detached inr points ply_points ply_mesh)
+  metaimage_detached inr tiff points ply_points ply_mesh)
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build-fuzz
 work=$build/fuzz_runs
