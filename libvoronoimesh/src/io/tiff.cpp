@@ -11,6 +11,7 @@
 #include "voronoimesh/io/volume.hpp"
 
 #include "core/huge_pages.hpp"
+#include "core/input_file.hpp"
 #include "core/memory.hpp"
 #include "core/text.hpp"
 #include "io/voxel_data.hpp"
@@ -25,6 +26,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -121,7 +123,7 @@ std::map<std::string, std::string> ome_pixels(TIFF* t) {
   if (end == std::string_view::npos) return attributes;
   const std::string_view element = xml.substr(at, end - at);
   for (size_t eq = element.find("=\""); eq != std::string_view::npos; eq = element.find("=\"", eq + 2)) {
-    const size_t name = element.find_last_of(" \t\n", eq) + 1, close = element.find('"', eq + 2);
+    const size_t name = element.find_last_of(" \t\r\n", eq) + 1, close = element.find('"', eq + 2);
     if (close == std::string_view::npos) break;
     attributes.emplace(element.substr(name, eq - name), element.substr(eq + 2, close - eq - 2));
   }
@@ -167,6 +169,55 @@ double pixel_size(const std::string& path, TIFF* t, ttag_t tag, const char* axis
   if (!(std::isfinite(per_unit) && per_unit > 0))
     throw InvalidInput(located(path, cat("its ", axis, " resolution is ", per_unit, " pixels per unit, must be > 0")));
   return 1.0 / double(per_unit);
+}
+
+/// The most bytes `stored` bytes of strips or tiles decode to under `compression`:
+/// none 1:1, PackBits 128 from 2, deflate 1032:1 (max_inflated_bytes()), LZW 4096:1
+/// (one 12-bit code stands for at most 4096 bytes); none for other schemes (LZMA,
+/// ZSTD, JPEG...), which only the memory check bounds.
+std::optional<uint64_t> most_decoded_bytes(uint16_t compression, uint64_t stored) {
+  const uint64_t huge = std::numeric_limits<uint64_t>::max() / 4096;
+  switch (compression) {
+  case COMPRESSION_NONE: return stored;
+  case COMPRESSION_PACKBITS: return std::min(stored, huge) * 64 + 128;
+  case COMPRESSION_ADOBE_DEFLATE:
+  case COMPRESSION_DEFLATE: return detail::max_inflated_bytes(stored);
+  case COMPRESSION_LZW: return std::min(stored, huge) * 4096;
+  default: return std::nullopt;
+  }
+}
+
+/// Refuses a stack whose pages are unlike the first, or whose strips or tiles
+/// could not hold the samples their headers describe (a few hundred corrupt
+/// bytes claiming gigabytes), before anything is allocated for them. Leaves the
+/// first page current.
+void check_pages(const std::string& path, TIFF* t, tdir_t pages, const PageLayout& first, uint64_t page_bytes,
+                 uint64_t file_bytes) {
+  for (tdir_t page = 0; page < pages; ++page) {
+    // Page after page: TIFFSetDirectory(k) walks the chain from the first page each time.
+    if (page == 0 ? !TIFFSetDirectory(t, 0) : !TIFFReadDirectory(t))
+      throw InvalidInput(located(path, cat("page ", page + 1, " cannot be read")));
+    if (const PageLayout here = layout_of(t); !(here == first))
+      throw InvalidInput(located(path, cat("page ", page + 1, " is ", here.width, " x ", here.height, " of ",
+                                           here.bits, "-bit samples, page 1 ", first.width, " x ", first.height,
+                                           " of ", first.bits,
+                                           ": a volume's slices are alike (a thumbnail or preview page?)")));
+    uint16_t compression = COMPRESSION_NONE;
+    TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
+    const auto at_most = most_decoded_bytes(compression, file_bytes);
+    if (!at_most) continue;
+    if (page_bytes > *at_most)
+      throw InvalidInput(located(path, cat("page ", page + 1, " describes ", page_bytes, " bytes of samples, more "
+                                           "than the file's ", file_bytes, " bytes can hold (corrupt sizes?)")));
+    uint64_t stored = 0;
+    const uint32_t striles = TIFFIsTiled(t) ? TIFFNumberOfTiles(t) : TIFFNumberOfStrips(t);
+    for (uint32_t s = 0; s < striles && stored <= file_bytes; ++s) stored += TIFFGetStrileByteCount(t, s);
+    if (page_bytes > *most_decoded_bytes(compression, std::min(stored, file_bytes)))
+      throw InvalidInput(located(path, cat("page ", page + 1, " describes ", page_bytes, " bytes of samples, more "
+                                           "than its ", stored,
+                                           " bytes of strips or tiles can hold (corrupt sizes?)")));
+  }
+  TIFFSetDirectory(t, 0);
 }
 
 /// Reads the current page's pixels into `out` (rows of `row_bytes`, top first),
@@ -263,17 +314,12 @@ Volume read_tiff(const std::string& path) {
   // The samples, then their labels or values: before a corrupt size asks for more than there is.
   detail::refuse_beyond_memory(double(needed) + 4.0 * double(v.voxel_count()), path,
                                cat("reading ", v.voxel_count(), " voxels"));
+  check_pages(path, t.get(), pages, first, uint64_t(first.height) * row_bytes, detail::require_regular_file(path));
   std::string data;
   detail::resize_on_huge_pages(data, size_t(needed));
   for (tdir_t page = 0; page < pages; ++page) {
-    // Page after page: TIFFSetDirectory(k) walks the chain from the first page each time.
-    if (page == 0 ? !TIFFSetDirectory(t.get(), 0) : !TIFFReadDirectory(t.get()))
+    if (page > 0 && !TIFFReadDirectory(t.get()))
       throw InvalidInput(located(path, cat("page ", page + 1, " cannot be read (", last_error, ")")));
-    if (const PageLayout here = layout_of(t.get()); !(here == first))
-      throw InvalidInput(located(path, cat("page ", page + 1, " is ", here.width, " x ", here.height, " of ",
-                                           here.bits, "-bit samples, page 1 ", first.width, " x ", first.height,
-                                           " of ", first.bits,
-                                           ": a volume's slices are alike (a thumbnail or preview page?)")));
     read_page(path, t.get(), first, row_bytes,
               reinterpret_cast<unsigned char*>(data.data()) + size_t(page) * first.height * row_bytes, last_error,
               page);
