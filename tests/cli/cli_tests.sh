@@ -204,6 +204,11 @@ if out=$("$vm" mesh two.nrrd -o two_unit.ply 2>&1) && grep -q "^the file says no
   out=$("$vm" mesh two.nrrd --voxel-size 2 -o two_sized.ply 2>&1) && grep -q "^voxels of 2 x 2 x 2 (--voxel-size; the file's: none)" <<<"$out" &&
   "$vm" stats --json two_sized.ply | python3 -c 'import json, sys; sys.exit(not json.load(sys.stdin)["max_edge"] > 1.5)'
 then pass; else fail "--voxel-size: $out"; fi
+# A closed mesh measured against its input read with another voxel size: refused, not measured.
+if "$vm" mesh -q two.nrrd --voxel-size 0.5 --close -o two_closed.ply &&
+  "$vm" stats two_closed.ply --field two.nrrd --voxel-size 0.5 | contains "voxel centres in their label's phase"; then pass
+else fail "stats --field --voxel-size of a closed mesh"; fi
+expect_error "stats --field read with another voxel size" 2 "two\.nrrd: its domain .* is not the box of the closed mesh two_closed\.ply, .*--voxel-size" -- "$vm" stats two_closed.ply --field two.nrrd
 expect_error "--voxel-size of two sizes" 2 "--voxel-size: one size \(S\) or three \(SX,SY,SZ\), got 2" -- "$vm" mesh two.nrrd --voxel-size 1,2 -o out.ply
 sed 's/^0 0 0 1 2 3 2 3$/0 0 0 1 2.5 3 2 3/' two_reals.nrrd >blurred.nrrd
 expect_error "labels saved as reals, one not whole" 2 "blurred\.nrrd: .*voxel \(0, 0, 1\) holds 2\.5, not a label" -- "$vm" mesh blurred.nrrd -o out.ply

@@ -240,6 +240,18 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
   for (const Vec3& p : mesh.points)
     if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
       throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
+  // A closed mesh's box is the domain it was meshed in: the input read another
+  // way (another --voxel-size) would measure the mesh against another box.
+  const auto corners = [](const Box& b) {
+    return cat("(", b.min.x(), ", ", b.min.y(), ", ", b.min.z(), ") to (", b.max.x(), ", ", b.max.y(), ", ",
+               b.max.z(), ")");
+  };
+  const bool same_box = (mesh.domain.min - box.min).cwiseAbs().maxCoeff() <= tol &&
+                        (mesh.domain.max - box.max).cwiseAbs().maxCoeff() <= tol;
+  if (mesh.outside_phase >= 0 && !same_box)
+    throw InvalidInput(located(input, cat("its domain ", corners(box), " is not the box of the closed mesh ", mesh_path,
+                                          ", ", corners(mesh.domain), ": give the input the mesh was made from, read "
+                                          "with the same options (--voxel-size, --world)")));
 }
 
 MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
