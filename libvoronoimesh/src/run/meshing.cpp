@@ -237,9 +237,11 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
   }
   const Box& box = scene.grid.domain;
   const double tol = 1e-6 * (box.max - box.min).norm();
+  const std::string same_options = ": give the input the mesh was made from, read with the same options "
+                                   "(--voxel-size, --world)";
   for (const Vec3& p : mesh.points)
     if (((box.min.array() - tol) > p.array()).any() || (p.array() > (box.max.array() + tol)).any())
-      throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path));
+      throw InvalidInput(located(input, "its domain does not contain the nodes of " + mesh_path + same_options));
   // A closed mesh's box is the domain it was meshed in: the input read another
   // way (another --voxel-size) would measure the mesh against another box.
   const auto corners = [](const Box& b) {
@@ -250,8 +252,7 @@ void check_field_matches(const NodeMesh& mesh, const std::string& mesh_path, con
                         (mesh.domain.max - box.max).cwiseAbs().maxCoeff() <= tol;
   if (mesh.outside_phase >= 0 && !same_box)
     throw InvalidInput(located(input, cat("its domain ", corners(box), " is not the box of the closed mesh ", mesh_path,
-                                          ", ", corners(mesh.domain), ": give the input the mesh was made from, read "
-                                          "with the same options (--voxel-size, --world)")));
+                                          ", ", corners(mesh.domain), same_options)));
 }
 
 MeshOffsets offsets_from_input(const NodeMesh& mesh, const std::string& mesh_path, const Scene& scene,
