@@ -8,6 +8,7 @@
 #include "fields/point_cloud.hpp"
 #include "fields/volume_scenes.hpp"
 #include "fields/voxel_grid.hpp"
+#include "io/voxel_data.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -35,12 +36,11 @@ void labels_from_whole_values(io::Volume& v, const std::string& path) {
     return !(std::abs(double(x)) <= kLargestWholeFloatLabel && x == std::trunc(x));
   });
   if (not_label != v.values.end()) {
-    const auto n = int64_t(not_label - v.values.begin());
     char value[32];
     *std::to_chars(value, value + sizeof value - 1, *not_label).ptr = '\0';
     throw InvalidInput(located(
-        path, cat("holds one real value per voxel, but voxel (", n % v.size[0], ", ", n / v.size[0] % v.size[1], ", ",
-                  n / v.size[0] / v.size[1], ") holds ", value,
+        path, cat("holds one real value per voxel, but ", detail::voxel_name(v, size_t(not_label - v.values.begin())),
+                  " holds ", value,
                   ", not a label (labels saved as reals must be whole numbers, of at most 2^24: a label map resampled "
                   "with linear interpolation? resample it with nearest neighbour); a distance grid needs one value "
                   "per phase (2 or more), or one file per phase through a scene's \"grid\" phases")));

@@ -82,7 +82,8 @@ T load(const unsigned char* p, bool swap) {
   return v;
 }
 
-/// "voxel (i, j, k)" (plus the component when there are several) of value n.
+} // namespace
+
 std::string voxel_name(const io::Volume& volume, size_t n) {
   const auto c = int64_t(n % size_t(volume.components));
   const auto v = int64_t(n / size_t(volume.components));
@@ -91,6 +92,8 @@ std::string voxel_name(const io::Volume& volume, size_t n) {
   if (volume.components > 1) s += cat(" component ", c);
   return s;
 }
+
+namespace {
 
 template <class T>
 void decode_labels(io::Volume& volume, const unsigned char* data, bool swap, const std::string& path) {

@@ -42,6 +42,10 @@ uint64_t max_inflated_bytes(uint64_t compressed);
 /// then asks for more memory than the file could ever fill.
 void check_inflatable(const std::string& path, uint64_t needed, uint64_t compressed);
 
+/// "voxel (i, j, k)" (plus " component c" when there are several) of value `n`
+/// of the volume's data (components fastest, then i, j, k), for messages.
+std::string voxel_name(const io::Volume& volume, size_t n);
+
 /// Fills volume.labels (integer types, volume.integer = true) or volume.values
 /// from `data`, which holds voxel_data_bytes() bytes in the volume's order
 /// (components fastest, then i, j, k) with the given byte order. Throws
